@@ -1,0 +1,153 @@
+"""Boundary conditions at an operating point: heat per source, CHTC per surface, TCR per joint.
+
+This is where the paper's Tables 1-3 come from (``feedtherm heat`` prints them).  Two modes:
+
+``physics``
+    every heat and every CHTC from the correlations and the description; radiation on.
+``paper``
+    Table 1 heats and Table 2 CHTCs at the paper's reference condition, mapped onto the
+    description's sources and surfaces by its ``[paper]`` table and scaled to other
+    conditions by the physics ratio (see :mod:`.paper`); uncovered values from the
+    physics; radiation off.
+
+CHTCs are frozen for a run at the declared surface-to-air temperature difference (the
+paper's assumption 3); :func:`surface_transfer` evaluates them at any surface temperature
+for models that ask for temperature-dependent coefficients.
+"""
+
+from __future__ import annotations
+
+import warnings
+from contextlib import contextmanager
+from dataclasses import dataclass, replace
+from typing import Literal
+
+from ..physics.validity import CorrelationRangeWarning
+from ..system.schema import FeedSystem
+from .heat import SourceHeat, source_heats
+from .operating import OperatingPoint, operating_point
+from .paper import scaled
+from .surfaces import SurfaceTransfer, surface_transfer
+
+Mode = Literal["physics", "paper"]
+MODES: tuple[str, ...] = ("physics", "paper")
+
+
+@dataclass(frozen=True)
+class JointConductance:
+    parts: tuple[str, str]
+    tcr: float  # [m^2 K / W]
+    area: float  # [m^2]
+    sliding: bool
+
+    @property
+    def conductance(self) -> float:
+        """[W/K]"""
+        return self.area / self.tcr
+
+
+@dataclass(frozen=True)
+class BoundaryConditions:
+    condition: str
+    mode: str
+    point: OperatingPoint
+    heats: dict[str, SourceHeat]
+    surfaces: dict[str, SurfaceTransfer]
+    joints: list[JointConductance]
+    paper_heat: dict[str, float]  # source -> printed value at the reference condition [W]
+    paper_chtc: dict[str, float]  # surface -> printed value at the reference condition
+    warnings: list[str]
+
+    @property
+    def total_heat(self) -> float:
+        return sum(h.power for h in self.heats.values())
+
+
+def boundary_conditions(system: FeedSystem, condition: str, mode: Mode = "physics") -> BoundaryConditions:
+    """Boundary conditions of ``condition`` (a name in the description) in ``mode``."""
+    if mode not in MODES:
+        raise ValueError(f"mode must be one of {', '.join(MODES)}, got {mode!r}")
+    point = operating_point(system, system.conditions[condition])
+    caught: list[str] = []
+    heats, surfaces = _physics(system, point, with_radiation=(mode == "physics"), caught=caught)
+    paper_heat, paper_chtc = _printed(system)
+    if mode == "paper":
+        heats, surfaces = _paper(system, point, heats, surfaces)
+    joints = [JointConductance(tuple(j.between), j.tcr, j.area, j.sliding) for j in system.joints]
+    return BoundaryConditions(condition, mode, point, heats, surfaces, joints, paper_heat, paper_chtc, caught)
+
+
+def frozen_surface_temperature(system: FeedSystem, point: OperatingPoint) -> float:
+    """Surface temperature [K] at which frozen CHTCs are taken: ambient + declared rise."""
+    return point.ambient + system.temperatures.convection_delta_t
+
+
+def _physics(system: FeedSystem, point: OperatingPoint, *, with_radiation: bool, caught: list[str] | None = None):
+    """Physics-mode heats and surface transfer; range warnings go to ``caught``, labelled."""
+    sink = [] if caught is None else caught
+    t_surface = frozen_surface_temperature(system, point)
+    with _collect("sources", sink):
+        heats = source_heats(system, point)
+    surfaces = {}
+    for name in system.surfaces:
+        with _collect(f"surfaces.{name}", sink):
+            surfaces[name] = surface_transfer(system, name, point, t_surface, with_radiation=with_radiation)
+    return heats, surfaces
+
+
+@contextmanager
+def _collect(label: str, sink: list[str]):
+    """Record correlation-range warnings raised inside as ``"<label>: <message>"``."""
+    with warnings.catch_warnings(record=True) as records:
+        warnings.simplefilter("always", CorrelationRangeWarning)
+        yield
+    for record in records:
+        if issubclass(record.category, CorrelationRangeWarning):
+            message = f"{label}: {record.message}"
+            if message not in sink:
+                sink.append(message)
+        else:  # not ours to swallow
+            warnings.warn_explicit(record.message, record.category, record.filename, record.lineno)
+
+
+def _printed(system: FeedSystem) -> tuple[dict[str, float], dict[str, float]]:
+    if system.paper is None:
+        return {}, {}
+    heat = {row.source: row.value for row in system.paper.heat}
+    chtc = {surface: row.value for row in system.paper.chtc for surface in row.surfaces}
+    return heat, chtc
+
+
+def _paper(system: FeedSystem, point: OperatingPoint, heats, surfaces):
+    if system.paper is None:
+        raise ValueError(f"{system.meta.name}: paper mode needs a [paper] table in the description")
+    reference = operating_point(system, system.conditions[system.paper.reference_condition])
+    ref_heats, ref_surfaces = _physics(system, reference, with_radiation=False)
+    printed_heat, printed_chtc = _printed(system)
+    heats = {
+        name: replace(h, power=scaled(printed_heat[name], h.power, ref_heats[name].power))
+        if name in printed_heat else h
+        for name, h in heats.items()
+    }
+    surfaces = {
+        name: replace(
+            s,
+            convection=scaled(printed_chtc[name], s.convection, ref_surfaces[name].convection),
+            correlation=f"paper value x ratio of: {s.correlation}",
+        ) if name in printed_chtc else s
+        for name, s in surfaces.items()
+    }
+    return heats, surfaces
+
+
+__all__ = [
+    "BoundaryConditions",
+    "JointConductance",
+    "MODES",
+    "OperatingPoint",
+    "SourceHeat",
+    "SurfaceTransfer",
+    "boundary_conditions",
+    "operating_point",
+    "surface_transfer",
+]

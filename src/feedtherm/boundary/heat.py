@@ -1,0 +1,131 @@
+"""Heat of every source at an operating point, from the physics correlations.
+
+Order matters: the guideways' friction force is the screw's axial load, and each motor
+delivers the friction torques of everything on its shaft.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from ..physics import bearings, guideways, motors, screw_nut
+from ..physics.mechanics import frictional_power, screw_drive_torque
+from ..system.schema import (
+    BearingSource,
+    FeedSystem,
+    FixedSource,
+    GuidewaySource,
+    MotorSource,
+    SlidingScrewSource,
+    TorqueSource,
+)
+from .operating import OperatingPoint
+
+GRAVITY = 9.80665  # standard gravity, [m/s^2]
+
+
+@dataclass(frozen=True)
+class SourceHeat:
+    """Heat of one source [W], where it goes, and the intermediate values that made it."""
+
+    name: str
+    power: float
+    into: dict[str, float]
+    speed_rpm: float
+    details: dict[str, float] = field(default_factory=dict)
+
+
+def _sign(x: float) -> float:
+    return math.copysign(1.0, x) if x != 0.0 else 0.0
+
+
+def source_heats(system: FeedSystem, point: OperatingPoint) -> dict[str, SourceHeat]:
+    """Heat of every declared source at ``point`` (physics mode), keyed by source name."""
+    sources = system.sources
+    heats: dict[str, SourceHeat] = {}
+    # torque each motor must deliver on its shaft, accumulated from the friction elements
+    shaft_torque = {"screw": 0.0, "nut": 0.0}
+    axial_force = 0.0
+    for name, src in sources.items():
+        if isinstance(src, GuidewaySource):
+            force = guideways.guideway_friction_force(
+                src.friction_coefficient, src.moving_mass * GRAVITY + src.external_load,
+                src.seal_drag_per_carriage, src.carriages,
+            )
+            axial_force += force
+            heats[name] = SourceHeat(
+                name, guideways.guideway_heat(force, point.table_speed), dict(src.into),
+                0.0, {"friction_force_N": force, "table_speed_m_per_s": point.table_speed},
+            )
+    for name, src in sources.items():
+        if isinstance(src, SlidingScrewSource):
+            heats[name] = _sliding_screw(name, src, point, axial_force, shaft_torque)
+        elif isinstance(src, BearingSource):
+            heats[name] = _bearing(name, src, point, shaft_torque)
+        elif isinstance(src, TorqueSource):
+            heats[name] = _torque(name, src, point, shaft_torque)
+        elif isinstance(src, FixedSource):
+            heats[name] = SourceHeat(name, src.power, dict(src.into), 0.0)
+    for name, src in sources.items():
+        if isinstance(src, MotorSource):
+            heats[name] = _motor(name, src, point, shaft_torque[src.shaft])
+    return {name: heats[name] for name in sources}  # declaration order
+
+
+def _sliding_screw(name, src: SlidingScrewSource, point, axial_force, shaft_torque) -> SourceHeat:
+    force = axial_force + src.external_axial_load
+    torque = screw_nut.sliding_screw_torque(
+        force, src.preload, src.pitch_diameter, point.lead, src.friction_coefficient,
+        src.flank_half_angle, src.grease_viscosity, src.grease_gap, src.engaged_length,
+        point.relative_rpm,
+    )
+    # The screw also pushes the table: the ideal torque F*lead/(2 pi) is work, not heat.
+    drive = torque.total + screw_drive_torque(force, point.lead)
+    direction = _sign(point.relative_rpm)
+    shaft_torque["screw"] += drive * direction
+    shaft_torque["nut"] -= drive * direction  # friction drags the nut along with the screw
+    power = screw_nut.screw_nut_heat(torque.total, point.screw_rpm, point.nut_rpm)
+    return SourceHeat(name, power, dict(src.into), point.relative_rpm, {
+        "axial_load_N": force, "load_torque_Nm": torque.load, "preload_torque_Nm": torque.preload,
+        "grease_torque_Nm": torque.grease, "friction_torque_Nm": torque.total,
+    })
+
+
+def _bearing(name, src: BearingSource, point, shaft_torque) -> SourceHeat:
+    n = point.shaft_rpm(src.shaft)
+    p0 = src.equivalent_static_load or max(src.axial_load, src.radial_load)
+    if src.bearing_type == "angular_contact":
+        f1 = bearings.palmgren_f1_angular_contact(p0, src.static_load_rating)
+        p1 = bearings.palmgren_P1_angular_contact(src.axial_load, src.radial_load)
+    else:
+        z = src.f1_exponent_factor if src.f1_exponent_factor is not None else 5e-4
+        f1 = bearings.palmgren_f1_deep_groove(p0, src.static_load_rating, z=z)
+        p1 = bearings.palmgren_P1_deep_groove(src.axial_load, src.radial_load)
+    torque = bearings.bearing_friction_torque(f1, p1, src.mean_diameter, src.f0, src.lubricant_viscosity, n)
+    shaft_torque[src.shaft] += torque.total * _sign(n)
+    return SourceHeat(name, bearings.bearing_heat(torque.total, n), dict(src.into), n, {
+        "f1": f1, "P1_N": p1, "load_torque_Nm": torque.load, "viscous_torque_Nm": torque.viscous,
+        "friction_torque_Nm": torque.total,
+    })
+
+
+def _torque(name, src: TorqueSource, point, shaft_torque) -> SourceHeat:
+    n = point.shaft_rpm(src.shaft)
+    if src.shaft == "relative":
+        shaft_torque["screw"] += src.torque * _sign(n)
+        shaft_torque["nut"] -= src.torque * _sign(n)
+    else:
+        shaft_torque[src.shaft] += src.torque * _sign(n)
+    return SourceHeat(name, frictional_power(src.torque, n), dict(src.into), n, {"friction_torque_Nm": src.torque})
+
+
+def _motor(name, src: MotorSource, point, load_torque) -> SourceHeat:
+    n = point.shaft_rpm(src.shaft)
+    torque = load_torque + src.extra_torque * _sign(n)
+    output = torque * n * 2.0 * math.pi / 60.0  # > 0 driving, < 0 braking (generating)
+    if output >= 0.0:
+        loss = motors.motor_loss(torque, n, src.efficiency)
+    else:
+        loss = motors.generator_loss(torque, n, src.efficiency)
+    return SourceHeat(name, loss, dict(src.into), n, {"torque_Nm": torque, "shaft_power_W": output})

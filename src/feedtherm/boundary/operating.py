@@ -1,0 +1,45 @@
+"""The operating point: what the motors and the air are doing at one moment."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..physics.mechanics import table_speed
+from ..system.schema import Condition, FeedSystem
+
+_RAD_PER_S_TO_RPM = 60.0 / (2.0 * math.pi)
+
+
+@dataclass(frozen=True)
+class OperatingPoint:
+    """Signed motor speeds [rpm], ambient temperature [K] and the screw lead [m]."""
+
+    screw_rpm: float
+    nut_rpm: float
+    ambient: float
+    lead: float
+
+    @property
+    def relative_rpm(self) -> float:
+        """Speed of the screw relative to the nut, [rpm]; drives the screw-nut heat."""
+        return self.screw_rpm - self.nut_rpm
+
+    @property
+    def table_speed(self) -> float:
+        """Signed table speed, [m/s]."""
+        return table_speed(self.screw_rpm, self.nut_rpm, self.lead)
+
+    def shaft_rpm(self, shaft: str) -> float:
+        """Speed of ``"screw"``, ``"nut"`` or ``"relative"``, [rpm]."""
+        return {"screw": self.screw_rpm, "nut": self.nut_rpm, "relative": self.relative_rpm}[shaft]
+
+
+def operating_point(system: FeedSystem, condition: Condition) -> OperatingPoint:
+    """Operating point of a constant condition (the table reverses, magnitudes stay)."""
+    return OperatingPoint(
+        screw_rpm=condition.screw_speed * _RAD_PER_S_TO_RPM,
+        nut_rpm=condition.nut_speed * _RAD_PER_S_TO_RPM,
+        ambient=condition.ambient,
+        lead=system.kinematics.lead,
+    )

@@ -1,0 +1,75 @@
+"""Convective (and radiative) heat transfer coefficient of every surface.
+
+The convection kinds of the description map onto the paper's §3.2: natural convection of
+fixed parts (Eqs. 24-26), the rotating screw or nut (Eq. 27), faces of moving parts
+parallel to the motion (Eq. 28, plate average) or normal to it (Eq. 29).  Forced and
+natural convection are combined as mixed convection (Churchill, n = 3), because the table
+moves at only millimetres per second and natural convection dominates there.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..physics import convection, radiation
+from ..physics.air import film_temperature
+from ..system.geometry import surface_area
+from ..system.schema import (
+    FeedSystem,
+    MovingFaceConvection,
+    MovingPlateConvection,
+    NaturalConvection,
+    RotatingConvection,
+    Surface,
+)
+from .operating import OperatingPoint
+
+
+@dataclass(frozen=True)
+class SurfaceTransfer:
+    """Heat transfer of one surface to the ambient air at an operating point."""
+
+    name: str
+    part: str
+    area: float  # [m^2]
+    convection: float  # CHTC [W/(m^2 K)]
+    radiation: float  # linearised radiative coefficient [W/(m^2 K)] (0 when off)
+    emissivity: float
+    correlation: str  # how the convective coefficient was obtained
+
+    @property
+    def total(self) -> float:
+        return self.convection + self.radiation
+
+
+def convective_coefficient(surface: Surface, point: OperatingPoint, t_surface: float) -> tuple[float, str]:
+    """CHTC [W/(m^2 K)] of ``surface`` at surface temperature ``t_surface`` [K]."""
+    conv, ambient = surface.convection, point.ambient
+    t_film = film_temperature(t_surface, ambient)
+    if isinstance(conv, NaturalConvection):
+        return convection.h_natural(conv.orientation, conv.length, t_surface, ambient), f"natural, {conv.orientation} (Eq. 25)"
+    if isinstance(conv, RotatingConvection):
+        forced = convection.h_rotating_cylinder(conv.diameter, point.shaft_rpm(conv.shaft), t_film)
+        natural = convection.h_natural("horizontal_cylinder", conv.diameter, t_surface, ambient)
+        return convection.h_mixed(forced, natural), f"rotating at {conv.shaft} speed (Eq. 27) + natural"
+    speed = abs(point.table_speed)
+    if isinstance(conv, MovingPlateConvection):
+        forced = convection.h_flat_plate_forced(conv.length, speed, t_film) if speed > 0 else 0.0
+        natural = convection.h_natural(conv.orientation, conv.natural_length, t_surface, ambient)
+        return convection.h_mixed(forced, natural), "moving plate (Eq. 28, average) + natural"
+    if isinstance(conv, MovingFaceConvection):
+        forced = convection.h_face_normal_to_motion(conv.length, speed, t_film) if speed > 0 else 0.0
+        natural = convection.h_natural("vertical_plate", conv.natural_length, t_surface, ambient)
+        return convection.h_mixed(forced, natural), "face normal to motion (Eq. 29) + natural"
+    raise TypeError(f"unknown convection kind {conv!r}")  # the schema admits no other
+
+
+def surface_transfer(
+    system: FeedSystem, name: str, point: OperatingPoint, t_surface: float, *, with_radiation: bool
+) -> SurfaceTransfer:
+    """Heat transfer of surface ``name`` when its temperature is ``t_surface`` [K]."""
+    surface = system.surfaces[name]
+    h_conv, how = convective_coefficient(surface, point, t_surface)
+    h_rad = radiation.h_radiation(surface.emissivity, t_surface, point.ambient) if with_radiation else 0.0
+    area = surface_area(surface, system.parts[surface.part])
+    return SurfaceTransfer(name, surface.part, area, h_conv, h_rad, surface.emissivity, how)

@@ -1,0 +1,13 @@
+"""Errors that reach the user as one line (the CLI prints them without a traceback)."""
+
+
+class FeedthermError(Exception):
+    """Base of the errors feedtherm reports to its user as one line."""
+
+
+class DescriptionError(FeedthermError):
+    """A system description (or another input file) is missing, unreadable or invalid."""
+
+
+class ModelError(FeedthermError):
+    """A valid description asks for something the models cannot do."""

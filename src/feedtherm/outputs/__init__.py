@@ -1,0 +1,1 @@
+"""Files and console views of results; they only read results, never solver internals."""

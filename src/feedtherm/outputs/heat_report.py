@@ -1,0 +1,85 @@
+"""``feedtherm heat``: the boundary conditions as console tables or one JSON object."""
+
+from __future__ import annotations
+
+import json
+import sys
+
+from rich.console import Console
+from rich.table import Table
+
+from ..boundary import BoundaryConditions
+
+_KELVIN_OFFSET = 273.15
+
+
+def heat_json(bc: BoundaryConditions) -> str:
+    """One JSON object: heats [W] and CHTCs [W/(m^2 K)], with the paper's values beside."""
+    return json.dumps({
+        "condition": bc.condition,
+        "mode": bc.mode,
+        "heat_W": {name: h.power for name, h in bc.heats.items()},
+        "chtc_W_per_m2K": {name: s.convection for name, s in bc.surfaces.items()},
+        "radiation_W_per_m2K": {name: s.radiation for name, s in bc.surfaces.items()},
+        "paper_table1_heat_W": bc.paper_heat,
+        "paper_table2_chtc_W_per_m2K": bc.paper_chtc,
+        "screw_rpm": bc.point.screw_rpm,
+        "nut_rpm": bc.point.nut_rpm,
+        "table_speed_m_per_min": bc.point.table_speed * 60.0,
+        "ambient_C": bc.point.ambient - _KELVIN_OFFSET,
+        "details": {name: h.details for name, h in bc.heats.items()},
+        "correlation": {name: s.correlation for name, s in bc.surfaces.items()},
+        "warnings": bc.warnings,
+    }, indent=2)
+
+
+def _paper(value: float | None, fmt: str) -> str:
+    return "—" if value is None else format(value, fmt)
+
+
+def print_heat(bc: BoundaryConditions, system_name: str, console: Console | None = None) -> None:
+    console = console or Console(width=None if sys.stdout.isatty() else 132)
+    p = bc.point
+    ref = "Table 1/2 at the paper's reference condition"
+    console.print(
+        f"[bold]{system_name}[/], condition [bold]{bc.condition}[/], mode [bold]{bc.mode}[/]: "
+        f"screw {p.screw_rpm:.0f} rpm, nut {p.nut_rpm:.0f} rpm, relative {p.relative_rpm:.0f} rpm, "
+        f"table {abs(p.table_speed) * 60:.3g} m/min, ambient {p.ambient - _KELVIN_OFFSET:.1f} °C"
+    )
+    heats = Table(title="Heat per source", title_justify="left")
+    heats.add_column("source")
+    heats.add_column("heat [W]", justify="right")
+    heats.add_column("paper [W]", justify="right")
+    heats.add_column("speed [rpm]", justify="right")
+    heats.add_column("torque [N·m]", justify="right")
+    for name, h in bc.heats.items():
+        torque = h.details.get("friction_torque_Nm", h.details.get("torque_Nm"))
+        heats.add_row(
+            name, f"{h.power:.3f}", _paper(bc.paper_heat.get(name), ".2f"), f"{h.speed_rpm:.0f}",
+            "—" if torque is None else f"{torque:.4f}",
+        )
+    heats.add_row("[bold]total[/]", f"[bold]{bc.total_heat:.3f}[/]", "", "", "")
+    console.print(heats)
+    surfaces = Table(title="Heat transfer per surface", title_justify="left")
+    surfaces.add_column("surface")
+    surfaces.add_column("area [m²]", justify="right")
+    surfaces.add_column("CHTC [W/(m²·K)]", justify="right")
+    surfaces.add_column("paper [W/(m²·K)]", justify="right")
+    surfaces.add_column("radiation [W/(m²·K)]", justify="right")
+    surfaces.add_column("correlation")
+    for name, s in bc.surfaces.items():
+        surfaces.add_row(
+            name, f"{s.area:.4f}", f"{s.convection:.2f}", _paper(bc.paper_chtc.get(name), ".2f"),
+            f"{s.radiation:.2f}", s.correlation,
+        )
+    console.print(surfaces)
+    joints = Table(title="Thermal contact resistance per joint", title_justify="left")
+    for column in ("joint", "TCR [m²·K/W]", "area [m²]", "conductance [W/K]", "sliding"):
+        joints.add_column(column, justify="left" if column == "joint" else "right")
+    for j in bc.joints:
+        joints.add_row(" – ".join(j.parts), f"{j.tcr:.3g}", f"{j.area:.4g}", f"{j.conductance:.3g}", "yes" if j.sliding else "")
+    console.print(joints)
+    if bc.paper_heat or bc.paper_chtc:
+        console.print(f"paper: {ref}.")
+    for message in bc.warnings:
+        console.print(f"[yellow]correlation range:[/] {message}")

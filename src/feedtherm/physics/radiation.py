@@ -1,0 +1,111 @@
+"""Radiative exchange of a small grey surface with large isothermal surroundings.
+
+The paper omits radiation (AUDIT §1, "missing"); at 20-30 °C it is comparable to
+natural convection (h_r ≈ 1.8 W/(m²·K) at ε = 0.3 and ≈ 4.9 at ε = 0.8).  The
+surroundings (walls of the room) are taken at the ambient air temperature.
+Temperatures are in K.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.constants import Stefan_Boltzmann
+
+#: Stefan-Boltzmann constant, [W/(m²·K⁴)] (CODATA, via scipy.constants).
+SIGMA = Stefan_Boltzmann
+
+
+def _validate(emissivity, T_surface, T_ambient):
+    eps = np.asarray(emissivity, dtype=float)
+    if np.any(~np.isfinite(eps)) or np.any(eps <= 0.0) or np.any(eps > 1.0):
+        raise ValueError(f"emissivity must lie in (0, 1], got {emissivity!r}")
+    Ts = np.asarray(T_surface, dtype=float)
+    Ta = np.asarray(T_ambient, dtype=float)
+    for name, T in (("T_surface", Ts), ("T_ambient", Ta)):
+        if np.any(~np.isfinite(T)) or np.any(T <= 0.0):
+            raise ValueError(f"{name} must be an absolute temperature in K (> 0)")
+    return eps, Ts, Ta
+
+
+def _out(a):
+    return float(a) if np.ndim(a) == 0 else a
+
+
+def h_radiation(emissivity, T_surface, T_ambient):
+    r"""Linearised radiation coefficient of a small grey surface in large surroundings.
+
+    .. math:: h_r = \varepsilon \sigma (T_s^2 + T_{sur}^2)(T_s + T_{sur})
+
+    so that :math:`q'' = h_r (T_s - T_{sur})` reproduces
+    :func:`radiative_heat_flux` exactly.
+
+    Parameters
+    ----------
+    emissivity : float or array_like
+        Total hemispherical emissivity of the surface, (0, 1], [-].
+    T_surface : float or array_like
+        Surface temperature, [K].
+    T_ambient : float or array_like
+        Temperature of the surroundings, taken equal to the ambient air, [K].
+
+    Returns
+    -------
+    float or ndarray
+        h_r, [W/(m²·K)].
+
+    Raises
+    ------
+    ValueError
+        If the emissivity is outside (0, 1] or a temperature is not positive.
+
+    Notes
+    -----
+    Valid for a grey, diffuse surface that is small compared with, and does not see
+    itself or other warm parts of the machine in place of, isothermal surroundings.
+    Near 300 K, h_r ≈ 4εσT³ ≈ 6.1 ε W/(m²·K).
+
+    References
+    ----------
+    .. [1] AUDIT §1, "missing" (radiation).
+    .. [2] Incropera, DeWitt, Bergman, Lavine, *Fundamentals of Heat and Mass Transfer*,
+       6th ed., Wiley, 2007, Eqs. 1.8-1.9.
+    """
+    eps, Ts, Ta = _validate(emissivity, T_surface, T_ambient)
+    return _out(eps * SIGMA * (Ts**2 + Ta**2) * (Ts + Ta))
+
+
+def radiative_heat_flux(emissivity, T_surface, T_ambient):
+    r"""Net radiative heat flux from a small grey surface to large surroundings.
+
+    .. math:: q''_{rad} = \varepsilon \sigma (T_s^4 - T_{sur}^4)
+
+    Parameters
+    ----------
+    emissivity : float or array_like
+        Total hemispherical emissivity of the surface, (0, 1], [-].
+    T_surface : float or array_like
+        Surface temperature, [K].
+    T_ambient : float or array_like
+        Temperature of the surroundings, [K].
+
+    Returns
+    -------
+    float or ndarray
+        q'' leaving the surface, [W/m²]; negative when the surface is colder.
+
+    Raises
+    ------
+    ValueError
+        If the emissivity is outside (0, 1] or a temperature is not positive.
+
+    Notes
+    -----
+    Same assumptions as :func:`h_radiation`.
+
+    References
+    ----------
+    .. [1] Incropera, DeWitt, Bergman, Lavine, *Fundamentals of Heat and Mass Transfer*,
+       6th ed., Wiley, 2007, Eq. 1.7.
+    """
+    eps, Ts, Ta = _validate(emissivity, T_surface, T_ambient)
+    return _out(eps * SIGMA * (Ts**4 - Ta**4))

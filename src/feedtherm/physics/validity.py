@@ -1,0 +1,45 @@
+"""Validity ranges of correlations, enforced in code.
+
+A correlation used outside the range its source establishes still returns a value (the
+paper itself applies Eq. 29 far outside its range), but it never does so silently: it
+emits a :class:`CorrelationRangeWarning` naming the correlation, the quantity, its value
+and the range.  The boundary-condition step collects these warnings and reports them.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+
+class CorrelationRangeWarning(UserWarning):
+    """A correlation was evaluated outside the validity range of its source."""
+
+
+def check_range(correlation: str, quantity: str, value, low: float, high: float) -> None:
+    """Warn when ``value`` lies outside ``[low, high]``.
+
+    Parameters
+    ----------
+    correlation : str
+        Name of the correlation, e.g. ``"Nu_rotating_cylinder (Eq. 27)"``.
+    quantity : str
+        Name of the checked quantity, e.g. ``"Re"``.
+    value : float or array_like
+        The value(s) used.
+    low, high : float
+        Inclusive validity range of the source.
+    """
+    arr = np.asarray(value, dtype=float)
+    if arr.size == 0:
+        return
+    vmin, vmax = float(np.min(arr)), float(np.max(arr))
+    if vmin < low or vmax > high:
+        shown = f"{vmin:.4g}" if vmin == vmax else f"{vmin:.4g}..{vmax:.4g}"
+        warnings.warn(
+            f"{correlation}: {quantity} = {shown} is outside its validity range "
+            f"[{low:.4g}, {high:.4g}]",
+            CorrelationRangeWarning,
+            stacklevel=3,
+        )

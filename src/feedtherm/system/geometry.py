@@ -1,0 +1,143 @@
+"""Volumes, face areas and point location of the parts' primitives (boxes, cylinders).
+
+Parts are unions of non-overlapping primitives, with optional holes (bores) cut from their
+boxes.  These measures feed the heat capacities and convective areas of the models and the
+consistency checks; the FE model meshes the same primitives.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .schema import Box, Cylinder, Part, Surface
+
+_AXES = {"x": 0, "y": 1, "z": 2}
+BOX_FACES = ("+x", "-x", "+y", "-y", "+z", "-z")
+
+
+def box_volume(box: Box) -> float:
+    sx, sy, sz = box.size
+    return sx * sy * sz
+
+
+def cylinder_volume(cyl: Cylinder) -> float:
+    return math.pi / 4.0 * (cyl.outer_diameter**2 - cyl.inner_diameter**2) * cyl.length
+
+
+def part_volume(part: Part) -> float:
+    """Volume [m^3]: boxes and cylinders, less the holes (which lie inside the boxes)."""
+    solid = sum(box_volume(b) for b in part.boxes) + sum(cylinder_volume(c) for c in part.cylinders)
+    return solid - sum(cylinder_volume(h) for h in part.holes)
+
+
+def _box_face_area(box: Box, face: str, holes: list[Cylinder]) -> float:
+    sx, sy, sz = box.size
+    axis = face[1]
+    area = {"x": sy * sz, "y": sx * sz, "z": sx * sy}[axis]
+    for hole in holes:  # a through-hole along this axis removes its cross-section
+        if hole.axis == axis and _hole_in_box(hole, box):
+            area -= math.pi / 4.0 * hole.outer_diameter**2
+    return area
+
+
+def _hole_in_box(hole: Cylinder, box: Box) -> bool:
+    i = _AXES[hole.axis]
+    centre = hole.origin
+    lo, hi = box.origin, tuple(o + s for o, s in zip(box.origin, box.size))
+    return all(lo[k] - 1e-9 <= centre[k] <= hi[k] + 1e-9 for k in range(3) if k != i)
+
+
+def _cylinder_face_area(cyl: Cylinder, face: str) -> float:
+    ring = math.pi / 4.0 * (cyl.outer_diameter**2 - cyl.inner_diameter**2)
+    if face == "lateral":
+        return math.pi * cyl.outer_diameter * cyl.length
+    if face == "bore":
+        return math.pi * cyl.inner_diameter * cyl.length
+    if face == "ends":
+        return 2.0 * ring
+    if face in (f"+{cyl.axis}", f"-{cyl.axis}"):
+        return ring
+    raise ValueError(f"face {face!r} does not exist on a cylinder along {cyl.axis}")
+
+
+def surface_area(surface: Surface, part: Part) -> float:
+    """Area [m^2] of a surface: its explicit ``area``, else the sum over selected faces.
+
+    Raises ValueError when a selected face does not exist on a selected primitive.
+    """
+    if surface.area is not None:
+        return surface.area
+    boxes = part.boxes if surface.boxes is None else [part.boxes[i] for i in surface.boxes]
+    cylinders = part.cylinders if surface.cylinders is None else [part.cylinders[i] for i in surface.cylinders]
+    total = 0.0
+    for face in surface.faces:
+        for box in boxes:
+            if face in BOX_FACES:
+                total += _box_face_area(box, face, part.holes)
+            elif face == "bore":
+                total += sum(math.pi * h.outer_diameter * h.length for h in part.holes if _hole_in_box(h, box))
+            else:
+                raise ValueError(f"face {face!r} does not exist on a box (use {', '.join(BOX_FACES)})")
+        for cyl in cylinders:
+            total += _cylinder_face_area(cyl, face)
+    return total
+
+
+def bounds(part: Part) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+    """Axis-aligned bounding box ``(lower, upper)`` of a part [m]."""
+    lows, highs = [], []
+    for box in part.boxes:
+        lows.append(box.origin)
+        highs.append(tuple(o + s for o, s in zip(box.origin, box.size)))
+    for cyl in part.cylinders:
+        lo, hi = _cylinder_bounds(cyl)
+        lows.append(lo)
+        highs.append(hi)
+    return (tuple(min(p[k] for p in lows) for k in range(3)), tuple(max(p[k] for p in highs) for k in range(3)))
+
+
+def _cylinder_bounds(cyl: Cylinder):
+    i = _AXES[cyl.axis]
+    r = cyl.outer_diameter / 2.0
+    lo = [c - r for c in cyl.origin]
+    hi = [c + r for c in cyl.origin]
+    lo[i], hi[i] = cyl.origin[i], cyl.origin[i] + cyl.length
+    return tuple(lo), tuple(hi)
+
+
+def contains(part: Part, point, tol: float = 1e-3) -> bool:
+    """True when ``point`` lies in (or within ``tol`` of) one of the part's primitives."""
+    for box in part.boxes:
+        hi = [o + s for o, s in zip(box.origin, box.size)]
+        if all(box.origin[k] - tol <= point[k] <= hi[k] + tol for k in range(3)):
+            return True
+    for cyl in part.cylinders:
+        i = _AXES[cyl.axis]
+        radial = math.dist([point[k] for k in range(3) if k != i], [cyl.origin[k] for k in range(3) if k != i])
+        along = point[i] - cyl.origin[i]
+        inside_r = cyl.inner_diameter / 2.0 - tol <= radial <= cyl.outer_diameter / 2.0 + tol
+        if -tol <= along <= cyl.length + tol and inside_r:
+            return True
+    return False
+
+
+def gap(a: Part, b: Part) -> float:
+    """Distance [m] between the bounding boxes of two parts (0 when they touch or overlap)."""
+    (alo, ahi), (blo, bhi) = bounds(a), bounds(b)
+    d = [max(blo[k] - ahi[k], alo[k] - bhi[k], 0.0) for k in range(3)]
+    return math.sqrt(sum(x * x for x in d))
+
+
+@dataclass(frozen=True)
+class ScrewAxis:
+    """The screw's extent along x [m] and its diameter [m]."""
+
+    start: float
+    end: float
+    diameter: float
+
+
+def screw_axis(part: Part) -> ScrewAxis:
+    cyl = part.cylinders[0]
+    return ScrewAxis(cyl.origin[0], cyl.origin[0] + cyl.length, cyl.outer_diameter)

@@ -1,0 +1,150 @@
+"""Load a feed-system description from a TOML file or a bundled name.
+
+Every problem becomes one :class:`~feedtherm.errors.DescriptionError` whose message names
+the file, the field (as a dotted path) and the reason; unknown keys are answered with the
+closest valid name.
+"""
+
+from __future__ import annotations
+
+import difflib
+import hashlib
+import json
+import tomllib
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+from pydantic import BaseModel, ValidationError
+
+from ..errors import DescriptionError
+from .schema import FeedSystem
+
+#: Descriptions shipped with the package, loadable by name.
+BUNDLED = {
+    "paper": "paper_bench.toml",
+    "ballscrew_example": "ballscrew_example.toml",
+}
+
+
+@dataclass(frozen=True)
+class LoadedSystem:
+    """A validated description with where it came from and the hash of its content."""
+
+    system: FeedSystem
+    origin: str  # file path or "bundled:<name>"
+    sha256: str  # of the resolved description (canonical JSON of the validated data)
+
+
+def bundled_names() -> list[str]:
+    return sorted(BUNDLED)
+
+
+def read_text(spec: str) -> tuple[str, str]:
+    """Return ``(text, origin)`` for a bundled name or a file path."""
+    if spec in BUNDLED:
+        data = resources.files("feedtherm.system").joinpath("data").joinpath(BUNDLED[spec])
+        return data.read_text(encoding="utf-8"), f"bundled:{spec}"
+    path = Path(spec)
+    if not path.exists():
+        hint = "" if spec.endswith(".toml") else f" (bundled descriptions: {', '.join(bundled_names())})"
+        raise DescriptionError(f"{spec}: no such file{hint}")
+    if path.is_dir():
+        raise DescriptionError(f"{spec}: is a directory, not a TOML file")
+    try:
+        return path.read_text(encoding="utf-8"), str(path)
+    except (OSError, UnicodeDecodeError) as exc:
+        raise DescriptionError(f"{spec}: cannot be read ({exc.__class__.__name__}: {exc})") from None
+
+
+def parse_toml(text: str, origin: str) -> dict:
+    if not text.strip():
+        raise DescriptionError(f"{origin}: the file is empty; a description needs [meta], [parts], ... (see docs/system-description.md)")
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DescriptionError(f"{origin}: invalid TOML: {exc}") from None
+
+
+def load_system(spec: str = "paper") -> LoadedSystem:
+    """Load and validate a description given as a TOML path or a bundled name."""
+    text, origin = read_text(spec)
+    return validate_data(parse_toml(text, origin), origin)
+
+
+def validate_data(data: dict, origin: str) -> LoadedSystem:
+    """Validate already-parsed description data."""
+    try:
+        system = FeedSystem.model_validate(data)
+    except ValidationError as exc:
+        raise DescriptionError(f"{origin}: {describe_error(exc)}") from None
+    canonical = json.dumps(system.model_dump(mode="json"), sort_keys=True, separators=(",", ":"))
+    return LoadedSystem(system, origin, hashlib.sha256(canonical.encode()).hexdigest())
+
+
+def describe_error(exc: ValidationError) -> str:
+    """One line for the first error of a pydantic ValidationError: ``path: reason``."""
+    error = exc.errors(include_url=False)[0]
+    loc = [part for part in error["loc"] if not _is_union_tag(part)]
+    path = _dotted(loc)
+    kind, message = error["type"], error["msg"]
+    if kind == "extra_forbidden":
+        key = str(loc[-1])
+        parent = _dotted(loc[:-1])
+        valid = _valid_keys(loc[:-1])
+        where = f" in {parent}" if parent else ""
+        hint = difflib.get_close_matches(key, valid, n=1, cutoff=0.5)
+        suggestion = f"; did you mean {hint[0]!r}?" if hint else (f"; valid keys: {', '.join(valid)}" if valid else "")
+        return f"unknown key {key!r}{where}{suggestion}"
+    if kind == "missing":
+        return f"{path}: missing (required)"
+    if message.startswith("Value error, "):
+        message = message[len("Value error, "):]
+    if kind == "union_tag_invalid":
+        message = f"{message}"
+    if not path:  # cross-reference errors carry their own path
+        return message
+    return f"{path}: {message}"
+
+
+def _is_union_tag(part) -> bool:
+    # pydantic inserts the discriminator value ("bearing", "natural", ...) into locations
+    return isinstance(part, str) and part in _TAGS
+
+
+_TAGS = {"bearing", "motor", "guideway", "sliding_screw", "torque", "fixed", "natural", "rotating", "moving_plate", "moving_face"}
+
+
+def _dotted(loc) -> str:
+    text = ""
+    for part in loc:
+        text += f"[{part}]" if isinstance(part, int) else (f".{part}" if text else str(part))
+    return text
+
+
+def _valid_keys(loc) -> list[str]:
+    """Field names of the model at ``loc`` (walking the schema), for 'did you mean'."""
+    model: type[BaseModel] | None = FeedSystem
+    for part in loc:
+        if model is None:
+            return []
+        if isinstance(part, int):
+            continue
+        field = model.model_fields.get(str(part))
+        if field is None:  # a dict key such as a part's name
+            continue
+        model = _model_of(field.annotation)
+    return sorted(model.model_fields) if model is not None else []
+
+
+def _model_of(annotation):
+    """The BaseModel class inside an annotation such as ``dict[str, Part]`` or ``list[Joint]``."""
+    from typing import get_args
+
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return annotation
+    for arg in get_args(annotation):
+        found = _model_of(arg)
+        if found is not None:
+            return found
+    return None

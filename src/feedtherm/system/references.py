@@ -1,0 +1,77 @@
+"""Cross-references inside a description: every name used must be declared.
+
+Raised errors start with the dotted path of the offending field and, where a name is
+unknown, suggest the closest declared one.
+"""
+
+from __future__ import annotations
+
+import difflib
+from typing import TYPE_CHECKING, Iterable
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .schema import FeedSystem
+
+
+def closest(name: str, candidates: Iterable[str]) -> str:
+    """``"; did you mean 'x'?"`` for the closest candidate, or an empty string."""
+    match = difflib.get_close_matches(name, list(candidates), n=1, cutoff=0.6)
+    return f"; did you mean {match[0]!r}?" if match else ""
+
+
+def _require(kind: str, name: str, declared: dict, path: str) -> None:
+    if name not in declared:
+        raise ValueError(f"{path}: no {kind} named {name!r}{closest(name, declared)}")
+
+
+def check_references(system: "FeedSystem") -> None:
+    """Raise ``ValueError("<path>: <reason>")`` for the first dangling reference."""
+    parts, sources, surfaces = system.parts, system.sources, system.surfaces
+    for name, part in parts.items():
+        _require("material", part.material, system.materials, f"parts.{name}.material")
+    for i, joint in enumerate(system.joints):
+        a, b = joint.between
+        for side in (a, b):
+            _require("part", side, parts, f"joints[{i}].between")
+        if a == b:
+            raise ValueError(f"joints[{i}].between: a joint needs two different parts, got {a!r} twice")
+    for name, source in sources.items():
+        for target in source.into:
+            _require("part", target, parts, f"sources.{name}.into")
+    for name, surface in surfaces.items():
+        _require("part", surface.part, parts, f"surfaces.{name}.part")
+    for name, sensor in system.sensors.items():
+        _require("part", sensor.part, parts, f"sensors.{name}.part")
+    kin = system.kinematics
+    _require("part", kin.screw, parts, "kinematics.screw")
+    _require("part", kin.nut, parts, "kinematics.nut")
+    screw = parts[kin.screw]
+    if screw.boxes or len(screw.cylinders) != 1 or screw.cylinders[0].axis != "x":
+        raise ValueError("kinematics.screw: the screw must be a single cylinder along x")
+    if screw.moving:
+        raise ValueError(f"parts.{kin.screw}.moving: the screw is axially fixed; it cannot move with the table")
+    if not parts[kin.nut].moving:
+        raise ValueError(f"parts.{kin.nut}.moving: the nut travels with the table; set moving = true")
+    if kin.drive == "single":
+        _check_single_drive(system)
+    if system.paper is not None:
+        paper = system.paper
+        _require("condition", paper.reference_condition, system.conditions, "paper.reference_condition")
+        for i, row in enumerate(paper.heat):
+            _require("heat source", row.source, sources, f"paper.heat[{i}].source")
+        for i, row in enumerate(paper.chtc):
+            for target in row.surfaces:
+                _require("surface", target, surfaces, f"paper.chtc[{i}].surfaces")
+
+
+def _check_single_drive(system: "FeedSystem") -> None:
+    """A single drive has no nut motor: nothing may turn with the nut."""
+    for name, condition in system.conditions.items():
+        if condition.nut_speed != 0.0:
+            raise ValueError(f"conditions.{name}.nut_speed: a single drive has no nut motor; the nut speed must be 0 rpm")
+    for name, source in system.sources.items():
+        if getattr(source, "shaft", None) == "nut":
+            raise ValueError(f"sources.{name}.shaft: a single drive has no rotating nut")
+    for name, surface in system.surfaces.items():
+        if getattr(surface.convection, "shaft", None) == "nut":
+            raise ValueError(f"surfaces.{name}.convection.shaft: a single drive has no rotating nut")

@@ -1,0 +1,396 @@
+"""Typed description of a feed system, validated once when it is loaded.
+
+Coordinates: a right-handed machine frame, x along the screw axis, z up, in metres.
+Parts that move with the table (``moving = true``) are declared at the middle of the
+stroke; the moving group travels ``±stroke/2`` along x from there.
+
+Nothing here assumes a particular bench: parts, sources and surfaces are named freely and
+cross-referenced by name; the kinematics section names which part is the screw and which
+the nut.  The canonical names of the paper's bench are listed in ``names.py``.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Annotated, Literal, Union
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+from .quantities import (
+    AngularSpeed,
+    Fraction,
+    Length,
+    NonNegAngle,
+    NonNegDuration,
+    NonNegForce,
+    NonNegLength,
+    NonNegTorque,
+    PosArea,
+    PosConductivity,
+    PosContactResistance,
+    PosDensity,
+    PosDimensionless,
+    PosDuration,
+    PosDynamicViscosity,
+    PosExpansion,
+    PosForce,
+    PosHeatTransferCoefficient,
+    PosKinematicViscosity,
+    PosLength,
+    PosMass,
+    PosModulus,
+    PosSpecificHeat,
+    PosTemperatureDifference,
+    Power,
+    Speed,
+    Temperature,
+)
+
+_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+
+
+class Strict(BaseModel):
+    """Base of every section: unknown keys are errors, values are frozen after loading."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+# --------------------------------------------------------------------------- materials
+
+
+class Material(Strict):
+    density: PosDensity
+    conductivity: PosConductivity
+    specific_heat: PosSpecificHeat
+    expansion: PosExpansion
+    youngs_modulus: PosModulus | None = None
+    poisson_ratio: Annotated[float, Field(gt=0.0, lt=0.5)] | None = None
+    name: str = ""
+
+
+# --------------------------------------------------------------------------- geometry
+
+Vector = tuple[Length, Length, Length]
+PosVector = tuple[PosLength, PosLength, PosLength]
+
+
+class Box(Strict):
+    """Axis-aligned block: ``origin`` is its corner of smallest x, y, z."""
+
+    origin: Vector
+    size: PosVector
+
+
+class Cylinder(Strict):
+    """Solid or hollow cylinder; ``origin`` is the centre of its face of smallest coordinate."""
+
+    origin: Vector
+    axis: Literal["x", "y", "z"] = "x"
+    length: PosLength
+    outer_diameter: PosLength
+    inner_diameter: NonNegLength = 0.0
+
+    @model_validator(mode="after")
+    def _bore_inside(self) -> "Cylinder":
+        if self.inner_diameter >= self.outer_diameter:
+            raise ValueError("inner_diameter must be smaller than outer_diameter")
+        return self
+
+
+class Part(Strict):
+    material: str
+    boxes: list[Box] = []
+    cylinders: list[Cylinder] = []
+    holes: list[Cylinder] = []  # bores cut out of the boxes (e.g. a bearing seat)
+    moving: bool = False
+    description: str = ""
+
+    @model_validator(mode="after")
+    def _has_geometry(self) -> "Part":
+        if not self.boxes and not self.cylinders:
+            raise ValueError("a part needs at least one box or cylinder")
+        return self
+
+
+# --------------------------------------------------------------------------- joints
+
+
+class Joint(Strict):
+    """Thermal contact between two parts: conductance = area / tcr."""
+
+    between: tuple[str, str]
+    tcr: PosContactResistance
+    area: PosArea
+    sliding: bool = False  # the contact travels with the table (nut-screw, slider-rail)
+    description: str = ""
+
+
+# --------------------------------------------------------------------------- heat sources
+
+ShaftName = Literal["screw", "nut"]
+
+
+class _Source(Strict):
+    into: dict[str, Fraction]  # part name -> share of the heat
+    description: str = ""
+
+    @field_validator("into")
+    @classmethod
+    def _shares_sum_to_one(cls, value: dict[str, float]) -> dict[str, float]:
+        if not value:
+            raise ValueError("name at least one part that receives the heat")
+        total = sum(value.values())
+        if abs(total - 1.0) > 1e-9:
+            raise ValueError(f"the shares must add up to 1, they add up to {total:g}")
+        return value
+
+
+class BearingSource(_Source):
+    model: Literal["bearing"]
+    shaft: ShaftName  # which shaft's speed the bearing runs at
+    bearing_type: Literal["angular_contact", "deep_groove"]
+    mean_diameter: PosLength
+    static_load_rating: PosForce
+    axial_load: NonNegForce
+    radial_load: NonNegForce
+    equivalent_static_load: PosForce | None = None  # default: max(axial, radial) load
+    f0: PosDimensionless
+    lubricant_viscosity: PosKinematicViscosity
+    f1_exponent_factor: PosDimensionless | None = None  # deep-groove z; default 5e-4
+
+
+class MotorSource(_Source):
+    model: Literal["motor"]
+    shaft: ShaftName
+    efficiency: Annotated[float, Field(gt=0.0, le=1.0)]
+    extra_torque: NonNegTorque = 0.0  # drag not modelled by the other sources
+
+
+class GuidewaySource(_Source):
+    model: Literal["guideway"]
+    friction_coefficient: Annotated[float, Field(gt=0.0, lt=1.0)]
+    moving_mass: PosMass
+    external_load: NonNegForce = 0.0
+    seal_drag_per_carriage: NonNegForce = 0.0
+    carriages: Annotated[int, Field(ge=1)]
+
+
+class SlidingScrewSource(_Source):
+    model: Literal["sliding_screw"]
+    pitch_diameter: PosLength
+    flank_half_angle: NonNegAngle  # half the thread angle: 15 deg for a Tr (ISO 2904) thread
+    friction_coefficient: Annotated[float, Field(gt=0.0, le=0.5)]
+    preload: NonNegForce = 0.0
+    external_axial_load: NonNegForce = 0.0
+    grease_viscosity: PosDynamicViscosity
+    grease_gap: PosLength
+    engaged_length: PosLength
+
+
+class TorqueSource(_Source):
+    """A drag torque stated directly (e.g. a catalogue's preload drag torque of a ball nut).
+
+    ``shaft = "relative"`` means the torque acts between screw and nut at their relative speed.
+    """
+
+    model: Literal["torque"]
+    shaft: Literal["screw", "nut", "relative"]
+    torque: NonNegTorque
+
+
+class FixedSource(_Source):
+    """A heat flow stated directly (for example from a measurement or a catalogue)."""
+
+    model: Literal["fixed"]
+    power: Power
+
+
+HeatSource = Annotated[
+    Union[BearingSource, MotorSource, GuidewaySource, SlidingScrewSource, TorqueSource, FixedSource],
+    Field(discriminator="model"),
+]
+
+# --------------------------------------------------------------------------- convection
+
+
+class NaturalConvection(Strict):
+    kind: Literal["natural"]
+    orientation: Literal["horizontal_cylinder", "vertical_plate", "horizontal_plate_up", "horizontal_plate_down"]
+    length: PosLength
+
+
+class RotatingConvection(Strict):
+    """Rotating cylinder (Eq. 27) at a shaft's speed, combined with natural convection."""
+
+    kind: Literal["rotating"]
+    shaft: ShaftName
+    diameter: PosLength
+
+
+class MovingPlateConvection(Strict):
+    """Surface parallel to the table's motion (Eq. 28, plate average), mixed with natural."""
+
+    kind: Literal["moving_plate"]
+    length: PosLength  # along the motion
+    orientation: Literal["vertical_plate", "horizontal_plate_up", "horizontal_plate_down"]
+    natural_length: PosLength
+
+
+class MovingFaceConvection(Strict):
+    """Face normal to the table's motion (Eq. 29), mixed with natural."""
+
+    kind: Literal["moving_face"]
+    length: PosLength
+    natural_length: PosLength
+
+
+Convection = Annotated[
+    Union[NaturalConvection, RotatingConvection, MovingPlateConvection, MovingFaceConvection],
+    Field(discriminator="kind"),
+]
+
+FaceSelector = Literal["+x", "-x", "+y", "-y", "+z", "-z", "lateral", "ends", "bore"]
+
+
+class Surface(Strict):
+    """A convective surface: faces of one part's primitives, or an explicit area."""
+
+    part: str
+    faces: list[FaceSelector]
+    boxes: list[int] | None = None  # indices of the part's boxes (default: all)
+    cylinders: list[int] | None = None  # indices of the part's cylinders (default: all)
+    convection: Convection
+    emissivity: Annotated[float, Field(gt=0.0, le=1.0)]
+    area: PosArea | None = None  # overrides the area computed from the faces
+    description: str = ""
+
+
+# --------------------------------------------------------------------------- sensors
+
+
+class Sensor(Strict):
+    part: str
+    position: Vector  # machine frame; for moving parts, at the middle of the stroke
+    method: Literal["contact", "infrared"] = "contact"
+    description: str = ""
+
+
+# --------------------------------------------------------------------------- kinematics
+
+
+class Kinematics(Strict):
+    drive: Literal["dual", "single"]
+    screw: str  # part names
+    nut: str
+    lead: PosLength
+    stroke: PosLength
+    reversal: Literal["both_reverse"] = "both_reverse"
+
+
+class Elongation(Strict):
+    """The screw's axial elongation: fixed bearing at ``fixed_at``, read at ``read_at``."""
+
+    fixed_at: Length
+    read_at: Length
+
+
+class Temperatures(Strict):
+    initial: Literal["ambient"] | Temperature = "ambient"
+    reference: Temperature  # of the elongation (zero-strain temperature)
+    convection_delta_t: PosTemperatureDifference  # frozen CHTCs are taken at this rise
+    temperature_dependent_chtc: bool = False
+
+
+class Condition(Strict):
+    screw_speed: AngularSpeed  # signed
+    nut_speed: AngularSpeed = 0.0
+    ambient: Temperature
+    feed_speed: Speed | None = None  # as stated by the source; checked, never used
+    duration: PosDuration = 10800.0
+    description: str = ""
+
+
+# --------------------------------------------------------------------------- paper mode
+
+
+class PaperHeat(Strict):
+    source: str
+    value: Power
+    table_label: str
+    ref: str
+
+
+class PaperChtc(Strict):
+    surfaces: list[str]
+    value: PosHeatTransferCoefficient
+    table_label: str
+    ref: str
+
+
+class PaperMode(Strict):
+    """Values the source paper prints at one condition, mapped onto sources and surfaces."""
+
+    reference_condition: str
+    heat: list[PaperHeat]
+    chtc: list[PaperChtc]
+
+
+# --------------------------------------------------------------------------- provenance
+
+
+class Provenance(Strict):
+    """Where a group of values comes from.  ``paths`` are dotted prefixes of the description."""
+
+    paths: list[str]
+    origin: Literal["paper", "assumption"]
+    source: str
+    reason: str = ""
+
+    @model_validator(mode="after")
+    def _assumptions_have_reasons(self) -> "Provenance":
+        if self.origin == "assumption" and not self.reason.strip():
+            raise ValueError("an assumption needs a reason")
+        return self
+
+
+class Meta(Strict):
+    name: str
+    title: str
+    reference: str = ""
+    description: str = ""
+
+
+# --------------------------------------------------------------------------- the system
+
+
+class FeedSystem(Strict):
+    meta: Meta
+    materials: dict[str, Material]
+    parts: dict[str, Part]
+    joints: list[Joint]
+    sources: dict[str, HeatSource]
+    surfaces: dict[str, Surface]
+    sensors: dict[str, Sensor]
+    kinematics: Kinematics
+    elongation: Elongation
+    temperatures: Temperatures
+    conditions: dict[str, Condition]
+    paper: PaperMode | None = None
+    provenance: list[Provenance] = []
+
+    @field_validator("materials", "parts", "sources", "surfaces", "sensors", "conditions")
+    @classmethod
+    def _names_are_identifiers(cls, value: dict) -> dict:
+        for name in value:
+            if not _NAME.match(name):
+                raise ValueError(f"{name!r} is not a valid name (letters, digits, underscores)")
+        if not value:
+            raise ValueError("must not be empty")
+        return value
+
+    @model_validator(mode="after")
+    def _references_resolve(self) -> "FeedSystem":
+        from .references import check_references  # the cross-reference rules live there
+
+        check_references(self)
+        return self
