@@ -14,6 +14,7 @@ import tomllib
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
+from typing import get_args
 
 from pydantic import BaseModel, ValidationError
 
@@ -84,14 +85,17 @@ def validate_data(data: dict, origin: str) -> LoadedSystem:
 
 def describe_error(exc: ValidationError) -> str:
     """One line for the first error of a pydantic ValidationError: ``path: reason``."""
-    error = exc.errors(include_url=False)[0]
-    loc = [part for part in error["loc"] if not _is_union_tag(part)]
+    errors = exc.errors(include_url=False)
+    # A misspelt key also makes the right key "missing": report the cause, not the symptom.
+    error = next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
+    raw_loc = list(error["loc"])
+    loc = [part for part in raw_loc if not _is_union_tag(part)]
     path = _dotted(loc)
     kind, message = error["type"], error["msg"]
     if kind == "extra_forbidden":
         key = str(loc[-1])
         parent = _dotted(loc[:-1])
-        valid = _valid_keys(loc[:-1])
+        valid = _valid_keys(raw_loc[:-1])
         where = f" in {parent}" if parent else ""
         hint = difflib.get_close_matches(key, valid, n=1, cutoff=0.5)
         suggestion = f"; did you mean {hint[0]!r}?" if hint else (f"; valid keys: {', '.join(valid)}" if valid else "")
@@ -100,8 +104,6 @@ def describe_error(exc: ValidationError) -> str:
         return f"{path}: missing (required)"
     if message.startswith("Value error, "):
         message = message[len("Value error, "):]
-    if kind == "union_tag_invalid":
-        message = f"{message}"
     if not path:  # cross-reference errors carry their own path
         return message
     return f"{path}: {message}"
@@ -123,28 +125,40 @@ def _dotted(loc) -> str:
 
 
 def _valid_keys(loc) -> list[str]:
-    """Field names of the model at ``loc`` (walking the schema), for 'did you mean'."""
-    model: type[BaseModel] | None = FeedSystem
+    """Field names of the model at ``loc`` (walking the schema), for 'did you mean'.
+
+    ``loc`` is pydantic's raw location: field names, dict keys, list indices and, inside a
+    discriminated union, the tag (``"bearing"``, ``"natural"``, ...) that picks the member.
+    """
+    candidates: list[type[BaseModel]] = [FeedSystem]
     for part in loc:
-        if model is None:
-            return []
-        if isinstance(part, int):
+        if isinstance(part, int) or not candidates:
             continue
-        field = model.model_fields.get(str(part))
+        tagged = [m for m in candidates if _tag_of(m) == part]
+        if tagged:
+            candidates = tagged
+            continue
+        field = candidates[0].model_fields.get(str(part))
         if field is None:  # a dict key such as a part's name
             continue
-        model = _model_of(field.annotation)
-    return sorted(model.model_fields) if model is not None else []
+        candidates = _models_in(field.annotation)
+    return sorted(candidates[0].model_fields) if len(candidates) == 1 else []
 
 
-def _model_of(annotation):
-    """The BaseModel class inside an annotation such as ``dict[str, Part]`` or ``list[Joint]``."""
-    from typing import get_args
-
-    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
-        return annotation
-    for arg in get_args(annotation):
-        found = _model_of(arg)
-        if found is not None:
-            return found
+def _tag_of(model: type[BaseModel]) -> str | None:
+    """The discriminator value of a union member (its ``model`` or ``kind`` literal)."""
+    for key in ("model", "kind"):
+        field = model.model_fields.get(key)
+        if field is not None and get_args(field.annotation):
+            return get_args(field.annotation)[0]
     return None
+
+
+def _models_in(annotation) -> list[type[BaseModel]]:
+    """The BaseModel classes inside an annotation such as ``dict[str, Part]`` or a union."""
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return [annotation]
+    found: list[type[BaseModel]] = []
+    for arg in get_args(annotation):
+        found.extend(m for m in _models_in(arg) if m not in found)
+    return found

@@ -1,0 +1,23 @@
+"""Array helpers shared by several physics modules (private).
+
+Each function here replaces private copies that several modules carried word for word;
+the modules import it under their old private name (``_out``, ``_finite``).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def scalar_or_array(value):
+    """Return a Python float for 0-d results so scalars stay scalars."""
+    arr = np.asarray(value, dtype=float)
+    return float(arr) if arr.ndim == 0 else arr
+
+
+def finite(value, label, unit):
+    """``value`` as a float array; ValueError naming ``label`` and ``unit`` if not finite."""
+    arr = np.asarray(value, dtype=float)
+    if np.any(~np.isfinite(arr)):
+        raise ValueError(f"{label} must be finite {unit}, got {value!r}")
+    return arr

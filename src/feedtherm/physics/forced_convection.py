@@ -1,0 +1,263 @@
+"""Forced convection of the paper's §3.2 (Eqs. 27-29), corrected.
+
+Nusselt correlations of rotating and translating surfaces (pure functions of Re, Pr;
+scalars or arrays) and surface-level helpers returning h [W/(m²·K)] with air properties
+at the film temperature.  Temperatures in K.
+
+Corrections to the printed paper (AUDIT §1): Eq. 24 L in m; Eq. 27 Re = ωd²/ν;
+Eq. 28 plate average 0.664 (the printed local 0.332 is kept as the named variant
+:func:`Nu_flat_plate_laminar_local`); Eq. 29 valid only for 4e3 < Re < 1.5e4, so at
+feed speeds blend with natural convection
+(:func:`~feedtherm.physics.convection.h_mixed`).
+
+"Incropera (2007)" is F. P. Incropera, D. P. DeWitt, T. L. Bergman, A. S. Lavine,
+*Fundamentals of Heat and Mass Transfer*, 6th ed., Wiley, 2007.
+"""
+
+from __future__ import annotations
+
+import math
+
+from feedtherm.physics._arrays import scalar_or_array as _out
+from feedtherm.physics._checks import absolute_temperature as _temperature
+from feedtherm.physics._checks import check_range_nonzero as _check_nonzero
+from feedtherm.physics._checks import finite_array as _arr
+from feedtherm.physics.air import air_properties
+from feedtherm.physics.dimensionless import h_from_nusselt, reynolds, reynolds_rotating
+from feedtherm.physics.validity import check_range
+
+def Nu_rotating_cylinder(Re, Pr):
+    r"""Cylinder rotating in still air (paper Eq. 27).
+
+    .. math:: Nu_D = 0.133 \, Re_\omega^{2/3} Pr^{1/3}, \qquad Re_\omega = \omega D^2/\nu
+
+    Parameters
+    ----------
+    Re : float or array_like
+        Rotational Reynolds number (:func:`reynolds_rotating`), [-].
+    Pr : float or array_like
+        Prandtl number, [-].
+
+    Returns
+    -------
+    float or ndarray
+        Nu_D, [-].
+
+    Notes
+    -----
+    Valid Re_ω < 4.3e5 and 0.7 < Pr < 670 (warns outside; air drops below Pr = 0.7
+    near 375 K). At low speed add natural convection with :func:`h_mixed`.
+
+    References
+    ----------
+    .. [1] Paper, Eq. 27; AUDIT §1, Eq. 27.
+    .. [2] Kays & Bjorklund, Trans. ASME 80 (1958) 70-78, as quoted in Incropera
+       (2007), Ch. 7.
+    """
+    Re, Pr = _arr(Re, "Re"), _arr(Pr, "Pr", positive=True)
+    check_range("Nu_rotating_cylinder (Eq. 27)", "Re", Re, 0.0, 4.3e5)
+    check_range("Nu_rotating_cylinder (Eq. 27)", "Pr", Pr, 0.7, 670.0)
+    return _out(0.133 * Re ** (2.0 / 3.0) * Pr ** (1.0 / 3.0))
+
+
+def _flat_plate(name, C, Re, Pr):
+    Re, Pr = _arr(Re, "Re"), _arr(Pr, "Pr", positive=True)
+    check_range(name, "Re", Re, 0.0, 5e5)
+    check_range(name, "Pr", Pr, 0.6, math.inf)
+    return _out(C * Re**0.5 * Pr ** (1.0 / 3.0))
+
+
+def Nu_flat_plate_laminar_average(Re, Pr):
+    r"""Laminar flat plate in parallel flow, plate average (corrected Eq. 28).
+
+    .. math:: \overline{Nu}_L = 0.664 \, Re_L^{1/2} Pr^{1/3}
+
+    Parameters
+    ----------
+    Re : float or array_like
+        Reynolds number on the plate length L along the flow, [-].
+    Pr : float or array_like
+        Prandtl number, [-].
+
+    Returns
+    -------
+    float or ndarray
+        Average Nu_L over 0..L, [-].
+
+    Notes
+    -----
+    Valid Re_L < 5e5 (laminar) and Pr ≥ 0.6 (warns outside). Boundary-layer theory
+    needs Re ≫ 1; at feed speeds (mm/s, Re ~ 10-200) blend with natural convection.
+
+    References
+    ----------
+    .. [1] Paper, Eq. 28 (prints the local 0.332); AUDIT §1, Eq. 28.
+    .. [2] Incropera (2007), Eq. 7.30.
+    """
+    return _flat_plate("Nu_flat_plate_laminar_average", 0.664, Re, Pr)
+
+
+def Nu_flat_plate_laminar_local(Re, Pr):
+    r"""Local laminar flat-plate Nusselt number: the paper's Eq. 28 as printed.
+
+    .. math:: Nu_x = 0.332 \, Re_x^{1/2} Pr^{1/3}
+
+    Parameters
+    ----------
+    Re : float or array_like
+        Reynolds number on the distance x from the leading edge, [-].
+    Pr : float or array_like
+        Prandtl number, [-].
+
+    Returns
+    -------
+    float or ndarray
+        Local Nu_x, [-].
+
+    Notes
+    -----
+    Named variant for reproducing the paper only: used as a plate average it halves h
+    (AUDIT §1, Eq. 28). Valid Re_x < 5e5, Pr ≥ 0.6 (warns outside).
+
+    References
+    ----------
+    .. [1] Paper, Eq. 28. Incropera (2007), Eq. 7.23.
+    """
+    return _flat_plate("Nu_flat_plate_laminar_local (Eq. 28 as printed)", 0.332, Re, Pr)
+
+
+def Nu_plate_normal_to_flow(Re, Pr):
+    r"""Flat face normal to the flow, Hilpert form (paper Eq. 29).
+
+    .. math:: Nu_L = 0.228 \, Re_L^{0.731} Pr^{1/3}
+
+    Parameters
+    ----------
+    Re : float or array_like
+        Reynolds number on the face height L across the flow, [-].
+    Pr : float or array_like
+        Prandtl number, [-].
+
+    Returns
+    -------
+    float or ndarray
+        Nu_L, [-].
+
+    Notes
+    -----
+    Valid 4e3 ≤ Re ≤ 1.5e4 and Pr ≳ 0.7 (checked as ≥ 0.7); warns outside. Re = 0
+    returns 0 without warning. At feed speeds Re is 20-170 (AUDIT §1, Eq. 29): blend
+    with natural convection.
+
+    References
+    ----------
+    .. [1] Paper, Eq. 29; AUDIT §1, Eq. 29.
+    .. [2] Incropera (2007), Eq. 7.52, Table 7.3 (vertical flat plate, gas).
+    """
+    Re, Pr = _arr(Re, "Re"), _arr(Pr, "Pr", positive=True)
+    _check_nonzero("Nu_plate_normal_to_flow (Eq. 29)", "Re", Re, 4e3, 1.5e4)
+    check_range("Nu_plate_normal_to_flow (Eq. 29)", "Pr", Pr, 0.7, math.inf)
+    return _out(0.228 * Re**0.731 * Pr ** (1.0 / 3.0))
+
+
+def h_rotating_cylinder(d, n_rpm, T_film):
+    r"""Film coefficient of a cylinder (screw shaft, nut, pulley) rotating in still air.
+
+    .. math::
+
+        h = \frac{k}{d} \, 0.133 \, Re_\omega^{2/3} Pr^{1/3}, \quad
+        Re_\omega = \frac{\omega d^2}{\nu}, \quad \omega = \frac{2\pi |n|}{60}
+
+    Parameters
+    ----------
+    d : float
+        Outer diameter, [m].
+    n_rpm : float
+        Rotational speed, [rpm]; sign ignored (screw: n_s; nut or pulley: n_n).
+    T_film : float
+        Film temperature, [K].
+
+    Returns
+    -------
+    float
+        h, [W/(m²·K)]; 0 at n = 0 (add natural convection with :func:`h_mixed`).
+
+    Notes
+    -----
+    Validity as :func:`Nu_rotating_cylinder` (Re_ω < 4.3e5, 0.7 < Pr < 670).
+
+    References
+    ----------
+    .. [1] Paper, Eqs. 24 and 27; AUDIT §1, Eq. 27.
+    """
+    air = air_properties(_temperature("T_film", T_film))
+    d = float(_arr(d, "d", positive=True))
+    Re = reynolds_rotating(2.0 * math.pi * float(n_rpm) / 60.0, d, air.kinematic_viscosity)
+    return h_from_nusselt(Nu_rotating_cylinder(Re, air.prandtl), air.conductivity, d)
+
+
+def h_flat_plate_forced(L, u, T_film):
+    r"""Plate-average film coefficient of a face moving parallel to itself (Eq. 28 corrected).
+
+    .. math:: h = \frac{k}{L} \, 0.664 \, Re_L^{1/2} Pr^{1/3}, \quad Re_L = |u| L/\nu
+
+    Parameters
+    ----------
+    L : float
+        Length of the face along the motion, [m].
+    u : float
+        Speed relative to still air, [m/s]; sign ignored.
+    T_film : float
+        Film temperature, [K].
+
+    Returns
+    -------
+    float
+        h, [W/(m²·K)].
+
+    Notes
+    -----
+    Validity as :func:`Nu_flat_plate_laminar_average` (Re_L < 5e5, Pr ≥ 0.6).
+
+    References
+    ----------
+    .. [1] Paper, Eqs. 24 and 28; AUDIT §1, Eq. 28.
+    """
+    air = air_properties(_temperature("T_film", T_film))
+    L = float(_arr(L, "L", positive=True))
+    Re = reynolds(u, L, air.kinematic_viscosity)
+    return h_from_nusselt(Nu_flat_plate_laminar_average(Re, air.prandtl), air.conductivity, L)
+
+
+def h_face_normal_to_motion(L, u, T_film):
+    r"""Film coefficient of a face normal to its direction of motion (Eq. 29 form).
+
+    .. math:: h = \frac{k}{L} \, 0.228 \, Re_L^{0.731} Pr^{1/3}, \quad Re_L = |u| L/\nu
+
+    Parameters
+    ----------
+    L : float
+        Height of the face across the motion, [m].
+    u : float
+        Speed relative to still air, [m/s]; sign ignored.
+    T_film : float
+        Film temperature, [K].
+
+    Returns
+    -------
+    float
+        h, [W/(m²·K)].
+
+    Notes
+    -----
+    Valid 4e3 ≤ Re_L ≤ 1.5e4 (warns outside, i.e. at every feed speed of the paper);
+    blend with natural convection through :func:`h_mixed`.
+
+    References
+    ----------
+    .. [1] Paper, Eqs. 24 and 29; AUDIT §1, Eq. 29.
+    """
+    air = air_properties(_temperature("T_film", T_film))
+    L = float(_arr(L, "L", positive=True))
+    Re = reynolds(u, L, air.kinematic_viscosity)
+    return h_from_nusselt(Nu_plate_normal_to_flow(Re, air.prandtl), air.conductivity, L)

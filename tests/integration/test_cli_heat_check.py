@@ -1,0 +1,93 @@
+"""`feedtherm heat` and `feedtherm check` as a user runs them (a subprocess each)."""
+
+import json
+import subprocess
+import sys
+from importlib import resources
+
+import pytest
+
+BENCH = resources.files("feedtherm.system").joinpath("data").joinpath("paper_bench.toml").read_text()
+
+
+def run(*args):
+    return subprocess.run([sys.executable, "-m", "feedtherm", *args], capture_output=True, text=True, timeout=120)
+
+
+def assert_one_line_error(result, *fragments):
+    assert result.returncode != 0
+    assert result.stdout == ""
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1, result.stderr
+    assert "Traceback" not in result.stderr
+    for fragment in fragments:
+        assert fragment in lines[0], lines[0]
+
+
+def test_heat_paper_mode_reproduces_table_1():
+    result = run("heat", "--condition", "I", "--mode", "paper", "--json")
+    assert result.returncode == 0, result.stderr
+    data = json.loads(result.stdout)
+    assert data["condition"] == "I" and data["mode"] == "paper"
+    assert data["heat_W"]["front_bearing"] == pytest.approx(4.95)
+    for source, value in data["paper_table1_heat_W"].items():
+        assert data["heat_W"][source] == pytest.approx(value)
+    assert set(data["heat_W"]) == {"guideways", "screw_motor", "nut_motor", "front_bearing", "nut_bearing",
+                                   "rear_bearing", "screw_nut"}
+    assert data["chtc_W_per_m2K"]["screw_shaft"] == pytest.approx(56.3)
+
+
+def test_heat_physics_mode_prints_computed_values_beside_the_papers():
+    result = run("heat", "paper", "--condition", "I")
+    assert result.returncode == 0, result.stderr
+    out = result.stdout
+    for name in ("front_bearing", "screw_nut", "screw_shaft", "worktable", "4.95", "56.30"):
+        assert name in out
+    data = json.loads(run("heat", "--condition", "I", "--json").stdout)
+    assert data["mode"] == "physics"
+    assert data["heat_W"]["front_bearing"] != pytest.approx(4.95)  # computed, not copied
+    assert all(v > 0 for v in data["radiation_W_per_m2K"].values())
+
+
+def test_check_flags_condition_I_only():
+    result = run("check")
+    assert result.returncode == 0, result.stderr
+    warnings = [line for line in result.stdout.splitlines() if line.startswith("warning:")]
+    assert len(warnings) == 1
+    assert "conditions.I.feed_speed" in warnings[0] and "0.36 m/min" in warnings[0]
+
+
+def test_check_accepts_a_file(tmp_path):
+    path = tmp_path / "bench.toml"
+    path.write_text(BENCH)
+    result = run("check", str(path))
+    assert result.returncode == 0 and str(path) in result.stdout
+
+
+@pytest.mark.parametrize(
+    "content, fragments",
+    [
+        (BENCH.replace('outer_diameter = "32 mm" }]', 'outer_diameter = "-32 mm" }]', 1), ["outer_diameter", "must be positive"]),
+        (BENCH.replace('[parts.screw]', '[parts.screww]', 1), ["no part named 'screw'", "did you mean 'screww'"]),
+        (BENCH.replace('lead = "10 mm"', 'leed = "10 mm"', 1), ["unknown key 'leed'", "did you mean 'lead'"]),
+        (BENCH.replace('conductivity = "48 W/(m*K)"', 'conductivity = "-48 W/(m*K)"', 1), ["materials.gcr15.conductivity", "must be positive"]),
+        ("[meta\n", ["invalid TOML"]),
+        ("", ["empty"]),
+    ],
+)
+@pytest.mark.parametrize("command", [["check"], ["heat", "--condition", "I"]])
+def test_bad_descriptions_get_one_line(tmp_path, content, fragments, command):
+    path = tmp_path / "bad.toml"
+    path.write_text(content)
+    result = run(command[0], str(path), *command[1:])
+    assert_one_line_error(result, str(path), *fragments)
+
+
+def test_missing_file_gets_one_line(tmp_path):
+    assert_one_line_error(run("check", str(tmp_path / "missing.toml")), "no such file")
+
+
+def test_unknown_condition_and_bad_mode_get_one_line():
+    assert_one_line_error(run("heat", "--condition", "VI"), "--condition", "no condition 'VI'", "I, II, III, IV, V")
+    assert_one_line_error(run("heat", "--condition", "I", "--mode", "exact"), "invalid choice")
+    assert_one_line_error(run("heat"), "--condition")

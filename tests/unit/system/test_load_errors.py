@@ -1,0 +1,108 @@
+"""Every bad description ends in one DescriptionError line naming the file, field and reason."""
+
+from importlib import resources
+
+import pytest
+
+from feedtherm.errors import DescriptionError
+from feedtherm.system.load import load_system
+
+BENCH = resources.files("feedtherm.system").joinpath("data").joinpath("paper_bench.toml").read_text()
+
+
+def write_variant(tmp_path, old: str, new: str) -> str:
+    assert old in BENCH, f"test fixture out of date: {old!r} not in the bench file"
+    path = tmp_path / "variant.toml"
+    path.write_text(BENCH.replace(old, new, 1))
+    return str(path)
+
+
+def load_error(spec: str) -> str:
+    with pytest.raises(DescriptionError) as info:
+        load_system(spec)
+    message = str(info.value)
+    assert "\n" not in message
+    return message
+
+
+SCREW = 'cylinders = [{ origin = ["-60 mm", "0 mm", "0 mm"], length = "510 mm", outer_diameter = "32 mm" }]'
+
+
+@pytest.mark.parametrize(
+    "old, new, fragments",
+    [
+        (SCREW, SCREW.replace('"32 mm"', '"-32 mm"'), ["parts.screw.cylinders[0].outer_diameter", "must be positive", "-32 mm"]),
+        (SCREW, SCREW.replace('"32 mm"', '"0 mm"'), ["parts.screw.cylinders[0].outer_diameter", "must be positive"]),
+        ('conductivity = "46 W/(m*K)"', 'conductivity = "-46 W/(m*K)"', ["materials.q345b.conductivity", "must be positive"]),
+        ('outer_diameter = "32 mm"', 'outer_diamter = "32 mm"', ["unknown key 'outer_diamter'", "did you mean 'outer_diameter'"]),
+        ('into = { front_bearing = 1.0 }', 'into = { front_bearng = 1.0 }', ["sources.front_bearing.into", "no part named 'front_bearng'", "did you mean 'front_bearing'"]),
+        ('between = ["nut", "screw"]', 'between = ["nut", "scew"]', ["joints[6].between", "no part named 'scew'"]),
+        ('screw = "screw"\nnut = "nut"', 'screw = "spindle"\nnut = "nut"', ["kinematics.screw", "no part named 'spindle'"]),
+        ('lead = "10 mm"', 'lead = "10"', ["kinematics.lead", "has no unit"]),
+        ('lead = "10 mm"', 'lead = "10 kg"', ["kinematics.lead", "not convertible to m"]),
+        ('[kinematics]\ndrive = "dual"', '[kinematics]\ndrive = "triple"', ["kinematics.drive", "'dual' or 'single'"]),
+        ('efficiency = 0.85\ninto = { screw_motor', 'efficiency = 1.5\ninto = { screw_motor', ["sources.screw_motor.efficiency", "less than or equal to 1"]),
+        ('into = { nut = 0.5, screw = 0.5 }', 'into = { nut = 0.5, screw = 0.6 }', ["sources.screw_nut.into", "add up to 1"]),
+        ('[temperatures]\n', '[temperatures]\ninital = "20 degC"\n', ["unknown key 'inital' in temperatures", "did you mean 'initial'"]),
+        ('[conditions.I]\nfeed_speed', '[conditions.I]\nscrew_sped = "1 rpm"\nfeed_speed', ["unknown key 'screw_sped'", "did you mean 'screw_speed'"]),
+    ],
+)
+def test_bad_values_name_the_field_and_reason(tmp_path, old, new, fragments):
+    message = load_error(write_variant(tmp_path, old, new))
+    assert message.startswith(str(tmp_path / "variant.toml") + ": ")
+    for fragment in fragments:
+        assert fragment in message, message
+
+
+def test_missing_part_section_is_named(tmp_path):
+    start = BENCH.index("[parts.nut_bearing]")
+    end = BENCH.index("[parts.nut]")
+    path = tmp_path / "no_nut_bearing.toml"
+    path.write_text(BENCH[:start] + BENCH[end:])
+    message = load_error(str(path))
+    assert "no part named 'nut_bearing'" in message
+
+
+def test_missing_required_section(tmp_path):
+    start = BENCH.index("[kinematics]")
+    end = BENCH.index("[elongation]")
+    path = tmp_path / "no_kinematics.toml"
+    path.write_text(BENCH[:start] + BENCH[end:])
+    assert "kinematics: missing (required)" in load_error(str(path))
+
+
+def test_broken_toml(tmp_path):
+    path = tmp_path / "broken.toml"
+    path.write_text('[meta\nname = "x"\n')
+    message = load_error(str(path))
+    assert "invalid TOML" in message and "line 1" in message
+
+
+def test_empty_file(tmp_path):
+    path = tmp_path / "empty.toml"
+    path.write_text("\n  \n")
+    assert "the file is empty" in load_error(str(path))
+
+
+def test_missing_file(tmp_path):
+    message = load_error(str(tmp_path / "nope.toml"))
+    assert message.endswith("nope.toml: no such file")
+
+
+def test_unknown_bundled_name_lists_the_bundled_ones():
+    message = load_error("papr")
+    assert "no such file" in message and "paper" in message
+
+
+def test_signed_speeds_are_directions_not_errors(tmp_path):
+    spec = write_variant(tmp_path, 'screw_speed = "396 rpm"\nnut_speed = "360 rpm"',
+                         'screw_speed = "-396 rpm"\nnut_speed = "-360 rpm"')
+    condition = load_system(spec).system.conditions["I"]
+    assert condition.screw_speed < 0 and condition.nut_speed < 0
+
+
+def test_unknown_key_inside_a_tagged_source_suggests_from_that_source_type(tmp_path):
+    spec = write_variant(tmp_path, 'efficiency = 0.85\ninto = { screw_motor', 'eficiency = 0.85\ninto = { screw_motor')
+    message = load_error(spec)
+    assert "unknown key 'eficiency' in sources.screw_motor" in message
+    assert "did you mean 'efficiency'" in message
