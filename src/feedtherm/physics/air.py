@@ -99,7 +99,8 @@ def film_temperature(T_surface, T_ambient):
     .. [2] Incropera, DeWitt, Bergman, Lavine, *Fundamentals of Heat and Mass Transfer*,
        6th ed., Wiley, 2007, §7.1 (film temperature).
     """
-    return (T_surface + T_ambient) / 2.0
+    mean = (np.asarray(T_surface, dtype=float) + np.asarray(T_ambient, dtype=float)) / 2.0
+    return float(mean) if mean.ndim == 0 else mean
 
 
 def air_properties(T, p=P_ATM):

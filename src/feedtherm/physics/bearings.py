@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from feedtherm.physics._arrays import scalar_or_array as _out
 from feedtherm.physics.mechanics import frictional_power
 from feedtherm.physics.validity import check_range
 
@@ -350,8 +351,3 @@ def _dm(dm):
             "(e.g. 43.5 mm = 0.0435 m)"
         )
     return arr
-
-
-def _out(value):
-    arr = np.asarray(value, dtype=float)
-    return float(arr) if arr.ndim == 0 else arr

@@ -15,6 +15,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from feedtherm.physics._arrays import finite as _finite
+from feedtherm.physics._arrays import scalar_or_array as _out
+
 
 def guideway_friction_force(mu, normal_load, seal_drag_per_carriage, n_carriages):
     r"""Friction force of a set of rolling-guide carriages.
@@ -131,20 +134,8 @@ def guideway_heat_paper(lam, f_g, F_g, v):
     return _out(lam * f_g * F_g * np.abs(v))
 
 
-def _finite(value, label, unit):
-    arr = np.asarray(value, dtype=float)
-    if np.any(~np.isfinite(arr)):
-        raise ValueError(f"{label} must be finite {unit}, got {value!r}")
-    return arr
-
-
 def _nonneg(value, label, unit):
     arr = _finite(value, label, unit)
     if np.any(arr < 0):
         raise ValueError(f"{label} must be >= 0 {unit}, got {value!r}")
     return arr
-
-
-def _out(value):
-    arr = np.asarray(value, dtype=float)
-    return float(arr) if arr.ndim == 0 else arr

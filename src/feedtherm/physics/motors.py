@@ -17,6 +17,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from feedtherm.physics._arrays import finite as _finite
+from feedtherm.physics._arrays import scalar_or_array as _out
 from feedtherm.physics.mechanics import angular_speed
 
 #: The paper's constant in Eq. 14: M [N·mm] · n [rpm] / 9550 = P [W].
@@ -162,15 +164,3 @@ def _efficiency(efficiency):
     if np.any(~np.isfinite(eta)) or np.any(eta <= 0) or np.any(eta > 1):
         raise ValueError(f"efficiency must lie in (0, 1] [-], got {efficiency!r}")
     return eta
-
-
-def _finite(value, label, unit):
-    arr = np.asarray(value, dtype=float)
-    if np.any(~np.isfinite(arr)):
-        raise ValueError(f"{label} must be finite {unit}, got {value!r}")
-    return arr
-
-
-def _out(value):
-    arr = np.asarray(value, dtype=float)
-    return float(arr) if arr.ndim == 0 else arr

@@ -16,6 +16,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from feedtherm.physics._arrays import scalar_or_array as _out
 from feedtherm.physics._checks import absolute_temperature as _temperature
 from feedtherm.physics._checks import check_range_nonzero as _check_nonzero

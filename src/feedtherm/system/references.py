@@ -69,6 +69,10 @@ def _check_single_drive(system: "FeedSystem") -> None:
     for name, condition in system.conditions.items():
         if condition.nut_speed != 0.0:
             raise ValueError(f"conditions.{name}.nut_speed: a single drive has no nut motor; the nut speed must be 0 rpm")
+    for name, cycle in system.duty_cycles.items():
+        for i, segment in enumerate(cycle.segments):
+            if segment.nut_speed != 0.0:
+                raise ValueError(f"duty_cycles.{name}.segments[{i}].nut_speed: a single drive has no nut motor; the nut speed must be 0 rpm")
     for name, source in system.sources.items():
         if getattr(source, "shaft", None) == "nut":
             raise ValueError(f"sources.{name}.shaft: a single drive has no rotating nut")

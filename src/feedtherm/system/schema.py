@@ -310,6 +310,37 @@ class Condition(Strict):
     description: str = ""
 
 
+class DutySegment(Strict):
+    """From ``start`` until the next segment's start, constant motor speeds and ambient."""
+
+    start: NonNegDuration
+    screw_speed: AngularSpeed  # signed; 0 = standstill
+    nut_speed: AngularSpeed = 0.0
+    ambient: Temperature
+
+
+class DutyCycle(Strict):
+    """A piecewise-constant operating profile; the table reciprocates whenever it moves."""
+
+    segments: list[DutySegment]
+    duration: PosDuration
+    description: str = ""
+
+    @model_validator(mode="after")
+    def _segments_in_order(self) -> "DutyCycle":
+        if not self.segments:
+            raise ValueError("a duty cycle needs at least one segment")
+        if self.segments[0].start != 0.0:
+            raise ValueError("the first segment must start at 0 s")
+        starts = [seg.start for seg in self.segments]
+        for i in range(1, len(starts)):
+            if starts[i] <= starts[i - 1]:
+                raise ValueError(f"segment {i} starts at {starts[i]:g} s, not after segment {i - 1} ({starts[i - 1]:g} s)")
+        if starts[-1] >= self.duration:
+            raise ValueError(f"the last segment starts at {starts[-1]:g} s, at or after the end ({self.duration:g} s)")
+        return self
+
+
 # --------------------------------------------------------------------------- paper mode
 
 
@@ -375,6 +406,7 @@ class FeedSystem(Strict):
     elongation: Elongation
     temperatures: Temperatures
     conditions: dict[str, Condition]
+    duty_cycles: dict[str, DutyCycle] = {}
     paper: PaperMode | None = None
     provenance: list[Provenance] = []
 

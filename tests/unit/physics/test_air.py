@@ -109,3 +109,11 @@ def test_film_temperature():
     # (303.15 + 293.15) / 2 = 298.15
     assert film_temperature(303.15, 293.15) == pytest.approx(298.15)
     assert film_temperature(293.15, 303.15) == pytest.approx(298.15)
+
+
+def test_film_temperature_adds_arrays_elementwise():
+    # (300 + 290)/2 = 295 K and (310 + 290)/2 = 300 K; lists must not be concatenated
+    from feedtherm.physics.air import film_temperature
+
+    assert list(film_temperature([300.0, 310.0], [290.0, 290.0])) == [295.0, 300.0]
+    assert film_temperature(303.15, 293.15) == pytest.approx(298.15)
