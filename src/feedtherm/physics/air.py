@@ -17,6 +17,7 @@ import math
 from dataclasses import dataclass
 
 import CoolProp.CoolProp as CP
+import numpy as np
 
 from feedtherm.physics.validity import check_range
 
