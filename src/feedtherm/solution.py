@@ -1,0 +1,112 @@
+"""The result of a simulation, the same for every model.
+
+Analyses, outputs and the CLI read only this type; they never reach into a solver.
+Temperatures are in kelvin and lengths in metres inside; converters below give the °C and
+µm that files and plots show.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+KELVIN_OFFSET = 273.15
+SENSOR_NAMES_AMBIENT = "T6"
+
+
+@dataclass(frozen=True)
+class EnergyBalance:
+    """Heat in, lost and stored over a run [J], computed apart from the solver's matrices."""
+
+    heat_in: float
+    heat_lost: float
+    heat_stored: float
+
+    @property
+    def residual(self) -> float:
+        """in − lost − stored [J]."""
+        return self.heat_in - self.heat_lost - self.heat_stored
+
+    @property
+    def relative_error(self) -> float:
+        """residual / max(in, |lost| + |stored|) (0 for a run without any heat)."""
+        scale = max(abs(self.heat_in), abs(self.heat_lost) + abs(self.heat_stored))
+        return 0.0 if scale == 0.0 else self.residual / scale
+
+
+@dataclass(frozen=True)
+class Solution:
+    """Sensor series, screw fields and summary values of one run.
+
+    Attributes
+    ----------
+    times : ndarray, shape (n,)
+        Sample times [s], from 0 to the end of the run.
+    sensors : dict[str, ndarray]
+        Sensor temperatures [K] at ``times``: the declared sensors and ``T6`` (ambient).
+    elongation : ndarray, shape (n,)
+        The screw's axial elongation D [m] between the fixed point and the read point,
+        relative to the reference temperature (the quantity compared with measurements).
+    screw_x : ndarray, shape (m,)
+        Axial positions [m] of the screw cells (centres).
+    screw_temperature : ndarray, shape (n, m)
+        Cross-section mean screw temperature [K] by time and position.
+    screw_displacement : ndarray, shape (n, m)
+        Axial thermal displacement [m] along the screw, zero at the fixed point.
+    nut_offset : ndarray, shape (n,)
+        Displacement [m] of the moving group from the middle of the stroke.
+    part_temperatures : dict[str, ndarray]
+        Mean temperature [K] of every part at ``times``.
+    cycle_times, cycle_sensors, cycle_elongation
+        Series averaged over each full reciprocation cycle (time = cycle midpoint).
+    final : dict[str, float]
+        Sensor temperatures [K] and ``D`` [m]: the mean over the last full cycle.
+    steady : dict[str, float]
+        The same quantities from the cycle-averaged steady state of the final operating point.
+    equilibrium_time : float or None
+        When the run reached thermal equilibrium [s] (docs/fast-model.md), None if it did not.
+    energy : EnergyBalance
+    info : dict
+        Model, mode, condition, time step, unknowns, wall time, provenance.
+    """
+
+    times: np.ndarray
+    sensors: dict[str, np.ndarray]
+    elongation: np.ndarray
+    screw_x: np.ndarray
+    screw_temperature: np.ndarray
+    screw_displacement: np.ndarray
+    nut_offset: np.ndarray
+    part_temperatures: dict[str, np.ndarray]
+    cycle_times: np.ndarray
+    cycle_sensors: dict[str, np.ndarray]
+    cycle_elongation: np.ndarray
+    final: dict[str, float]
+    steady: dict[str, float]
+    equilibrium_time: float | None
+    energy: EnergyBalance
+    info: dict = field(default_factory=dict)
+
+    @property
+    def sensor_names(self) -> list[str]:
+        return list(self.sensors)
+
+    def sensors_celsius(self) -> dict[str, np.ndarray]:
+        return {name: values - KELVIN_OFFSET for name, values in self.sensors.items()}
+
+    @property
+    def elongation_um(self) -> np.ndarray:
+        return self.elongation * 1e6
+
+    @property
+    def elongation_change_um(self) -> np.ndarray:
+        """Change of D since the start of the run [µm]."""
+        return (self.elongation - self.elongation[0]) * 1e6
+
+    def summary_values(self, which: str = "final") -> dict[str, float]:
+        """``final`` or ``steady`` values in °C and µm, keyed T1…, D_um."""
+        values = self.final if which == "final" else self.steady
+        out = {name: value - KELVIN_OFFSET for name, value in values.items() if name != "D"}
+        out["D_um"] = values["D"] * 1e6
+        return out
