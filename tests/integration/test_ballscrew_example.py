@@ -140,10 +140,13 @@ def test_front_bearing_heat_by_palmgren_at_1000_rpm(system):
 @pytest.mark.parametrize("condition", CONDITIONS)
 def test_motor_delivers_every_screw_torque(system, condition):
     # Single drive: the one motor turns the screw against both bearings, the ball-nut drag
-    # and the stated table-push torque 0.04 N·m; loss = T ω (1/η - 1), η = 0.80.
+    # and the ideal torque that pushes the table, F Ph / (2 pi) with F the guideway friction
+    # (0.004 * 45 kg * 9.80665 + 4 * 5 N = 21.77 N -> 0.0346 N·m); loss = T ω (1/η - 1), η = 0.80.
     bc = boundary_conditions(system, condition, "physics")
     load = sum(bc.heats[name].details["friction_torque_Nm"] for name in ("front_bearing", "rear_bearing", "ball_nut"))
-    torque = load + 0.04
+    push = (0.004 * 45 * 9.80665 + 4 * 5.0) * 0.010 / (2 * 3.141592653589793)
+    assert bc.heats["guideways"].details["friction_force_N"] == pytest.approx(0.004 * 45 * 9.80665 + 4 * 5.0)
+    torque = load + push
     assert bc.heats["servo_motor"].details["torque_Nm"] == pytest.approx(torque)
     assert bc.heats["servo_motor"].power == pytest.approx(torque * omega(RPM[condition]) * (1.0 / 0.80 - 1.0))
 

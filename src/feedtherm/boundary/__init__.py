@@ -65,16 +65,22 @@ class BoundaryConditions:
 
 def boundary_conditions(system: FeedSystem, condition: str, mode: Mode = "physics") -> BoundaryConditions:
     """Boundary conditions of ``condition`` (a name in the description) in ``mode``."""
+    return boundary_conditions_at(system, operating_point(system, system.conditions[condition]), mode, label=condition)
+
+
+def boundary_conditions_at(
+    system: FeedSystem, point: OperatingPoint, mode: Mode = "physics", *, label: str = ""
+) -> BoundaryConditions:
+    """Boundary conditions at any operating point (a duty-cycle segment, a standstill, ...)."""
     if mode not in MODES:
         raise ValueError(f"mode must be one of {', '.join(MODES)}, got {mode!r}")
-    point = operating_point(system, system.conditions[condition])
     caught: list[str] = []
     heats, surfaces = _physics(system, point, with_radiation=(mode == "physics"), caught=caught)
     paper_heat, paper_chtc = _printed(system)
     if mode == "paper":
         heats, surfaces = _paper(system, point, heats, surfaces)
     joints = [JointConductance(tuple(j.between), j.tcr, j.area, j.sliding) for j in system.joints]
-    return BoundaryConditions(condition, mode, point, heats, surfaces, joints, paper_heat, paper_chtc, caught)
+    return BoundaryConditions(label, mode, point, heats, surfaces, joints, paper_heat, paper_chtc, caught)
 
 
 def frozen_surface_temperature(system: FeedSystem, point: OperatingPoint) -> float:
@@ -148,6 +154,7 @@ __all__ = [
     "SourceHeat",
     "SurfaceTransfer",
     "boundary_conditions",
+    "boundary_conditions_at",
     "operating_point",
     "surface_transfer",
 ]

@@ -64,7 +64,7 @@ def source_heats(system: FeedSystem, point: OperatingPoint) -> dict[str, SourceH
         elif isinstance(src, BearingSource):
             heats[name] = _bearing(name, src, point, shaft_torque)
         elif isinstance(src, TorqueSource):
-            heats[name] = _torque(name, src, point, shaft_torque)
+            heats[name] = _torque(name, src, point, axial_force, shaft_torque)
         elif isinstance(src, FixedSource):
             heats[name] = SourceHeat(name, src.power, dict(src.into), 0.0)
     for name, src in sources.items():
@@ -110,11 +110,12 @@ def _bearing(name, src: BearingSource, point, shaft_torque) -> SourceHeat:
     })
 
 
-def _torque(name, src: TorqueSource, point, shaft_torque) -> SourceHeat:
+def _torque(name, src: TorqueSource, point, axial_force, shaft_torque) -> SourceHeat:
     n = point.shaft_rpm(src.shaft)
-    if src.shaft == "relative":
-        shaft_torque["screw"] += src.torque * _sign(n)
-        shaft_torque["nut"] -= src.torque * _sign(n)
+    if src.shaft == "relative":  # a screw-nut drag torque: the screw also pushes the table
+        drive = src.torque + screw_drive_torque(axial_force, point.lead)
+        shaft_torque["screw"] += drive * _sign(n)
+        shaft_torque["nut"] -= drive * _sign(n)
     else:
         shaft_torque[src.shaft] += src.torque * _sign(n)
     return SourceHeat(name, frictional_power(src.torque, n), dict(src.into), n, {"friction_torque_Nm": src.torque})

@@ -1,0 +1,204 @@
+"""Nodes of the fast model: axially resolved bodies and lumped parts.
+
+* The screw is cut into axial cells (at least ``axial_cells``) and, in each cell, into
+  ``radial_rings`` concentric rings of equal thickness, because the nut's contact
+  conductance (~6000 W/(m² K)) makes the screw's Biot number under the nut about 2.
+* Every other fixed part that a moving part slides on (the guideways) is cut into axial
+  cells (one ring), so the moving contact has a place to be.
+* Every other part is one lumped node at its mean temperature; its conduction to a joint
+  adds ``L_c / (k A_joint)`` with the lumped-capacitance length ``L_c = V / A_surface``.
+
+The cell size divides the stroke exactly, so that the moving group's positions fall on the
+cell grid and each position's system matrix can be factorised once.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ...system.geometry import BOX_FACES, bounds, part_volume
+from ...system.schema import Cylinder, FeedSystem, Part
+
+CONTACT_TOLERANCE = 1e-3  # [m] primitives closer than this touch
+
+
+@dataclass
+class AxialBody:
+    """A fixed part resolved along x: cells (edges) × rings, with global node indices."""
+
+    part: str
+    edges: np.ndarray  # (m+1,) cell edges along x [m]
+    ring_radii: np.ndarray  # (n_rings+1,) ring edges [m] for a cylinder; [0, r_eq] otherwise
+    cross_section: float  # [m^2]
+    nodes: np.ndarray  # (m, n_rings) global indices; last ring is the outer surface
+    cylindrical: bool
+
+    @property
+    def centres(self) -> np.ndarray:
+        return 0.5 * (self.edges[1:] + self.edges[:-1])
+
+    @property
+    def lengths(self) -> np.ndarray:
+        return np.diff(self.edges)
+
+    @property
+    def n_rings(self) -> int:
+        return self.nodes.shape[1]
+
+    def ring_areas(self) -> np.ndarray:
+        r = self.ring_radii
+        if not self.cylindrical:
+            return np.array([self.cross_section])
+        return math.pi * (r[1:] ** 2 - r[:-1] ** 2)
+
+    def overlap(self, x0: float, x1: float) -> np.ndarray:
+        """Length [m] of each cell inside [x0, x1]."""
+        lo = np.maximum(self.edges[:-1], x0)
+        hi = np.minimum(self.edges[1:], x1)
+        return np.clip(hi - lo, 0.0, None)
+
+    def cell_at(self, x: float) -> int:
+        return int(np.clip(np.searchsorted(self.edges, x, side="right") - 1, 0, len(self.edges) - 2))
+
+
+@dataclass
+class Layout:
+    system: FeedSystem
+    bodies: dict[str, AxialBody]
+    lumped: dict[str, int]  # part -> node index
+    capacity: np.ndarray  # [J/K] per node
+    n_nodes: int
+    dx: float  # axial cell size of the screw [m]
+    positions: np.ndarray  # offsets [m] of the moving group at grid positions k = 0..K
+    surface_length: dict[str, float] = field(default_factory=dict)  # L_c of lumped parts
+
+    @property
+    def screw(self) -> AxialBody:
+        return self.bodies[self.system.kinematics.screw]
+
+    def part_nodes(self, part: str) -> np.ndarray:
+        if part in self.lumped:
+            return np.array([self.lumped[part]])
+        return self.bodies[part].nodes.ravel()
+
+    def part_capacity(self, part: str) -> np.ndarray:
+        return self.capacity[self.part_nodes(part)]
+
+
+def axial_parts(system: FeedSystem) -> list[str]:
+    """The screw, then every fixed part that a sliding joint connects to a moving part."""
+    names = [system.kinematics.screw]
+    for joint in system.joints:
+        if joint.sliding:
+            for name in joint.between:
+                if not system.parts[name].moving and name not in names:
+                    names.append(name)
+    return names
+
+
+def build_layout(system: FeedSystem, *, axial_cells: int = 100, radial_rings: int = 2,
+                 min_positions: int = 20) -> Layout:
+    """Node layout: axial bodies on a grid whose cell size divides the stroke."""
+    screw_part = system.parts[system.kinematics.screw]
+    lo, hi = bounds(screw_part)
+    length = hi[0] - lo[0]
+    stroke = system.kinematics.stroke
+    positions_count = max(min_positions, math.ceil(stroke / (length / axial_cells)))
+    dx = stroke / positions_count
+    capacity: list[float] = []
+    bodies: dict[str, AxialBody] = {}
+    next_node = 0
+    for name in axial_parts(system):
+        part = system.parts[name]
+        material = system.materials[part.material]
+        rings = radial_rings if name == system.kinematics.screw else 1
+        body = _axial_body(name, part, dx, rings, next_node)
+        bodies[name] = body
+        next_node += body.nodes.size
+        volumes = np.outer(body.lengths, body.ring_areas())
+        capacity.extend((material.density * material.specific_heat * volumes).ravel())
+    lumped: dict[str, int] = {}
+    surface_length: dict[str, float] = {}
+    for name, part in system.parts.items():
+        if name in bodies:
+            continue
+        material = system.materials[part.material]
+        lumped[name] = next_node
+        next_node += 1
+        capacity.append(material.density * material.specific_heat * part_volume(part))
+        surface_length[name] = part_volume(part) / _total_surface(part)
+    offsets = -stroke / 2.0 + dx * np.arange(positions_count + 1)
+    return Layout(system, bodies, lumped, np.array(capacity), next_node, dx, offsets, surface_length)
+
+
+def _axial_body(name: str, part: Part, dx: float, rings: int, first_node: int) -> AxialBody:
+    lo, hi = bounds(part)
+    n = max(1, int(round((hi[0] - lo[0]) / dx)))
+    edges = lo[0] + dx * np.arange(n + 1)
+    edges[-1] = hi[0]  # the last cell absorbs the remainder (within half a cell)
+    cylindrical = len(part.cylinders) == 1 and not part.boxes and part.cylinders[0].axis == "x"
+    if cylindrical:
+        cyl = part.cylinders[0]
+        r_in, r_out = cyl.inner_diameter / 2.0, cyl.outer_diameter / 2.0
+        radii = np.linspace(r_in, r_out, rings + 1)
+        area = math.pi * (r_out**2 - r_in**2)
+    else:
+        area = part_volume(part) / (hi[0] - lo[0])
+        radii = np.array([0.0, math.sqrt(area / math.pi)])
+        rings = 1
+    nodes = first_node + np.arange(n * rings).reshape(n, rings)
+    return AxialBody(name, edges, radii, area, nodes, cylindrical)
+
+
+def _total_surface(part: Part) -> float:
+    total = 0.0
+    for box in part.boxes:
+        sx, sy, sz = box.size
+        total += 2 * (sx * sy + sy * sz + sx * sz)
+    for cyl in part.cylinders:
+        total += math.pi * cyl.outer_diameter * cyl.length + math.pi * cyl.inner_diameter * cyl.length
+        total += 2 * math.pi / 4 * (cyl.outer_diameter**2 - cyl.inner_diameter**2)
+    return total
+
+
+def contact_ranges(system: FeedSystem, part: str, body: AxialBody, offset: float = 0.0) -> list[tuple[float, float]]:
+    """x-ranges [m] where ``part`` (shifted by ``offset``) touches the axial ``body``.
+
+    A cylinder coaxial with a cylindrical body touches it only when its bore sits on the
+    body's surface (a nut sleeve does, its flange does not); other primitives touch when
+    their bounding boxes meet.
+    """
+    target = system.parts[body.part]
+    t_lo, t_hi = bounds(target)
+    ranges = []
+    p = system.parts[part]
+    for prim in [*p.boxes, *p.cylinders]:
+        lo, hi = _primitive_bounds(prim)
+        if isinstance(prim, Cylinder) and body.cylindrical and prim.axis == "x" and _coaxial(prim, target.cylinders[0]):
+            if abs(prim.inner_diameter - target.cylinders[0].outer_diameter) > 2 * CONTACT_TOLERANCE:
+                continue
+        elif any(max(lo[k] - t_hi[k], t_lo[k] - hi[k]) > CONTACT_TOLERANCE for k in (1, 2)):
+            continue
+        ranges.append((lo[0] + offset, hi[0] + offset))
+    return ranges
+
+
+def _coaxial(a: Cylinder, b: Cylinder) -> bool:
+    return abs(a.origin[1] - b.origin[1]) < CONTACT_TOLERANCE and abs(a.origin[2] - b.origin[2]) < CONTACT_TOLERANCE
+
+
+def _primitive_bounds(prim):
+    if isinstance(prim, Cylinder):
+        i = "xyz".index(prim.axis)
+        r = prim.outer_diameter / 2.0
+        lo = [c - r for c in prim.origin]
+        hi = [c + r for c in prim.origin]
+        lo[i], hi[i] = prim.origin[i], prim.origin[i] + prim.length
+        return lo, hi
+    return list(prim.origin), [o + s for o, s in zip(prim.origin, prim.size)]
+
+
+__all__ = ["AxialBody", "Layout", "build_layout", "contact_ranges", "axial_parts", "BOX_FACES"]
