@@ -6,7 +6,10 @@ Every input error ends as one line on stderr, exit code 2, no traceback.
 from __future__ import annotations
 
 import argparse
+import math
 import sys
+import time
+from pathlib import Path
 
 from . import __version__
 from .errors import FeedthermError
@@ -65,6 +68,113 @@ def cmd_check(args: argparse.Namespace) -> int:
     return 0
 
 
+#: Models `feedtherm run --model` offers.
+RUN_MODELS = ("fast",)
+#: A run shows a progress bar only once it has lasted this long [s]: short runs stay quiet.
+PROGRESS_DELAY_S = 1.0
+#: Where a CSV duty cycle is taken to end while checking it before a run without --duration
+#: (its last row holds to the end of the run, which simulate decides).
+_PROVISIONAL_CYCLE_END_S = 1e9
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    from .outputs.run_files import check_output_dir, default_out_dir, summary_line, write_run
+
+    loaded = _load(args.system)
+    if args.condition is not None:
+        _condition(loaded, args.condition)
+    else:
+        _cycle(loaded, args.cycle, args.duration)
+    _require_paper_table(loaded, args.mode)
+    out_dir = Path(args.out) if args.out else default_out_dir(args.system, _run_label(args), args.mode)
+    check_output_dir(out_dir)
+    # Imported only now: every input error above is reported without loading the model.
+    from .simulate import simulate
+
+    with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
+        solution = simulate(loaded, condition=args.condition, cycle=args.cycle, mode=args.mode, model=args.model,
+                            duration=args.duration, single_drive=args.single_drive,
+                            sample_interval=args.sample_interval, progress=progress)
+    write_run(solution, out_dir, sample_interval=args.sample_interval)
+    print(summary_line(solution, out_dir))
+    return 0
+
+
+def _cycle(loaded, name_or_path: str, duration: float | None) -> str:
+    """A duty cycle declared in the description, or a CSV file that reads cleanly."""
+    from .system.duty_cycle import read_duty_cycle_csv
+
+    cycles = loaded.system.duty_cycles
+    if name_or_path in cycles:
+        return name_or_path
+    if not Path(name_or_path).is_file():
+        declared = ", ".join(cycles) or "none"
+        raise FeedthermError(f"--cycle: {name_or_path!r} is neither a duty cycle of {loaded.origin} "
+                             f"(declared: {declared}) nor an existing CSV file")
+    read_duty_cycle_csv(name_or_path, duration if duration is not None else _PROVISIONAL_CYCLE_END_S)
+    return name_or_path
+
+
+def _run_label(args: argparse.Namespace) -> str:
+    """The condition name, the duty cycle's name, or a CSV file's stem."""
+    return args.condition if args.condition is not None else Path(args.cycle).stem
+
+
+def _require_paper_table(loaded, mode: str) -> None:
+    if mode == "paper" and loaded.system.paper is None:
+        raise FeedthermError(f"--mode paper: {loaded.origin} has no [paper] table of printed values")
+
+
+def _positive_seconds(text: str) -> float:
+    """argparse type: a finite number of seconds > 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"must be a positive number of seconds, got {text!r}")
+    return value
+
+
+class _LazyProgress:
+    """A progress callback that shows a rich bar only once the run has lasted a while.
+
+    Runs shorter than ``PROGRESS_DELAY_S`` print nothing; a bar appears on the first call
+    after that.  It is transient (gone when the run ends), so only the final line remains.
+    """
+
+    def __init__(self, *, enabled: bool, delay: float = PROGRESS_DELAY_S):
+        self._enabled = enabled
+        self._delay = delay
+        self._started = time.monotonic()
+        self._bar = None
+        self._task = None
+
+    def __enter__(self) -> "_LazyProgress":
+        return self
+
+    def __exit__(self, *exc_info) -> None:
+        if self._bar is not None:
+            self._bar.stop()
+
+    def __call__(self, fraction: float) -> None:
+        if not self._enabled:
+            return
+        if self._bar is None:
+            if time.monotonic() - self._started < self._delay:
+                return
+            self._start_bar()
+        self._bar.update(self._task, completed=min(max(float(fraction), 0.0), 1.0))
+
+    def _start_bar(self) -> None:
+        from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeRemainingColumn
+
+        self._bar = Progress(TextColumn("simulating"), BarColumn(), TaskProgressColumn(), TimeRemainingColumn(),
+                             transient=True)
+        self._task = self._bar.add_task("simulating", total=1.0)
+        self._bar.start()
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="feedtherm", description="Thermal model of machine-tool feed drives.")
     parser.add_argument("--version", action="version", version=f"feedtherm {__version__}")
@@ -81,6 +191,22 @@ def build_parser() -> argparse.ArgumentParser:
     check = sub.add_parser("check", help="validate a description and list its inconsistencies")
     check.add_argument("system", nargs="?", default="paper", help=system_help)
     check.set_defaults(func=cmd_check)
+
+    run = sub.add_parser("run", help="simulate a condition or a duty cycle and write CSV, JSON and PNG files")
+    run.add_argument("system", nargs="?", default="paper", help=system_help)
+    operation = run.add_mutually_exclusive_group(required=True)
+    operation.add_argument("--condition", help="condition name, e.g. I")
+    operation.add_argument("--cycle", help="a duty cycle declared in the description, or a CSV file "
+                                           "(time_s,screw_rpm,nut_rpm,ambient_C)")
+    run.add_argument("--model", choices=RUN_MODELS, default="fast")
+    run.add_argument("--mode", choices=["physics", "paper"], default="physics")
+    run.add_argument("--duration", type=_positive_seconds, metavar="S",
+                     help="length of the run [s] (default: the condition's or the cycle's)")
+    run.add_argument("--single-drive", action="store_true", help="operate a dual drive as a single (screw-only) drive")
+    run.add_argument("--sample-interval", type=_positive_seconds, default=10.0, metavar="S",
+                     help="spacing of the written samples [s] (default: 10)")
+    run.add_argument("--out", metavar="DIR", help="output directory (default: out/<system>_<condition>_<mode>)")
+    run.set_defaults(func=cmd_run)
     return parser
 
 

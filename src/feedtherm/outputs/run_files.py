@@ -14,6 +14,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import shutil
 import uuid
 from collections.abc import Iterator
@@ -56,6 +57,16 @@ def write_run_outputs(solution: Solution, out_dir: Path, *, sample_interval: flo
     out_dir = Path(out_dir)
     with staged_directory(out_dir) as stage:
         names = write_tables(solution, stage, sample_interval=sample_interval)
+    return [out_dir / name for name in names]
+
+
+def write_run(solution: Solution, out_dir: Path, *, sample_interval: float) -> list[Path]:
+    """Tables and plots of a run in one step: all files appear in ``out_dir``, or none."""
+    from .plots import draw_run_plots  # plots import from this module
+
+    out_dir = Path(out_dir)
+    with staged_directory(out_dir) as stage:
+        names = write_tables(solution, stage, sample_interval=sample_interval) + draw_run_plots(solution, stage)
     return [out_dir / name for name in names]
 
 
@@ -136,13 +147,13 @@ def _write_csv(path: Path, header: str, table: np.ndarray) -> None:
 
 
 def run_summary(solution: Solution) -> dict:
-    """The summary of a run in °C and µm (the content of ``summary.json``)."""
+    """The summary of a run in °C and µm, as plain JSON types (the content of ``summary.json``)."""
     info = solution.info
     final = _ordered_values(solution, solution.summary_values("final"))
     steady = _ordered_values(solution, solution.summary_values("steady"))
     start_um = float(solution.elongation_um[0])
     energy = solution.energy
-    return {
+    return _jsonable({
         "condition": info.get("condition"),
         "model": info.get("model"),
         "mode": info.get("mode"),
@@ -157,11 +168,11 @@ def run_summary(solution: Solution) -> dict:
         "unknowns": info.get("unknowns"),
         "elongation_change_um": {"final": final["D_um"] - start_um, "steady": steady["D_um"] - start_um},
         "provenance": info.get("provenance", {}),
-    }
+    })
 
 
 def write_summary_json(solution: Solution, path: Path) -> None:
-    text = json.dumps(_jsonable(run_summary(solution)), indent=2, ensure_ascii=False, allow_nan=False)
+    text = json.dumps(run_summary(solution), indent=2, ensure_ascii=False, allow_nan=False)
     path.write_text(text + "\n", encoding="utf-8")
 
 
@@ -198,6 +209,19 @@ def summary_line(solution: Solution, out_dir: Path) -> str:
     error_percent = 100.0 * solution.energy.relative_error
     return (f"{out_dir}: {temperatures}, D {final['D_um']:.2f} µm, "
             f"energy balance error {error_percent:.2g} %")
+
+
+# --------------------------------------------------------------------------- where
+
+
+def default_out_dir(system: str, run: str, mode: str) -> Path:
+    """``out/<system>_<run>_<mode>`` with ``system`` a bundled name or a file's stem."""
+    return Path("out") / "_".join(_safe_name(part) for part in (Path(system).stem, run, mode))
+
+
+def _safe_name(text: str) -> str:
+    # Duty-cycle names and CSV stems may hold spaces or separators; a directory name should not.
+    return re.sub(r"[^A-Za-z0-9_.+-]+", "-", text).strip("-.") or "run"
 
 
 # --------------------------------------------------------------------------- atomic writes

@@ -1,0 +1,1 @@
+"""Analyses that read Solutions: elongation, equilibrium, validation, sweeps, calibration."""

@@ -1,0 +1,54 @@
+"""Thermal equilibrium time, following the paper's criterion made precise.
+
+The paper (§4.2): equilibrium when "the temperature rise reached 95 % of the maximum
+temperature rise and the stable fluctuation of the value of the multiple temperature
+measurement points was less than 0.5 °C".  feedtherm's definition, on the cycle-averaged
+sensor series (each value the mean over the preceding full reciprocation cycle):
+
+``t_eq`` is the first time t at which, for every sensor,
+
+1. the rise since the start has reached 95 % of the steady-state rise
+   (sensors whose steady rise is below 0.1 K are exempt), and
+2. the cycle-averaged value varied by less than 0.5 K over the 600 s ending at t.
+
+``None`` when the run ends first.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+RISE_FRACTION = 0.95
+FLUCTUATION_K = 0.5
+WINDOW_S = 600.0
+MIN_RISE_K = 0.1
+
+
+def equilibrium_time(times: np.ndarray, series: dict[str, np.ndarray], initial: dict[str, float],
+                     steady: dict[str, float]) -> float | None:
+    """First time [s] at which every series meets both criteria (see module docstring)."""
+    times = np.asarray(times, dtype=float)
+    if times.size == 0:
+        return None
+    ok = np.ones(times.size, dtype=bool)
+    for name, values in series.items():
+        values = np.asarray(values, dtype=float)
+        rise_steady = steady[name] - initial[name]
+        if abs(rise_steady) >= MIN_RISE_K:
+            ok &= (values - initial[name]) / rise_steady >= RISE_FRACTION
+        ok &= _trailing_range(times, values) < FLUCTUATION_K
+    ok &= times >= times[0] + WINDOW_S
+    hits = np.nonzero(ok)[0]
+    return float(times[hits[0]]) if hits.size else None
+
+
+def _trailing_range(times: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """max - min of ``values`` over [t - WINDOW_S, t] at every t."""
+    out = np.empty_like(values)
+    start = 0
+    for i, t in enumerate(times):
+        while times[start] < t - WINDOW_S:
+            start += 1
+        window = values[start:i + 1]
+        out[i] = window.max() - window.min()
+    return out

@@ -1,0 +1,1 @@
+"""Discretisations of a feed system: each returns a Solution."""

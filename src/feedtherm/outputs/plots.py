@@ -1,0 +1,146 @@
+"""PNG plots of a run: sensor temperatures, the elongation, the screw temperature map.
+
+matplotlib is imported inside the functions (importing it costs ~0.3 s, which commands
+that draw nothing should not pay).  Figures are built with ``matplotlib.figure.Figure``
+and saved through the Agg canvas: no pyplot state, no GUI backend, and no change to the
+backend of a caller who has one (``matplotlib.use`` would switch it for the whole process).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..solution import KELVIN_OFFSET, SENSOR_NAMES_AMBIENT, Solution
+from .run_files import ordered_sensor_names, staged_directory
+
+SENSORS_PNG = "sensors.png"
+ELONGATION_PNG = "elongation.png"
+SCREW_HEATMAP_PNG = "screw_heatmap.png"
+
+_DPI = 150
+_HOURS = 3600.0
+# More time columns than this adds nothing a 150-dpi heat map can show, only drawing time.
+_MAX_HEATMAP_COLUMNS = 1500
+
+
+def write_run_plots(solution: Solution, out_dir: Path) -> list[Path]:
+    """Write ``sensors.png``, ``elongation.png`` and ``screw_heatmap.png`` into ``out_dir``.
+
+    Written like the tables (see :func:`~feedtherm.outputs.run_files.staged_directory`):
+    all three appear, or none.
+    """
+    out_dir = Path(out_dir)
+    with staged_directory(out_dir) as stage:
+        names = draw_run_plots(solution, stage)
+    return [out_dir / name for name in names]
+
+
+def draw_run_plots(solution: Solution, directory: Path) -> list[str]:
+    """Draw the three plots straight into ``directory`` (no staging); return their names."""
+    plot_sensors(solution, directory / SENSORS_PNG)
+    plot_elongation(solution, directory / ELONGATION_PNG)
+    plot_screw_heatmap(solution, directory / SCREW_HEATMAP_PNG)
+    return [SENSORS_PNG, ELONGATION_PNG, SCREW_HEATMAP_PNG]
+
+
+def run_label(solution: Solution) -> str:
+    """``I, physics mode, fast model``: which run a figure shows."""
+    info = solution.info
+    parts = [str(info["condition"])] if info.get("condition") else []
+    parts += [f"{info[key]} {key}" for key in ("mode", "model") if info.get(key)]
+    return ", ".join(parts)
+
+
+# --------------------------------------------------------------------------- the plots
+
+
+def plot_sensors(solution: Solution, path: Path) -> None:
+    """Every sensor [°C] over time [h]; the ambient sensor dashed grey, equilibrium marked."""
+    figure = _figure(figsize=(9, 5))
+    ax = figure.subplots()
+    hours = solution.times / _HOURS
+    celsius = solution.sensors_celsius()
+    for name in ordered_sensor_names(solution):
+        if name == SENSOR_NAMES_AMBIENT:
+            ax.plot(hours, celsius[name], color="0.45", linestyle="--", linewidth=1.2, label=f"{name} (ambient)")
+        else:
+            ax.plot(hours, celsius[name], linewidth=1.4, label=name)
+    _mark_equilibrium(ax, solution)
+    ax.set_xlabel("time [h]")
+    ax.set_ylabel("temperature [°C]")
+    ax.set_title(f"Sensor temperatures — {run_label(solution)}")
+    ax.set_xlim(hours[0], hours[-1])
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="center left", bbox_to_anchor=(1.01, 0.5), frameon=False)
+    _save(figure, path)
+
+
+def plot_elongation(solution: Solution, path: Path) -> None:
+    """D [µm] (against the reference temperature) above its change since the start [µm]."""
+    figure = _figure(figsize=(9, 6))
+    top, bottom = figure.subplots(2, 1, sharex=True)
+    hours = solution.times / _HOURS
+    steady_um = solution.summary_values("steady")["D_um"]
+    top.plot(hours, solution.elongation_um, color="C0", linewidth=1.4, label="D (from the reference temperature)")
+    top.axhline(steady_um, color="C0", linestyle="--", linewidth=1.0, alpha=0.6,
+                label=f"steady state of the final operating point ({steady_um:.1f} µm)")
+    top.set_ylabel("elongation D [µm]")
+    top.set_title(f"Screw elongation — {run_label(solution)}")
+    bottom.plot(hours, solution.elongation_change_um, color="C1", linewidth=1.4)
+    bottom.set_ylabel("change since start ΔD [µm]")
+    bottom.set_xlabel("time [h]")
+    bottom.set_xlim(hours[0], hours[-1])
+    for ax in (top, bottom):
+        _mark_equilibrium(ax, solution, label=ax is top)
+        ax.grid(True, alpha=0.3)
+    top.legend(loc="lower right", frameon=False)
+    _save(figure, path)
+
+
+def plot_screw_heatmap(solution: Solution, path: Path) -> None:
+    """Screw temperature [°C] by time [h] (x) and axial position [mm] (y)."""
+    figure = _figure(figsize=(9, 5))
+    ax = figure.subplots()
+    columns = _thinned(solution.times.size, _MAX_HEATMAP_COLUMNS)
+    hours = solution.times[columns] / _HOURS
+    x_mm = solution.screw_x * 1e3
+    celsius = solution.screw_temperature[columns] - KELVIN_OFFSET
+    mesh = ax.pcolormesh(hours, x_mm, celsius.T, shading="nearest", cmap="inferno", rasterized=True)
+    figure.colorbar(mesh, ax=ax, label="screw temperature [°C]")
+    ax.set_xlabel("time [h]")
+    ax.set_ylabel("axial position x [mm]")
+    ax.set_title(f"Screw temperature (cross-section mean) — {run_label(solution)}")
+    _save(figure, path)
+
+
+# --------------------------------------------------------------------------- helpers
+
+
+def _figure(figsize: tuple[float, float]):
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=figsize, layout="constrained")
+
+
+def _save(figure, path: Path) -> None:
+    figure.savefig(path, dpi=_DPI, format="png")
+
+
+def _mark_equilibrium(ax, solution: Solution, *, label: bool = True) -> None:
+    """A dotted vertical line where the run reached thermal equilibrium (if it did)."""
+    if solution.equilibrium_time is None:
+        return
+    hours = solution.equilibrium_time / _HOURS
+    ax.axvline(hours, color="0.3", linestyle=":", linewidth=1.0,
+               label=f"equilibrium ({hours:.2f} h)" if label else None)
+
+
+def _thinned(count: int, limit: int) -> np.ndarray:
+    """Indices of every k-th of ``count`` samples so that at most ``limit`` remain, last kept."""
+    step = max(1, -(-count // limit))
+    indices = np.arange(0, count, step)
+    if count and indices[-1] != count - 1:
+        indices = np.append(indices, count - 1)
+    return indices
