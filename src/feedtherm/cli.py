@@ -72,9 +72,6 @@ def cmd_check(args: argparse.Namespace) -> int:
 RUN_MODELS = ("fast",)
 #: A run shows a progress bar only once it has lasted this long [s]: short runs stay quiet.
 PROGRESS_DELAY_S = 1.0
-#: Where a CSV duty cycle is taken to end while checking it before a run without --duration
-#: (its last row holds to the end of the run, which simulate decides).
-_PROVISIONAL_CYCLE_END_S = 1e9
 
 
 def cmd_run(args: argparse.Namespace) -> int:
@@ -103,6 +100,7 @@ def cmd_run(args: argparse.Namespace) -> int:
 def _cycle(loaded, name_or_path: str, duration: float | None) -> str:
     """A duty cycle declared in the description, or a CSV file that reads cleanly."""
     from .system.duty_cycle import read_duty_cycle_csv
+    from .system.schema import Condition
 
     cycles = loaded.system.duty_cycles
     if name_or_path in cycles:
@@ -111,7 +109,10 @@ def _cycle(loaded, name_or_path: str, duration: float | None) -> str:
         declared = ", ".join(cycles) or "none"
         raise FeedthermError(f"--cycle: {name_or_path!r} is neither a duty cycle of {loaded.origin} "
                              f"(declared: {declared}) nor an existing CSV file")
-    read_duty_cycle_csv(name_or_path, duration if duration is not None else _PROVISIONAL_CYCLE_END_S)
+    # Without --duration, simulate ends a CSV cycle where a condition ends by default (3 h);
+    # checking against the same end catches a row past it now rather than after loading the model.
+    end = duration if duration is not None else Condition.model_fields["duration"].default
+    read_duty_cycle_csv(name_or_path, end)
     return name_or_path
 
 
@@ -160,19 +161,21 @@ class _LazyProgress:
     def __call__(self, fraction: float) -> None:
         if not self._enabled:
             return
+        completed = min(max(float(fraction), 0.0), 1.0)
         if self._bar is None:
             if time.monotonic() - self._started < self._delay:
                 return
-            self._start_bar()
-        self._bar.update(self._task, completed=min(max(float(fraction), 0.0), 1.0))
+            self._start_bar(completed)
+        else:
+            self._bar.update(self._task, completed=completed)
 
-    def _start_bar(self) -> None:
+    def _start_bar(self, completed: float) -> None:
         from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeRemainingColumn
 
         self._bar = Progress(TextColumn("simulating"), BarColumn(), TaskProgressColumn(), TimeRemainingColumn(),
                              transient=True)
-        self._task = self._bar.add_task("simulating", total=1.0)
-        self._bar.start()
+        self._task = self._bar.add_task("simulating", total=1.0, completed=completed)
+        self._bar.start()  # after the task has its fraction, so the first frame is not 0 %
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -23,6 +23,7 @@ from ...system.geometry import BOX_FACES, bounds, part_volume
 from ...system.schema import Cylinder, FeedSystem, Part
 
 CONTACT_TOLERANCE = 1e-3  # [m] primitives closer than this touch
+END_CONTACT = 1e-6  # [m] axial extent given to an end-to-end contact (it lands in the end cell)
 
 
 @dataclass
@@ -177,12 +178,20 @@ def contact_ranges(system: FeedSystem, part: str, body: AxialBody, offset: float
     p = system.parts[part]
     for prim in [*p.boxes, *p.cylinders]:
         lo, hi = _primitive_bounds(prim)
+        x0, x1 = lo[0] + offset, hi[0] + offset
+        if any(max(lo[k] - t_hi[k], t_lo[k] - hi[k]) > CONTACT_TOLERANCE for k in (1, 2)):
+            continue  # apart across the axis
+        if x1 < t_lo[0] - CONTACT_TOLERANCE or x0 > t_hi[0] + CONTACT_TOLERANCE:
+            continue  # apart along the axis
         if isinstance(prim, Cylinder) and body.cylindrical and prim.axis == "x" and _coaxial(prim, target.cylinders[0]):
-            if abs(prim.inner_diameter - target.cylinders[0].outer_diameter) > 2 * CONTACT_TOLERANCE:
-                continue
-        elif any(max(lo[k] - t_hi[k], t_lo[k] - hi[k]) > CONTACT_TOLERANCE for k in (1, 2)):
-            continue
-        ranges.append((lo[0] + offset, hi[0] + offset))
+            if prim.inner_diameter > target.cylinders[0].outer_diameter + 2 * CONTACT_TOLERANCE:
+                continue  # a coaxial ring clear of the surface (e.g. a nut flange)
+        if x1 <= t_lo[0] + CONTACT_TOLERANCE:  # end to end: contact on the body's first face
+            ranges.append((t_lo[0], t_lo[0] + END_CONTACT))
+        elif x0 >= t_hi[0] - CONTACT_TOLERANCE:  # on its last face
+            ranges.append((t_hi[0] - END_CONTACT, t_hi[0]))
+        else:
+            ranges.append((x0, x1))
     return ranges
 
 

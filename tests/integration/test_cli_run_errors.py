@@ -1,0 +1,122 @@
+"""`feedtherm run` with bad input: one line, exit 2, no traceback, nothing written.
+
+Every case here fails before the model is imported, so these tests hold whether or not
+`feedtherm.simulate` exists yet.
+"""
+
+import subprocess
+import sys
+import types
+
+import numpy as np
+import pytest
+
+from feedtherm import cli
+
+BAD_HEADER = "time,screw_rpm,nut_rpm,ambient_C\n0,396,360,20\n"
+
+
+def run(tmp_path, *args):
+    """`python -m feedtherm run ...` in an empty working directory (where `out/` would go)."""
+    return subprocess.run([sys.executable, "-m", "feedtherm", "run", *args], capture_output=True, text=True,
+                          timeout=120, cwd=tmp_path)
+
+
+def assert_one_line_error_and_nothing_written(result, tmp_path, *fragments, inputs=()):
+    assert result.returncode == 2, result.stderr
+    assert result.stdout == ""
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1, result.stderr
+    assert lines[0].startswith("feedtherm: error: ") and "Traceback" not in result.stderr
+    for fragment in fragments:
+        assert fragment in lines[0], lines[0]
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(inputs)  # no out/, no staging directory
+
+
+@pytest.mark.parametrize(
+    "args, fragments",
+    [
+        (["--condition", "I", "--duration", "-5"], ["--duration", "positive", "'-5'"]),
+        (["--condition", "I", "--duration", "nan"], ["--duration", "positive"]),
+        (["--condition", "I", "--sample-interval", "0"], ["--sample-interval", "positive", "'0'"]),
+        (["--condition", "I", "--sample-interval", "ten"], ["--sample-interval", "'ten'"]),
+        (["--condition", "I", "--cycle", "I_then_standstill"], ["--cycle", "not allowed with", "--condition"]),
+        ([], ["one of the arguments --condition --cycle is required"]),
+        (["--condition", "IX"], ["no condition 'IX'", "I, II, III, IV, V"]),
+        (["--cycle", "I_then_standstil"], ["'I_then_standstil'", "I_then_standstill"]),
+        (["--cycle", "missing.csv"], ["'missing.csv'", "nor an existing CSV file"]),
+        (["--condition", "I", "--model", "fem"], ["--model", "invalid choice: 'fem'"]),
+        (["ballscrew_example", "--condition", "v10", "--mode", "paper"], ["--mode paper", "no [paper] table"]),
+        (["no_such_bench.toml", "--condition", "I"], ["no_such_bench.toml: no such file"]),
+    ],
+)
+def test_bad_arguments(tmp_path, args, fragments):
+    assert_one_line_error_and_nothing_written(run(tmp_path, *args), tmp_path, *fragments)
+
+
+def test_a_cycle_csv_with_a_wrong_header(tmp_path):
+    (tmp_path / "cycle.csv").write_text(BAD_HEADER)
+    result = run(tmp_path, "--cycle", "cycle.csv", "--duration", "3600")
+    assert_one_line_error_and_nothing_written(result, tmp_path, "cycle.csv: line 1: header must be",
+                                              "got time,screw_rpm", inputs=["cycle.csv"])
+
+
+def test_a_cycle_csv_with_a_bad_row_fails_without_a_duration_too(tmp_path):
+    (tmp_path / "cycle.csv").write_text("time_s,screw_rpm,nut_rpm,ambient_C\n0,396,360,20\n60,fast,0,20\n")
+    result = run(tmp_path, "--cycle", "cycle.csv")
+    assert_one_line_error_and_nothing_written(result, tmp_path, "cycle.csv: line 3", "must be numbers",
+                                              inputs=["cycle.csv"])
+
+
+def test_an_out_path_that_is_a_file(tmp_path):
+    (tmp_path / "results").write_text("not a directory")
+    result = run(tmp_path, "--condition", "I", "--out", "results")
+    assert_one_line_error_and_nothing_written(result, tmp_path, "results", "not a directory", inputs=["results"])
+
+
+def test_an_out_path_below_a_file(tmp_path):
+    (tmp_path / "results").write_text("not a directory")
+    result = run(tmp_path, "--condition", "I", "--out", "results/run1")
+    assert_one_line_error_and_nothing_written(result, tmp_path, "is a file", inputs=["results"])
+
+
+# --------------------------------------------------------------------------- the hand-over to simulate
+
+
+def fake_solution():
+    """Just enough of a Solution for the files and the final line (2 samples, 2 cells)."""
+    from feedtherm.solution import EnergyBalance, Solution
+
+    times = np.array([0.0, 10.0])
+    sensors = {"T1": np.array([293.15, 294.15]), "T6": np.array([293.15, 293.15])}
+    field = np.full((2, 2), 293.65)
+    return Solution(
+        times=times, sensors=sensors, elongation=np.array([0.0, 1e-6]), screw_x=np.array([0.0, 0.1]),
+        screw_temperature=field, screw_displacement=np.zeros((2, 2)), nut_offset=np.zeros(2),
+        part_temperatures={}, cycle_times=times, cycle_sensors=sensors, cycle_elongation=np.zeros(2),
+        final={"T1": 294.15, "T6": 293.15, "D": 1e-6}, steady={"T1": 295.15, "T6": 293.15, "D": 2e-6},
+        equilibrium_time=None, energy=EnergyBalance(10.0, 5.0, 5.0),
+        info={"condition": "I", "model": "fast", "mode": "physics", "wall_time_s": 0.0, "time_step_s": 10.0,
+              "unknowns": 4, "provenance": {}},
+    )
+
+
+def test_valid_arguments_reach_simulate_and_the_files_appear(tmp_path, monkeypatch, capsys):
+    calls = []
+
+    def simulate(loaded, **kwargs):
+        calls.append((loaded.origin, kwargs))
+        kwargs["progress"](0.5)
+        return fake_solution()
+
+    monkeypatch.setitem(sys.modules, "feedtherm.simulate", types.SimpleNamespace(simulate=simulate))
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(["run", "--condition", "I", "--duration", "60", "--sample-interval", "5"]) == 0
+    origin, kwargs = calls[0]
+    assert origin == "bundled:paper"
+    assert {k: v for k, v in kwargs.items() if k != "progress"} == {
+        "condition": "I", "cycle": None, "mode": "physics", "model": "fast", "duration": 60.0,
+        "single_drive": False, "sample_interval": 5.0}
+    out = capsys.readouterr().out
+    assert out == "out/paper_I_physics: T1 21.00 °C, D 1.00 µm, energy balance error 0 %\n"
+    assert len(list((tmp_path / "out" / "paper_I_physics").iterdir())) == 7

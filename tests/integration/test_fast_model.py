@@ -1,0 +1,115 @@
+"""Whole runs of the fast model on the bundled descriptions."""
+
+import numpy as np
+import pytest
+
+from feedtherm.models.fast.assemble import SolverTamper
+from feedtherm.simulate import simulate
+from feedtherm.system.load import load_system
+
+SENSORS = ["T1", "T2", "T3", "T4", "T5"]
+
+
+@pytest.fixture(scope="module")
+def paper():
+    return load_system("paper")
+
+
+@pytest.fixture(scope="module")
+def run_i(paper):
+    return simulate(paper, condition="I")
+
+
+def test_energy_balance_of_condition_i(run_i):
+    assert abs(run_i.energy.relative_error) < 1e-4
+    assert run_i.energy.heat_in > 0 and run_i.energy.heat_lost > 0 and run_i.energy.heat_stored > 0
+
+
+@pytest.mark.parametrize("tamper", [SolverTamper(drop_sources=("front_bearing",)),
+                                    SolverTamper(area_scale={"screw_shaft": 0.5}),
+                                    SolverTamper(area_scale={"base_top": 0.5})])
+def test_energy_check_trips_when_the_solver_alone_is_wrong(paper, tamper):
+    run = simulate(paper, condition="I", duration=3600.0, tamper=tamper)
+    assert abs(run.energy.relative_error) > 1e-3
+
+
+def test_temperatures_rise_from_initial_towards_steady(run_i):
+    for name in SENSORS:
+        series = run_i.cycle_sensors[name]
+        assert np.all(np.diff(series) > -1e-6), name  # cycle-averaged rise is monotone
+        initial = run_i.sensors[name][0]
+        assert initial == pytest.approx(293.15)
+        assert initial < run_i.final[name] <= run_i.steady[name] + 1e-6
+
+
+def test_hottest_region_is_at_the_nut(run_i):
+    final = run_i.summary_values("final")
+    assert max(final[n] for n in SENSORS) in (final["T3"], final["T4"])  # nut flange / screw under it
+    T = run_i.screw_temperature[-1]
+    x_hot = run_i.screw_x[np.argmax(T)]
+    nut_travel = (0.170 - 0.100, 0.257 + 0.100)  # nut sleeve at mid-stroke +- half the stroke
+    assert nut_travel[0] <= x_hot <= nut_travel[1]
+    assert T[np.argmax(T)] > T[0] and T[np.argmax(T)] > T[-1]  # ends cooler (paper Fig. 11)
+
+
+def test_outputs_have_the_documented_shapes(run_i):
+    n = len(run_i.times)
+    assert run_i.times[0] == 0.0 and run_i.times[-1] == pytest.approx(10800.0)
+    assert np.allclose(np.diff(run_i.times), 10.0)
+    assert set(run_i.sensors) == {"T1", "T2", "T3", "T4", "T5", "T6"}
+    assert run_i.screw_temperature.shape == (n, len(run_i.screw_x)) and len(run_i.screw_x) >= 100
+    assert run_i.info["time_step_s"] * 20 <= 2 * 0.2 / (36 / 60 * 0.010) / 2 + 1e-9  # >= 20 steps per stroke
+    assert np.ptp(run_i.nut_offset) == pytest.approx(0.2, abs=0.011)  # the group travels the stroke
+
+
+def test_elongation_at_the_start_is_relative_to_the_reference(paper):
+    # Condition V starts at 25 degC everywhere: D(0) = 1.2e-5 * 0.400 m * (25 - 20) K = 24 µm
+    run = simulate(paper, condition="V", duration=600.0)
+    assert run.elongation_um[0] == pytest.approx(24.0, rel=1e-9)
+    assert run.elongation_change_um[0] == 0.0
+
+
+def test_standstill_shows_the_cool_down(paper):
+    run = simulate(paper, cycle="I_then_standstill")
+    t = run.times
+    at_stop = run.sensors["T3"][np.searchsorted(t, 7200.0)]
+    assert run.sensors["T3"][-1] < at_stop - 0.5  # the nut cools once the motors stop
+    assert run.elongation[-1] < run.elongation[np.searchsorted(t, 7200.0)]
+    assert abs(run.energy.relative_error) < 1e-4
+
+
+def test_csv_duty_cycle(paper, tmp_path):
+    path = tmp_path / "cycle.csv"
+    path.write_text("time_s,screw_rpm,nut_rpm,ambient_C\n0,396,360,20\n1800,0,0,20\n2400,-1116,-1080,22\n")
+    run = simulate(paper, cycle=str(path), duration=3600.0)
+    assert run.times[-1] == pytest.approx(3600.0)
+    assert run.sensors["T6"][-1] == pytest.approx(295.15)
+    assert abs(run.energy.relative_error) < 1e-4
+
+
+def test_single_drive_mode_turns_the_nut_motor_off(paper):
+    dual = simulate(paper, condition="II", duration=3600.0)
+    single = simulate(paper, condition="II", duration=3600.0, single_drive=True)
+    assert single.info["single_drive"] and abs(single.energy.relative_error) < 1e-4
+    # same table speed (36 rpm x 10 mm), no nut bearing or nut motor heat, far less heat in
+    assert single.energy.heat_in < 0.5 * dual.energy.heat_in
+    assert single.final["T3"] < dual.final["T3"]
+
+
+def test_paper_mode_runs_and_is_cooler_at_the_nut(paper, run_i):
+    run = simulate(paper, condition="I", mode="paper")
+    assert abs(run.energy.relative_error) < 1e-4
+    assert run.info["mode"] == "paper"
+
+
+def test_second_example_runs(paper):
+    run = simulate(load_system("ballscrew_example"), condition="v10", duration=1800.0)
+    assert abs(run.energy.relative_error) < 1e-4
+    assert run.final["T3"] > run.sensors["T3"][0]
+
+
+def test_provenance_records_version_hash_mode_and_assumptions(run_i, paper):
+    prov = run_i.info["provenance"]
+    assert prov["description_sha256"] == paper.sha256
+    assert prov["mode"] == "physics" and prov["feedtherm_version"]
+    assert any("sensors" in a["paths"] for a in prov["assumptions"])

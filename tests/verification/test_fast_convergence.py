@@ -1,0 +1,64 @@
+"""Convergence of the fast model on condition I, over the whole run (first 600 s included).
+
+The cycle-averaged T1-T5 and D must change by less than 0.05 K / 0.2 µm when the time step
+is halved, and by less than 0.1 K / 0.5 µm when the axial resolution is doubled.  The
+observed order of accuracy in time is computed from three step sizes.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from feedtherm.models.fast.integrate import FastOptions
+from feedtherm.simulate import simulate
+from feedtherm.system.load import load_system
+
+SENSORS = ["T1", "T2", "T3", "T4", "T5"]
+
+
+@pytest.fixture(scope="module")
+def paper():
+    return load_system("paper")
+
+
+def series(run):
+    temps = np.column_stack([run.cycle_sensors[n] for n in SENSORS])
+    return run.cycle_times, temps, run.cycle_elongation * 1e6
+
+
+def difference(a, b):
+    ta, Ta, Da = series(a)
+    tb, Tb, Db = series(b)
+    # compare on the coarser run's times (both series are trailing cycle means)
+    Tb_at = np.column_stack([np.interp(ta, tb, Tb[:, i]) for i in range(len(SENSORS))])
+    return np.abs(Ta - Tb_at).max(), np.abs(Da - np.interp(ta, tb, Db)).max()
+
+
+@pytest.fixture(scope="module")
+def base(paper):
+    return simulate(paper, condition="I")
+
+
+def test_halving_the_time_step(paper, base):
+    fine = simulate(paper, condition="I", options=FastOptions(steps_per_stroke=40))
+    assert fine.info["time_step_s"] == pytest.approx(base.info["time_step_s"] / 2)
+    assert fine.info["screw_cells"] == base.info["screw_cells"]
+    dT, dD = difference(base, fine)
+    assert dT < 0.05 and dD < 0.2
+
+
+def test_doubling_the_axial_resolution(paper, base):
+    fine = simulate(paper, condition="I", options=FastOptions(axial_cells=200))
+    assert fine.info["screw_cells"] >= 1.95 * base.info["screw_cells"]  # the cell size divides the stroke
+    dT, dD = difference(base, fine)
+    assert dT < 0.1 and dD < 0.5
+
+
+def test_observed_order_in_time(paper):
+    runs = [simulate(paper, condition="I", duration=3600.0, options=FastOptions(steps_per_stroke=s)) for s in (10, 20, 40)]
+    e1 = difference(runs[0], runs[1])[0]
+    e2 = difference(runs[1], runs[2])[0]
+    order = math.log2(e1 / e2)
+    print(f"observed order of accuracy in time (implicit Euler): {order:.2f}")
+    assert 0.7 < order < 1.5
