@@ -120,3 +120,21 @@ def test_valid_arguments_reach_simulate_and_the_files_appear(tmp_path, monkeypat
     out = capsys.readouterr().out
     assert out == "out/paper_I_physics: T1 21.00 °C, D 1.00 µm, energy balance error 0 %\n"
     assert len(list((tmp_path / "out" / "paper_I_physics").iterdir())) == 7
+
+
+def test_the_progress_bar_waits_for_a_slow_run(monkeypatch):
+    clock = iter([100.0, 100.5, 101.5, 102.0])
+    monkeypatch.setattr(cli.time, "monotonic", lambda: next(clock))
+    with cli._LazyProgress(enabled=True, delay=1.0) as progress:  # started at 100.0
+        progress(0.1)  # 0.5 s in: nothing shown
+        assert progress._bar is None
+        progress(0.6)  # 1.5 s in: the bar appears at 60 %
+        assert progress._bar.tasks[0].completed == pytest.approx(0.6)
+        progress(1.0)
+        assert progress._bar.tasks[0].completed == pytest.approx(1.0)
+
+
+def test_no_progress_bar_when_stdout_is_not_a_terminal():
+    with cli._LazyProgress(enabled=False, delay=0.0) as progress:
+        progress(0.5)
+        assert progress._bar is None

@@ -157,6 +157,7 @@ def run_summary(solution: Solution) -> dict:
         "condition": info.get("condition"),
         "model": info.get("model"),
         "mode": info.get("mode"),
+        "single_drive": info.get("single_drive", False),
         "final": final,
         "steady": steady,
         "equilibrium_time_s": solution.equilibrium_time,
@@ -167,6 +168,7 @@ def run_summary(solution: Solution) -> dict:
         "time_step_s": info.get("time_step_s"),
         "unknowns": info.get("unknowns"),
         "elongation_change_um": {"final": final["D_um"] - start_um, "steady": steady["D_um"] - start_um},
+        "warnings": info.get("warnings", []),  # e.g. correlations used outside their range
         "provenance": info.get("provenance", {}),
     })
 
