@@ -78,11 +78,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     from .outputs.run_files import check_output_dir, default_out_dir, summary_line, write_run
 
     loaded = _load(args.system)
-    if args.condition is not None:
-        _condition(loaded, args.condition)
-    else:
-        _cycle(loaded, args.cycle, args.duration)
-    _require_paper_table(loaded, args.mode)
+    _check_run_inputs(loaded, args)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, _run_label(args), args.mode)
     check_output_dir(out_dir)
     # Imported only now: every input error above is reported without loading the model.
@@ -91,16 +87,25 @@ def cmd_run(args: argparse.Namespace) -> int:
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
         solution = simulate(loaded, condition=args.condition, cycle=args.cycle, mode=args.mode, model=args.model,
                             duration=args.duration, single_drive=args.single_drive,
-                            sample_interval=args.sample_interval, progress=progress)
+                            sample_interval=args.sample_interval, progress=progress, motion=args.motion)
     write_run(solution, out_dir, sample_interval=args.sample_interval)
     print(summary_line(solution, out_dir))
     return 0
 
 
+def _check_run_inputs(loaded, args: argparse.Namespace) -> None:
+    """What argparse cannot check: the condition or cycle, and the mode, against the description."""
+    if args.condition is not None:
+        _condition(loaded, args.condition)
+    else:
+        _cycle(loaded, args.cycle, args.duration)
+    _require_paper_table(loaded, args.mode)
+
+
 def _cycle(loaded, name_or_path: str, duration: float | None) -> str:
     """A duty cycle declared in the description, or a CSV file that reads cleanly."""
     from .system.duty_cycle import read_duty_cycle_csv
-    from .system.schema import Condition
+    from .system.schema import DEFAULT_DURATION_S
 
     cycles = loaded.system.duty_cycles
     if name_or_path in cycles:
@@ -111,7 +116,7 @@ def _cycle(loaded, name_or_path: str, duration: float | None) -> str:
                              f"(declared: {declared}) nor an existing CSV file")
     # Without --duration, simulate ends a CSV cycle where a condition ends by default (3 h);
     # checking against the same end catches a row past it now rather than after loading the model.
-    end = duration if duration is not None else Condition.model_fields["duration"].default
+    end = duration if duration is not None else DEFAULT_DURATION_S
     read_duty_cycle_csv(name_or_path, end)
     return name_or_path
 
@@ -144,10 +149,11 @@ class _LazyProgress:
     after that.  It is transient (gone when the run ends), so only the final line remains.
     """
 
-    def __init__(self, *, enabled: bool, delay: float = PROGRESS_DELAY_S):
+    def __init__(self, *, enabled: bool, delay: float = PROGRESS_DELAY_S, clock=time.monotonic):
         self._enabled = enabled
         self._delay = delay
-        self._started = time.monotonic()
+        self._clock = clock
+        self._started = clock()
         self._bar = None
         self._task = None
 
@@ -163,7 +169,7 @@ class _LazyProgress:
             return
         completed = min(max(float(fraction), 0.0), 1.0)
         if self._bar is None:
-            if time.monotonic() - self._started < self._delay:
+            if self._clock() - self._started < self._delay:
                 return
             self._start_bar(completed)
         else:
@@ -205,6 +211,8 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--mode", choices=["physics", "paper"], default="physics")
     run.add_argument("--duration", type=_positive_seconds, metavar="S",
                      help="length of the run [s] (default: the condition's or the cycle's)")
+    run.add_argument("--motion", choices=["resolved", "averaged"], default="resolved",
+                     help="the moving nut's position over time (default), or cycle-averaged contacts and heats")
     run.add_argument("--single-drive", action="store_true", help="operate a dual drive as a single (screw-only) drive")
     run.add_argument("--sample-interval", type=_positive_seconds, default=10.0, metavar="S",
                      help="spacing of the written samples [s] (default: 10)")

@@ -26,7 +26,7 @@ from .models.fast.layout import Layout, build_layout
 from .solution import EnergyBalance, Solution
 from .system.duty_cycle import read_duty_cycle_csv
 from .system.load import LoadedSystem
-from .system.schema import DutyCycle, FeedSystem
+from .system.schema import DEFAULT_DURATION_S, DutyCycle, FeedSystem
 
 MODELS = ("fast",)
 AMBIENT_SENSOR = "T6"
@@ -35,7 +35,7 @@ AMBIENT_SENSOR = "T6"
 def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str | None = None,
              mode: str = "physics", model: str = "fast", duration: float | None = None,
              single_drive: bool = False, sample_interval: float = 10.0,
-             progress: Callable[[float], None] | None = None,
+             progress: Callable[[float], None] | None = None, motion: str | None = None,
              options: FastOptions | None = None, tamper: SolverTamper | None = None) -> Solution:
     """Simulate a condition or a duty cycle of ``loaded`` and return its Solution.
 
@@ -53,6 +53,8 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
         screw at the relative speed, so that the table speed is unchanged.
     sample_interval : float
         Interval of the output series [s].
+    motion : {"resolved", "averaged"}, optional
+        Position over time (default), or the cycle-averaged contacts and heats.
     """
     started = time.perf_counter()
     system = loaded.system
@@ -64,10 +66,17 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
         raise FeedthermError(f"--mode paper: {loaded.origin} has no [paper] table of printed values")
     if duration is not None and not duration > 0:
         raise FeedthermError(f"--duration: must be positive, got {duration!r} s")
+    if motion not in (None, "resolved", "averaged"):
+        raise FeedthermError(f"--motion: must be resolved or averaged, got {motion!r}")
     if not sample_interval > 0:
         raise FeedthermError(f"--sample-interval: must be positive, got {sample_interval!r} s")
     label, profile = _profile(loaded, condition, cycle, duration)
     opts = options or FastOptions()
+    if motion is not None:
+        opts = replace(opts, motion=motion)
+    if system.temperatures.temperature_dependent_chtc:
+        raise ModelError("temperatures.temperature_dependent_chtc = true: the fast model takes CHTCs frozen "
+                         "at convection_delta_t (the paper's assumption 3); set it to false")
     layout = build_layout(system, axial_cells=opts.axial_cells, radial_rings=opts.radial_rings,
                           min_positions=opts.steps_per_stroke)
     segments = _segments(system, profile, mode, single_drive)
@@ -110,7 +119,7 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
     t_ref = system.temperatures.reference
     sensors = {n: states[:, probes.nodes[n]] for n in sensor_names}
     sensors[AMBIENT_SENSOR] = ambient
-    final[AMBIENT_SENSOR] = _trailing_mean(step_end, step_dt, np.array([[_ambient_at(segments, t)] for t in step_end]), np.array([t_end]), window)[0][0]
+    final[AMBIENT_SENSOR] = _window_ambient(segments, t_end - window, t_end)
     steady[AMBIENT_SENSOR] = last.bc.point.ambient
     cycle_sensors = {n: cycle_values[cycle_mask, i] for i, n in enumerate(names) if n != "D"}
     return Solution(
@@ -186,7 +195,7 @@ def _profile(loaded: LoadedSystem, condition: str | None, cycle: str | None, dur
     if not (cycle.endswith(".csv") or Path(cycle).exists()):
         names = ", ".join(system.duty_cycles) or "none"
         raise FeedthermError(f"--cycle: {cycle!r} is neither a duty cycle of {loaded.origin} ({names}) nor a CSV file")
-    profile = read_duty_cycle_csv(cycle, duration if duration is not None else 10800.0)
+    profile = read_duty_cycle_csv(cycle, duration if duration is not None else DEFAULT_DURATION_S)
     return Path(cycle).stem, profile
 
 
@@ -215,6 +224,13 @@ def _ambient_at(segments: list[Segment], t: float) -> float:
         if seg.t0 <= t < seg.t1:
             return seg.bc.point.ambient
     return segments[-1].bc.point.ambient
+
+
+def _window_ambient(segments: list[Segment], t0: float, t1: float) -> float:
+    """Time-mean ambient temperature [K] over [t0, t1] (exact for piecewise-constant ambients)."""
+    t0 = max(t0, segments[0].t0)
+    total = sum(max(0.0, min(s.t1, t1) - max(s.t0, t0)) * s.bc.point.ambient for s in segments)
+    return total / (t1 - t0) if t1 > t0 else segments[-1].bc.point.ambient
 
 
 def _cycle_window(layout: Layout, segments: list[Segment], opts: FastOptions) -> float:

@@ -65,7 +65,7 @@ class Solution:
     steady : dict[str, float]
         The same quantities from the cycle-averaged steady state of the final operating point.
     equilibrium_time : float or None
-        When the run reached thermal equilibrium [s] (docs/fast-model.md), None if it did not.
+        When the run reached thermal equilibrium [s] (definition: docs/fast-model.md), None if it did not.
     energy : EnergyBalance
     info : dict
         Model, mode, condition, time step, unknowns, wall time, provenance.

@@ -122,10 +122,9 @@ def test_valid_arguments_reach_simulate_and_the_files_appear(tmp_path, monkeypat
     assert len(list((tmp_path / "out" / "paper_I_physics").iterdir())) == 7
 
 
-def test_the_progress_bar_waits_for_a_slow_run(monkeypatch):
-    clock = iter([100.0, 100.5, 101.5, 102.0])
-    monkeypatch.setattr(cli.time, "monotonic", lambda: next(clock))
-    with cli._LazyProgress(enabled=True, delay=1.0) as progress:  # started at 100.0
+def test_the_progress_bar_waits_for_a_slow_run():
+    clock = iter([100.0, 100.5, 101.5, 102.0]).__next__
+    with cli._LazyProgress(enabled=True, delay=1.0, clock=clock) as progress:  # started at 100.0
         progress(0.1)  # 0.5 s in: nothing shown
         assert progress._bar is None
         progress(0.6)  # 1.5 s in: the bar appears at 60 %

@@ -113,3 +113,27 @@ def test_provenance_records_version_hash_mode_and_assumptions(run_i, paper):
     assert prov["description_sha256"] == paper.sha256
     assert prov["mode"] == "physics" and prov["feedtherm_version"]
     assert any("sensors" in a["paths"] for a in prov["assumptions"])
+
+
+def test_cycle_averaged_motion_agrees_with_the_resolved_motion(paper, run_i):
+    averaged = simulate(paper, condition="I", motion="averaged")
+    assert averaged.info["steps"] < run_i.info["steps"] / 5  # larger steps: no motion to follow
+    for name in [*SENSORS, "D"]:
+        tolerance = 0.3e-6 if name == "D" else 0.1
+        assert averaged.final[name] == pytest.approx(run_i.final[name], abs=tolerance), name
+        assert averaged.steady[name] == pytest.approx(run_i.steady[name], abs=1e-9), name
+    assert abs(averaged.energy.relative_error) < 1e-4
+
+
+def test_temperature_dependent_chtcs_are_refused_not_ignored(paper, tmp_path):
+    from importlib import resources
+
+    from feedtherm.errors import ModelError
+    from feedtherm.system.load import validate_data
+    import tomllib
+
+    text = resources.files("feedtherm.system").joinpath("data").joinpath("paper_bench.toml").read_text()
+    data = tomllib.loads(text)
+    data["temperatures"]["temperature_dependent_chtc"] = True
+    with pytest.raises(ModelError, match="temperature_dependent_chtc"):
+        simulate(validate_data(data, "variant"), condition="I", duration=60.0)

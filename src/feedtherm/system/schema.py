@@ -47,6 +47,8 @@ from .quantities import (
 )
 
 _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+#: Length of a run when nothing else says [s]: the paper's 10,800 s (§4.3).
+DEFAULT_DURATION_S = 10800.0
 
 
 class Strict(BaseModel):
@@ -306,7 +308,7 @@ class Condition(Strict):
     nut_speed: AngularSpeed = 0.0
     ambient: Temperature
     feed_speed: Speed | None = None  # as stated by the source; checked, never used
-    duration: PosDuration = 10800.0
+    duration: PosDuration = DEFAULT_DURATION_S
     description: str = ""
 
 

@@ -156,7 +156,8 @@ def test_summary_json_keys_and_units(solution, tmp_path):
     write_run_outputs(solution, tmp_path, sample_interval=10.0)
     summary = json.loads((tmp_path / "summary.json").read_text(encoding="utf-8"))
     for key in ("condition", "model", "mode", "final", "steady", "equilibrium_time_s", "energy_balance_error",
-                "wall_time_s", "time_step_s", "unknowns", "elongation_change_um", "provenance"):
+                "wall_time_s", "time_step_s", "unknowns", "elongation_change_um", "provenance",
+                "single_drive", "warnings", "energy_J"):
         assert key in summary
     assert (summary["condition"], summary["model"], summary["mode"]) == ("I", "fast", "physics")
     assert list(summary["final"]) == ["T1", "T2", "T3", "T4", "T5", "T6", "D_um"]

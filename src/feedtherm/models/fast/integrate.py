@@ -33,6 +33,7 @@ class FastOptions:
     standstill_step: float = 10.0  # [s] time step while the table stands still
     max_step: float = 30.0  # [s] upper bound of any step
     motion: Literal["resolved", "averaged"] = "resolved"  # position over time, or cycle-averaged
+    averaged_step: float = 10.0  # [s] time step of the cycle-averaged model
 
 
 @dataclass(frozen=True)
@@ -187,6 +188,8 @@ class Integrator:
     def _step(self, seg: Segment) -> tuple[float, float]:
         """Nominal time step [s] and cells advanced per step in ``seg``."""
         opts = self.options
+        if opts.motion == "averaged" and seg.speed > 0.0:
+            return min(opts.averaged_step, opts.max_step), 0.0
         if seg.speed == 0.0:
             return min(opts.standstill_step, opts.max_step), 0.0
         K = len(self.layout.positions) - 1
