@@ -184,6 +184,24 @@ class _LazyProgress:
         self._bar.start()  # after the task has its fraction, so the first frame is not 0 %
 
 
+def cmd_validate(args: argparse.Namespace) -> int:
+    from .outputs.run_files import check_output_dir, default_out_dir
+
+    loaded = _load(args.system)
+    _require_paper_table(loaded, args.mode)
+    out_dir = Path(args.out) if args.out else default_out_dir(args.system, "validation", args.mode)
+    check_output_dir(out_dir)
+    from .analysis.validation import measurements_of, validate
+    from .outputs.validation_files import print_validation, write_validation
+
+    measurements_of(loaded, args.measured)  # bad measurement files fail before any run
+    with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
+        validation = validate(loaded, mode=args.mode, model=args.model, measured=args.measured, progress=progress)
+    write_validation(validation, out_dir)
+    print_validation(validation, out_dir)
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="feedtherm", description="Thermal model of machine-tool feed drives.")
     parser.add_argument("--version", action="version", version=f"feedtherm {__version__}")
@@ -218,6 +236,15 @@ def build_parser() -> argparse.ArgumentParser:
                      help="spacing of the written samples [s] (default: 10)")
     run.add_argument("--out", metavar="DIR", help="output directory (default: out/<system>_<condition>_<mode>)")
     run.set_defaults(func=cmd_run)
+
+    validate = sub.add_parser("validate", help="run every measured condition and compare with the measurements")
+    validate.add_argument("system", nargs="?", default="paper", help=system_help)
+    validate.add_argument("--model", choices=RUN_MODELS, default="fast")
+    validate.add_argument("--mode", choices=["physics", "paper"], default="physics")
+    validate.add_argument("--measured", metavar="FILE",
+                          help="measurements (condition,quantity,unit,measured); default: the description's own")
+    validate.add_argument("--out", metavar="DIR", help="output directory (default: out/<system>_validation_<mode>)")
+    validate.set_defaults(func=cmd_validate)
     return parser
 
 

@@ -157,6 +157,28 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
     )
 
 
+def steady_state(loaded: LoadedSystem, condition: str, *, mode: str = "physics", single_drive: bool = False,
+                 options: FastOptions | None = None) -> dict[str, float]:
+    """Cycle-averaged steady state of a condition (no transient): sensors [K] and ``D`` [m].
+
+    Cheap (one sparse solve), for sensitivity studies and calibration.
+    """
+    system = loaded.system
+    if condition not in system.conditions:
+        raise FeedthermError(f"no condition {condition!r} in {loaded.origin}")
+    opts = options or FastOptions()
+    layout = build_layout(system, axial_cells=opts.axial_cells, radial_rings=opts.radial_rings,
+                          min_positions=opts.steps_per_stroke)
+    label, profile = _profile(loaded, condition, None, None)
+    segment = _segments(system, profile, mode, single_drive)[0]
+    integrator = Integrator(layout, Network(layout), opts)
+    probes = _Probes(layout)
+    state = integrator.steady(0, segment.bc, None if segment.speed > 0 else 0)
+    values = dict(zip(probes.names, probes.values(state)))
+    values[AMBIENT_SENSOR] = segment.bc.point.ambient
+    return values
+
+
 def provenance(loaded: LoadedSystem, mode: str) -> dict:
     """What a run relied on: version, description hash, mode and the assumptions in use."""
     return {
@@ -308,5 +330,5 @@ class _Probes:
         return out
 
 
-__all__ = ["simulate", "provenance", "FastOptions", "MODELS"]
+__all__ = ["simulate", "steady_state", "provenance", "FastOptions", "MODELS"]
 _ = ModelError  # re-exported for callers that catch model errors from here

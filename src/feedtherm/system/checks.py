@@ -8,6 +8,7 @@ sensor outside its part, a joint between parts that do not touch, and so on.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 
 from ..physics.mechanics import table_speed
@@ -104,8 +105,19 @@ def leaf_paths(data, prefix: str = "") -> list[str]:
 
 
 def covers(prefix: str, path: str) -> bool:
-    """True when the provenance prefix ``prefix`` covers the value at ``path``."""
+    """True when the provenance prefix ``prefix`` covers the value at ``path``.
+
+    ``[*]`` in a prefix stands for any list index: ``joints[*].area`` covers ``joints[3].area``.
+    """
+    if "[*]" in prefix:
+        pattern = re.escape(prefix).replace(r"\[\*\]", r"\[\d+\]")
+        return re.match(pattern + r"($|[.\[])", path) is not None
     return path == prefix or path.startswith(prefix + ".") or path.startswith(prefix + "[")
+
+
+def specificity(prefix: str) -> tuple[int, int]:
+    """How precisely a prefix names a value: explicit indices beat wildcards, longer beats shorter."""
+    return (prefix.count(".") + prefix.count("[") - 2 * prefix.count("[*]"), len(prefix))
 
 
 def _provenance(system: FeedSystem) -> list[Finding]:

@@ -391,6 +391,7 @@ class Meta(Strict):
     title: str
     reference: str = ""
     description: str = ""
+    measurements: str = ""  # "bundled:<name>" or a CSV path relative to this file
 
 
 # --------------------------------------------------------------------------- the system

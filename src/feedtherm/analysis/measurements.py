@@ -1,0 +1,109 @@
+"""Measured values to compare with (validation) or to fit to (calibration).
+
+File layout, one row per condition and quantity::
+
+    condition,quantity,unit,measured[,reference_simulated]
+    I,T1,C,27.1,28.1
+    I,D_um,um,29.9,32.8
+
+``quantity`` is a sensor name (unit ``C``) or ``D_um`` (unit ``um``); the optional last
+column holds another model's simulated value (for the paper's bench: its ANSYS results).
+A description names its measurements in ``meta.measurements``: ``bundled:<name>`` for data
+shipped with feedtherm, or a path relative to the description file.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+from ..errors import DescriptionError
+
+HEADER = ["condition", "quantity", "unit", "measured"]
+OPTIONAL = "reference_simulated"
+UNITS = {"D_um": "um"}  # every other quantity is a temperature in C
+
+
+@dataclass(frozen=True)
+class Measurement:
+    condition: str
+    quantity: str
+    unit: str
+    measured: float
+    reference_simulated: float | None = None
+
+
+@dataclass(frozen=True)
+class MeasurementSet:
+    rows: list[Measurement]
+    source: str
+    equilibrium_min: dict[str, float]  # condition -> stated equilibrium time, where known
+
+    def conditions(self) -> list[str]:
+        return list(dict.fromkeys(r.condition for r in self.rows))
+
+    def for_condition(self, condition: str) -> list[Measurement]:
+        return [r for r in self.rows if r.condition == condition]
+
+
+def _bundled(name: str) -> tuple[str, str, str | None]:
+    folder = resources.files("feedtherm.data").joinpath(name)
+    if not folder.joinpath("measurements.csv").is_file():
+        raise DescriptionError(f"bundled:{name}: no bundled measurements of that name")
+    eq = folder.joinpath("equilibrium_times.csv")
+    return folder.joinpath("measurements.csv").read_text(encoding="utf-8"), f"bundled:{name}", (
+        eq.read_text(encoding="utf-8") if eq.is_file() else None)
+
+
+def read_measurements(spec: str, relative_to: str | None = None, sensors: list[str] | None = None) -> MeasurementSet:
+    """Read a measurement file (path or ``bundled:<name>``); one-line errors naming the line."""
+    if spec.startswith("bundled:"):
+        text, source, eq_text = _bundled(spec.split(":", 1)[1])
+    else:
+        path = Path(spec)
+        if relative_to and not path.is_absolute() and not relative_to.startswith("bundled:"):
+            path = Path(relative_to).parent / path
+        if not path.is_file():
+            raise DescriptionError(f"{path}: no such measurement file")
+        text, source, eq_text = path.read_text(encoding="utf-8"), str(path), None
+    rows = _parse(text, source, sensors)
+    return MeasurementSet(rows, source, _parse_equilibrium(eq_text) if eq_text else {})
+
+
+def _parse(text: str, source: str, sensors: list[str] | None) -> list[Measurement]:
+    lines = [row for row in csv.reader(text.splitlines()) if any(c.strip() for c in row)]
+    if not lines:
+        raise DescriptionError(f"{source}: the file is empty; expected the header {','.join(HEADER)}")
+    header = [c.strip() for c in lines[0]]
+    if header not in (HEADER, [*HEADER, OPTIONAL]):
+        raise DescriptionError(f"{source}: line 1: header must be {','.join(HEADER)}[,{OPTIONAL}], got {','.join(header)}")
+    rows, seen = [], set()
+    for number, row in enumerate(lines[1:], start=2):
+        if len(row) != len(header):
+            raise DescriptionError(f"{source}: line {number}: expected {len(header)} values, got {len(row)}")
+        condition, quantity, unit = (c.strip() for c in row[:3])
+        expected_unit = UNITS.get(quantity, "C")
+        if sensors is not None and quantity not in sensors and quantity not in UNITS:
+            raise DescriptionError(f"{source}: line {number}: unknown quantity {quantity!r}; expected one of {', '.join([*sensors, *UNITS])}")
+        if unit != expected_unit:
+            raise DescriptionError(f"{source}: line {number}: {quantity} must be in {expected_unit}, got {unit!r}")
+        try:
+            values = [float(c) if c.strip() else None for c in row[3:]]
+        except ValueError:
+            raise DescriptionError(f"{source}: line {number}: values must be numbers, got {','.join(row[3:])}") from None
+        if values[0] is None or not all(v is None or math.isfinite(v) for v in values):
+            raise DescriptionError(f"{source}: line {number}: the measured value must be a finite number")
+        if (condition, quantity) in seen:
+            raise DescriptionError(f"{source}: line {number}: {condition} {quantity} appears twice")
+        seen.add((condition, quantity))
+        rows.append(Measurement(condition, quantity, unit, values[0], values[1] if len(values) > 1 else None))
+    if not rows:
+        raise DescriptionError(f"{source}: no rows after the header")
+    return rows
+
+
+def _parse_equilibrium(text: str) -> dict[str, float]:
+    return {row["condition"]: float(row["equilibrium_min"]) for row in csv.DictReader(text.splitlines())}

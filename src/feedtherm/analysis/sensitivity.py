@@ -1,0 +1,66 @@
+"""One-at-a-time sensitivity of the steady state to every declared numeric value.
+
+Each numeric value of the description that can act on the temperatures — material
+conductivities and expansion, joint resistances and areas, heat-source parameters, surface
+lengths, areas and emissivities, the frozen CHTC rise, the lead — is multiplied by
+``factor`` alone, and the cycle-averaged steady state of one condition is solved again.
+Geometry (part shapes and positions), sensor positions, the stroke, the conditions and the
+reference temperature are not perturbed: changing them changes the machine, not an
+uncertain parameter.  Heat capacities do not act on a steady state and are left out.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+from ..simulate import steady_state
+from ..system.checks import covers, leaf_paths, specificity
+from ..system.load import LoadedSystem
+from ..system.variants import get_path, with_values
+from .validation_types import ELONGATION_QUANTITY, Sensitivity
+
+PERTURBED_SECTIONS = ("materials", "joints", "sources", "surfaces", "temperatures.convection_delta_t", "kinematics.lead")
+SKIPPED_FIELDS = {"density", "specific_heat", "youngs_modulus", "poisson_ratio", "carriages", "origin", "position"}
+
+
+def perturbable_paths(loaded: LoadedSystem) -> list[str]:
+    """Dotted paths of the numeric values a sensitivity study perturbs."""
+    data = loaded.system.model_dump(exclude_defaults=True)
+    paths = []
+    for path in leaf_paths(data):
+        if not any(covers(section, path) for section in PERTURBED_SECTIONS):
+            continue
+        if path.rsplit(".", 1)[-1] in SKIPPED_FIELDS or ".into." in path:
+            continue
+        value = get_path(loaded.system, path)
+        if isinstance(value, float) and not isinstance(value, bool) and value != 0.0:
+            paths.append(path)
+    return paths
+
+
+def source_of(loaded: LoadedSystem, path: str) -> str:
+    """The provenance entry covering ``path`` (the longest matching prefix)."""
+    best, text = (-1, -1), "undeclared"
+    for entry in loaded.system.provenance:
+        for prefix in entry.paths:
+            if covers(prefix, path) and specificity(prefix) > best:
+                best, text = specificity(prefix), f"{entry.origin}: {entry.source}"
+    return text
+
+
+def sensitivities(loaded: LoadedSystem, condition: str, *, mode: str = "physics", factor: float = 1.1,
+                  progress: Callable[[float], None] | None = None) -> list[Sensitivity]:
+    """Effect of each perturbable value, scaled by ``factor``, on the steady T1... [K] and D [µm]."""
+    base = steady_state(loaded, condition, mode=mode)
+    paths = perturbable_paths(loaded)
+    out = []
+    for i, path in enumerate(paths):
+        value = get_path(loaded.system, path)
+        variant = with_values(loaded, {path: value * factor}, origin_suffix=f"{path} x {factor:g}")
+        perturbed = steady_state(variant, condition, mode=mode)
+        effect = {name: perturbed[name] - base[name] for name in base if name not in ("D", "T6")}
+        effect[ELONGATION_QUANTITY] = (perturbed["D"] - base["D"]) * 1e6
+        out.append(Sensitivity(path, source_of(loaded, path), factor, effect))
+        if progress is not None:
+            progress((i + 1) / len(paths))
+    return sorted(out, key=lambda s: (s.max_temperature_effect, abs(s.effect[ELONGATION_QUANTITY])), reverse=True)

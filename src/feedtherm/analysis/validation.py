@@ -1,0 +1,125 @@
+"""Validation: run every measured condition and compare with the measurements.
+
+Nothing here is fitted: the description is used as it is (the paper's bench with its frozen
+assumptions), and the measurements are only compared with.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Callable
+
+from ..boundary import boundary_conditions
+from ..errors import FeedthermError
+from ..simulate import provenance, simulate
+from ..system.checks import check_system
+from ..system.load import LoadedSystem
+from .measurements import MeasurementSet, read_measurements
+from .sensitivity import sensitivities
+from .validation_types import ELONGATION_QUANTITY, Comparison, Validation
+
+#: Ratio beyond which a printed value and the physics are reported as inconsistent.
+INCONSISTENCY_RATIO = 2.0
+
+
+def measurements_of(loaded: LoadedSystem, measured: str | None) -> MeasurementSet:
+    """The measurement file given, or the one the description names in ``meta.measurements``."""
+    spec = measured or loaded.system.meta.measurements
+    if not spec:
+        raise FeedthermError(f"{loaded.origin} names no measurements (meta.measurements); pass --measured FILE")
+    sensors = [n for n in loaded.system.sensors]
+    data = read_measurements(spec, relative_to=loaded.origin, sensors=sensors)
+    missing = [c for c in data.conditions() if c not in loaded.system.conditions]
+    if missing:
+        raise FeedthermError(f"{data.source}: conditions {', '.join(missing)} are not in {loaded.origin}")
+    return data
+
+
+def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast", measured: str | None = None,
+             progress: Callable[[float], None] | None = None) -> Validation:
+    """Run every measured condition of ``loaded`` and compare it with its measurements."""
+    started = time.perf_counter()
+    system = loaded.system
+    data = measurements_of(loaded, measured)
+    conditions = data.conditions()
+    dual = system.kinematics.drive == "dual"
+    steps = len(conditions) * (2 if dual else 1) + 1
+    done = 0
+
+    def tick():
+        nonlocal done
+        done += 1
+        if progress is not None:
+            progress(done / steps)
+
+    solutions, single, budget, comparisons = {}, {}, {}, []
+    for condition in conditions:
+        run = simulate(loaded, condition=condition, mode=mode, model=model)
+        solutions[condition] = run
+        tick()
+        if dual:
+            single[condition] = simulate(loaded, condition=condition, mode=mode, model=model, single_drive=True)
+            tick()
+        budget[condition] = {name: h.power for name, h in boundary_conditions(system, condition, mode).heats.items()}
+        final = run.summary_values("final")
+        for row in data.for_condition(condition):
+            comparisons.append(Comparison(condition, row.quantity, row.unit, float(final[row.quantity]), row.measured,
+                                          row.reference_simulated))
+    reference = system.paper.reference_condition if system.paper else conditions[0]
+    ranking = sensitivities(loaded, reference, mode=mode)
+    tick()
+    return Validation(
+        system_name=system.meta.name,
+        mode=mode,
+        model=model,
+        comparisons=comparisons,
+        solutions=solutions,
+        single_drive=single,
+        heat_budget=budget,
+        measured_equilibrium_min=data.equilibrium_min,
+        sensitivities=ranking,
+        sensitivity_condition=reference,
+        inconsistencies=inconsistencies(loaded),
+        assumptions=provenance(loaded, mode)["assumptions"],
+        calibrated=calibrated_values(loaded),
+        provenance=provenance(loaded, mode),
+        measurement_source=data.source,
+        wall_time_s=time.perf_counter() - started,
+    )
+
+
+def inconsistencies(loaded: LoadedSystem) -> list[str]:
+    """`feedtherm check`'s findings, and printed values the physics contradicts by over 2x."""
+    system = loaded.system
+    found = [str(f) for f in check_system(system)]
+    if system.paper is None:
+        return found
+    condition = system.paper.reference_condition
+    bc = boundary_conditions(system, condition, "physics")
+    for row in system.paper.heat:
+        physics = bc.heats[row.source].power
+        if not _within(physics, row.value):
+            found.append(f"{row.ref} {row.table_label}: printed {row.value:.3g} W at condition {condition}; "
+                         f"the physics gives {physics:.3g} W with the declared inputs")
+    for row in system.paper.chtc:
+        for surface in row.surfaces[:1]:
+            physics = bc.surfaces[surface].convection
+            if not _within(physics, row.value):
+                found.append(f"{row.ref} {row.table_label}: printed {row.value:.3g} W/(m² K) at condition {condition}; "
+                             f"the correlations give {physics:.3g} W/(m² K) for {surface}")
+    return found
+
+
+def calibrated_values(loaded: LoadedSystem) -> list[dict]:
+    """Provenance entries a calibration wrote (origin 'assumption', source starting 'calibrated')."""
+    return [{"paths": p.paths, "source": p.source, "reason": p.reason}
+            for p in loaded.system.provenance if p.source.startswith("calibrated")]
+
+
+def _within(a: float, b: float) -> bool:
+    if a <= 0 or b <= 0:
+        return a == b
+    return 1.0 / INCONSISTENCY_RATIO <= a / b <= INCONSISTENCY_RATIO
+
+
+__all__ = ["validate", "measurements_of", "inconsistencies", "ELONGATION_QUANTITY"]

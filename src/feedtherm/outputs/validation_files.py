@@ -1,0 +1,81 @@
+"""`feedtherm validate` outputs: validation.csv, validation.json, report.html, a console table."""
+
+from __future__ import annotations
+
+import csv
+import json
+import sys
+from pathlib import Path
+
+from rich.console import Console
+from rich.table import Table
+
+from ..analysis.validation_types import Validation
+from .run_files import _jsonable, staged_directory
+
+VALIDATION_HEADER = ["condition", "quantity", "unit", "simulated", "measured", "paper_simulated", "deviation"]
+
+
+def write_validation(validation: Validation, out_dir: Path) -> list[Path]:
+    """Write validation.csv, validation.json and report.html into ``out_dir``, all or none."""
+    from .report import write_report  # matplotlib and the HTML builder load only here
+
+    with staged_directory(out_dir) as stage:
+        write_validation_csv(validation, stage / "validation.csv")
+        (stage / "validation.json").write_text(json.dumps(_jsonable(validation_summary(validation)), indent=2))
+        write_report(validation, stage / "report.html")
+        names = sorted(p.name for p in stage.iterdir())
+    return [Path(out_dir) / name for name in names]
+
+
+def write_validation_csv(validation: Validation, path: Path) -> None:
+    with open(path, "w", newline="") as handle:
+        writer = csv.writer(handle, lineterminator="\n")
+        writer.writerow(VALIDATION_HEADER)
+        for c in validation.comparisons:
+            paper = "" if c.paper_simulated is None else f"{c.paper_simulated:.4g}"
+            writer.writerow([c.condition, c.quantity, c.unit, f"{c.simulated:.4f}", f"{c.measured:.4g}", paper,
+                             f"{c.deviation:.4f}"])
+
+
+def validation_summary(validation: Validation) -> dict:
+    per_condition = {
+        condition: {kind: {"quantity": c.quantity, "deviation": c.deviation} for kind, c in kinds.items()}
+        for condition, kinds in validation.largest_per_condition().items()
+    }
+    t, d = validation.largest("temperature"), validation.largest("elongation")
+    return {
+        "system": validation.system_name,
+        "mode": validation.mode,
+        "model": validation.model,
+        "largest_temperature_deviation_C": {"condition": t.condition, "quantity": t.quantity, "deviation": t.deviation},
+        "largest_elongation_deviation_um": {"condition": d.condition, "deviation": d.deviation},
+        "largest_per_condition": per_condition,
+        "equilibrium_time_min": {c: (None if s.equilibrium_time is None else s.equilibrium_time / 60.0)
+                                 for c, s in validation.solutions.items()},
+        "stated_equilibrium_time_min": validation.measured_equilibrium_min,
+        "energy_balance_error": {c: s.energy.relative_error for c, s in validation.solutions.items()},
+        "measurements": validation.measurement_source,
+        "wall_time_s": validation.wall_time_s,
+        "provenance": validation.provenance,
+    }
+
+
+def print_validation(validation: Validation, out_dir: Path, console: Console | None = None) -> None:
+    console = console or Console(width=None if sys.stdout.isatty() else 120)
+    table = Table(title=f"{validation.system_name}: simulated − measured ({validation.mode} mode, {validation.model} model)",
+                  title_justify="left")
+    for column in ("condition", "T1", "T2", "T3", "T4", "T5", "D [µm]", "largest |ΔT| [K]", "|ΔD| [µm]"):
+        table.add_column(column, justify="left" if column == "condition" else "right")
+    largest = validation.largest_per_condition()
+    for condition in validation.solutions:
+        rows = {c.quantity: c for c in validation.comparisons if c.condition == condition}
+        cells = [f"{rows[q].deviation:+.1f}" if q in rows else "—" for q in ("T1", "T2", "T3", "T4", "T5", "D_um")]
+        t, d = largest[condition].get("temperature"), largest[condition].get("elongation")
+        table.add_row(condition, *cells, f"{abs(t.deviation):.1f} ({t.quantity})" if t else "—",
+                      f"{abs(d.deviation):.1f}" if d else "—")
+    console.print(table)
+    t, d = validation.largest("temperature"), validation.largest("elongation")
+    console.print(f"largest |deviation|: temperature {abs(t.deviation):.1f} K ({t.condition} {t.quantity}), "
+                  f"elongation {abs(d.deviation):.1f} µm ({d.condition}); the paper reports 2.1 K and 6.2 µm for its own model")
+    console.print(f"wrote {out_dir}/validation.csv, validation.json, report.html ({validation.wall_time_s:.1f} s)")
