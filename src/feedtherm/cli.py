@@ -142,6 +142,29 @@ def _positive_seconds(text: str) -> float:
     return value
 
 
+def cmd_sweep(args: argparse.Namespace) -> int:
+    from .analysis.sweep import parse_grid, run_sweep, sensor_labels
+    from .outputs.run_files import check_output_dir, default_out_dir
+    from .system.schema import DEFAULT_DURATION_S
+
+    started = time.perf_counter()
+    loaded = _load(args.system)
+    grid = parse_grid(args.screw_rpm, args.nut_rpm, args.ambient, drive=loaded.system.kinematics.drive)
+    _require_paper_table(loaded, args.mode)
+    out_dir = Path(args.out) if args.out else default_out_dir(args.system, "sweep", args.mode)
+    check_output_dir(out_dir)
+    # The model is imported only inside run_sweep: every input error above comes first.
+    with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
+        rows = run_sweep(loaded, grid, mode=args.mode, duration=args.duration, motion=args.motion, progress=progress)
+    from .outputs.sweep_files import summary_line, sweep_title, write_sweep
+
+    duration = args.duration if args.duration is not None else DEFAULT_DURATION_S
+    write_sweep(rows, sensor_labels(loaded), out_dir,
+                title=sweep_title(loaded.system.meta.name, args.mode, args.motion, duration))
+    print(summary_line(out_dir, len(rows), time.perf_counter() - started))
+    return 0
+
+
 class _LazyProgress:
     """A progress callback that shows a rich bar only once the run has lasted a while.
 
@@ -202,6 +225,32 @@ def cmd_validate(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_calibrate(args: argparse.Namespace) -> int:
+    from .outputs.run_files import check_output_dir, default_out_dir
+
+    loaded = _load(args.system)
+    _require_paper_table(loaded, args.mode)
+    out_dir = Path(args.out) if args.out else default_out_dir(args.system, "calibration", args.mode)
+    check_output_dir(out_dir)
+    from .analysis.calibration import calibrate, cross_validate, resolve_parameters
+    from .analysis.validation import measurements_of
+    from .outputs.calibration_files import print_calibration, write_calibration
+
+    data = measurements_of(loaded, args.measured)
+    names = [n.strip() for n in args.params.split(",") if n.strip()]
+    fit = [c.strip() for c in args.fit.split(",") if c.strip()]
+    resolve_parameters(loaded, names)  # unknown names and missing bounds fail before any run
+    with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
+        result = calibrate(loaded, data, fit, names, mode=args.mode, progress=progress)
+    cross = None
+    if args.cross_validate:
+        with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
+            cross = cross_validate(loaded, data, names, mode=args.mode, progress=progress)
+    write_calibration(loaded, result, out_dir, cross)
+    print_calibration(result, out_dir, cross)
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="feedtherm", description="Thermal model of machine-tool feed drives.")
     parser.add_argument("--version", action="version", version=f"feedtherm {__version__}")
@@ -237,6 +286,27 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--out", metavar="DIR", help="output directory (default: out/<system>_<condition>_<mode>)")
     run.set_defaults(func=cmd_run)
 
+    sweep = sub.add_parser("sweep", help="simulate the full grid of screw speeds × nut speeds × ambients; "
+                                         "write sweep.csv and plots")
+    # Lists such as -600:600:300 or -300,300 are values, not options (Python 3.11's argparse
+    # takes only plain negative numbers as values; 3.13 uses this same pattern).
+    import re
+
+    sweep._negative_number_matcher = re.compile(r"^-\.?\d")
+    sweep.add_argument("system", nargs="?", default="paper", help=system_help)
+    list_help = "comma-separated values and/or ranges start:stop:step (stop included when on the grid)"
+    sweep.add_argument("--screw-rpm", required=True, metavar="LIST", help=f"screw speeds [rpm], signed: {list_help}")
+    sweep.add_argument("--nut-rpm", required=True, metavar="LIST",
+                       help="nut speeds [rpm], signed (0 for a single drive), same syntax")
+    sweep.add_argument("--ambient", required=True, metavar="LIST", help="ambient temperatures [°C], same syntax")
+    sweep.add_argument("--mode", choices=["physics", "paper"], default="physics")
+    sweep.add_argument("--duration", type=_positive_seconds, metavar="S",
+                       help="length of every run [s] (default: a condition's, 10800)")
+    sweep.add_argument("--motion", choices=["resolved", "averaged"], default="averaged",
+                       help="cycle-averaged contacts and heats (default, fast), or the nut's position over time")
+    sweep.add_argument("--out", metavar="DIR", help="output directory (default: out/<system>_sweep_<mode>)")
+    sweep.set_defaults(func=cmd_sweep)
+
     validate = sub.add_parser("validate", help="run every measured condition and compare with the measurements")
     validate.add_argument("system", nargs="?", default="paper", help=system_help)
     validate.add_argument("--model", choices=RUN_MODELS, default="fast")
@@ -245,6 +315,20 @@ def build_parser() -> argparse.ArgumentParser:
                           help="measurements (condition,quantity,unit,measured); default: the description's own")
     validate.add_argument("--out", metavar="DIR", help="output directory (default: out/<system>_validation_<mode>)")
     validate.set_defaults(func=cmd_validate)
+
+    calibrate = sub.add_parser("calibrate", help="fit declared parameters to measured conditions; predict the others")
+    calibrate.add_argument("system", nargs="?", default="paper", help=system_help)
+    calibrate.add_argument("--measured", metavar="FILE",
+                           help="measurements (condition,quantity,unit,measured); default: the description's own")
+    calibrate.add_argument("--fit", required=True, metavar="C,C,...", help="conditions to fit, e.g. I,II,IV")
+    calibrate.add_argument("--params", required=True, metavar="NAME,...",
+                           help="parameters declared under [calibration.parameters]")
+    calibrate.add_argument("--cross-validate", action="store_true",
+                           help="also leave each measured condition out in turn and predict it")
+    calibrate.add_argument("--model", choices=RUN_MODELS, default="fast")
+    calibrate.add_argument("--mode", choices=["physics", "paper"], default="physics")
+    calibrate.add_argument("--out", metavar="DIR", help="output directory (default: out/<system>_calibration_<mode>)")
+    calibrate.set_defaults(func=cmd_calibrate)
     return parser
 
 

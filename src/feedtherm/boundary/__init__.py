@@ -138,7 +138,9 @@ def _paper(system: FeedSystem, point: OperatingPoint, heats, surfaces):
     surfaces = {
         name: replace(
             s,
-            convection=scaled(printed_chtc[name], s.convection, ref_surfaces[name].convection),
+            # the physics ratio cancels a calibrated chtc_factor, so it multiplies the printed value
+            convection=scaled(printed_chtc[name], s.convection, ref_surfaces[name].convection)
+            * system.surfaces[name].chtc_factor,
             correlation=f"paper value x ratio of: {s.correlation}",
         ) if name in printed_chtc else s
         for name, s in surfaces.items()

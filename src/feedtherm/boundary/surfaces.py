@@ -70,6 +70,9 @@ def surface_transfer(
     """Heat transfer of surface ``name`` when its temperature is ``t_surface`` [K]."""
     surface = system.surfaces[name]
     h_conv, how = convective_coefficient(surface, point, t_surface)
+    if surface.chtc_factor != 1.0:
+        h_conv *= surface.chtc_factor
+        how = f"{how}, x {surface.chtc_factor:.3g} (calibrated)"
     h_rad = radiation.h_radiation(surface.emissivity, t_surface, point.ambient) if with_radiation else 0.0
     area = surface_area(surface, system.parts[surface.part])
     return SurfaceTransfer(name, surface.part, area, h_conv, h_rad, surface.emissivity, how)

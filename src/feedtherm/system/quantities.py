@@ -112,3 +112,26 @@ def _fraction(value: object) -> float:
     if not 0.0 <= number <= 1.0:
         raise ValueError(f"must lie between 0 and 1, got {value!r}")
     return number
+
+
+def to_base_si(value: object) -> float:
+    """A bound such as ``"500 N"``, ``"1e-4 m^2*K/W"`` or ``0.1`` in coherent SI base units.
+
+    Used where the target unit is that of another value (calibration bounds): the value is
+    converted to SI base units (N, m, K, ...), the units every description value is stored in.
+    """
+    if isinstance(value, bool):
+        raise ValueError(f"expected a number or a quantity, got {value!r}")
+    if isinstance(value, (int, float)):
+        return float(value)
+    if not isinstance(value, str):
+        raise ValueError(f"expected a number or a quantity, got {value!r}")
+    match = _NUMBER_AND_UNIT.match(value)
+    if not match:
+        raise ValueError(f"{value!r} is not a quantity of the form \"<number> <unit>\"")
+    number, unit = float(match.group(1)), match.group(2)
+    try:
+        quantity = registry().Quantity(number, unit or "dimensionless")
+        return float(quantity.to_base_units().magnitude)
+    except (pint.errors.PintError, AttributeError, TypeError, SyntaxError):
+        raise ValueError(f"cannot read the unit of {value!r}") from None

@@ -264,6 +264,7 @@ class Surface(Strict):
     convection: Convection
     emissivity: Annotated[float, Field(gt=0.0, le=1.0)]
     area: PosArea | None = None  # overrides the area computed from the faces
+    chtc_factor: PosDimensionless = 1.0  # multiplies the convective coefficient (set by calibration)
     description: str = ""
 
 
@@ -368,6 +369,36 @@ class PaperMode(Strict):
     chtc: list[PaperChtc]
 
 
+# --------------------------------------------------------------------------- calibration
+
+
+class CalibrationParameter(Strict):
+    """A value (or a group of values scaled together) that calibration may fit, within bounds.
+
+    ``kind = "value"``: the parameter is the value at every path (they share it); bounds are
+    quantities in the values' units.  ``kind = "scale"``: the parameter is a factor on the
+    original values at the paths; bounds are factors.  Paths may use ``[*]`` for any index.
+    """
+
+    kind: Literal["value", "scale"]
+    paths: list[str]
+    bounds: tuple[str | float, str | float]
+    description: str = ""
+
+    @field_validator("paths")
+    @classmethod
+    def _some_paths(cls, value: list[str]) -> list[str]:
+        if not value:
+            raise ValueError("name at least one path")
+        return value
+
+
+class Calibration(Strict):
+    parameters: dict[str, CalibrationParameter]
+    temperature_sigma: PosTemperatureDifference = 0.5  # weights of the residuals
+    elongation_sigma: PosLength = 2e-6
+
+
 # --------------------------------------------------------------------------- provenance
 
 
@@ -411,6 +442,7 @@ class FeedSystem(Strict):
     conditions: dict[str, Condition]
     duty_cycles: dict[str, DutyCycle] = {}
     paper: PaperMode | None = None
+    calibration: Calibration | None = None
     provenance: list[Provenance] = []
 
     @field_validator("materials", "parts", "sources", "surfaces", "sensors", "conditions")

