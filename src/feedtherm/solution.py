@@ -13,6 +13,7 @@ import numpy as np
 
 KELVIN_OFFSET = 273.15
 SENSOR_NAMES_AMBIENT = "T6"
+ENERGY_FLOOR_J = 1.0  # [J] smallest energy scale of the balance
 
 
 @dataclass(frozen=True)
@@ -30,9 +31,13 @@ class EnergyBalance:
 
     @property
     def relative_error(self) -> float:
-        """residual / max(in, |lost| + |stored|) (0 for a run without any heat)."""
-        scale = max(abs(self.heat_in), abs(self.heat_lost) + abs(self.heat_stored))
-        return 0.0 if scale == 0.0 else self.residual / scale
+        """residual / max(in, |lost| + |stored|, 1 J).
+
+        The 1 J floor keeps a run with (almost) no heat — a standstill at ambient — from
+        dividing round-off by round-off.
+        """
+        scale = max(abs(self.heat_in), abs(self.heat_lost) + abs(self.heat_stored), ENERGY_FLOOR_J)
+        return self.residual / scale
 
 
 @dataclass(frozen=True)

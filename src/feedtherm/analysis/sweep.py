@@ -1,0 +1,246 @@
+"""Parameter sweeps: the full grid of screw speeds × nut speeds × ambient temperatures.
+
+Two steps, both without printing:
+
+- :func:`parse_grid` reads the three lists as a user types them (``300:2400:300``,
+  ``1116,2214``, ``20``) and checks them strictly, before anything is simulated;
+- :func:`run_sweep` makes every grid point a constant condition of the description
+  (:func:`~feedtherm.system.variants.with_condition`), simulates it and returns one row
+  per point: the inputs, the table speed, the final and steady sensor temperatures [°C]
+  and elongation D [µm], the equilibrium time and the energy-balance error.
+
+The CSV and the plots of a sweep are written by :mod:`feedtherm.outputs.sweep_files`.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import re
+from collections.abc import Callable
+from dataclasses import dataclass
+from decimal import Decimal, InvalidOperation
+
+from ..errors import FeedthermError
+from ..solution import KELVIN_OFFSET, SENSOR_NAMES_AMBIENT
+from ..system.load import LoadedSystem
+from ..system.variants import with_condition
+
+#: A sweep runs at most this many grid points (a typo such as ``0:3000:1`` should not start 3000 runs).
+MAX_POINTS = 500
+#: The swept variables: CSV column -> command-line option.
+OPTIONS = {"screw_rpm": "--screw-rpm", "nut_rpm": "--nut-rpm", "ambient_C": "--ambient"}
+#: The name under which each grid point is added to the description's conditions.
+CONDITION_NAME = "sweep"
+
+# A plain decimal number: no nan/inf, no underscores, no hex (float() would take all three).
+_NUMBER = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?")
+
+
+@dataclass(frozen=True)
+class SweepGrid:
+    """The values of each swept variable, in the order given; the grid is their full product."""
+
+    screw_rpm: tuple[float, ...]
+    nut_rpm: tuple[float, ...]
+    ambient_C: tuple[float, ...]
+
+    @property
+    def axes(self) -> dict[str, tuple[float, ...]]:
+        """CSV column -> values, in the order of the CSV columns."""
+        return {"screw_rpm": self.screw_rpm, "nut_rpm": self.nut_rpm, "ambient_C": self.ambient_C}
+
+    @property
+    def varied(self) -> list[str]:
+        """The variables with more than one value."""
+        return [name for name, values in self.axes.items() if len(values) > 1]
+
+    @property
+    def shape(self) -> tuple[int, int, int]:
+        return len(self.screw_rpm), len(self.nut_rpm), len(self.ambient_C)
+
+    def __len__(self) -> int:
+        return math.prod(self.shape)
+
+    def points(self) -> list[tuple[float, float, float]]:
+        """``(screw_rpm, nut_rpm, ambient_C)`` of every point; the ambient varies fastest."""
+        return list(itertools.product(self.screw_rpm, self.nut_rpm, self.ambient_C))
+
+
+# --------------------------------------------------------------------------- parsing
+
+
+def parse_values(text: str, option: str) -> tuple[float, ...]:
+    """The numbers of one list: comma-separated values and/or ranges ``start:stop:step``.
+
+    A range runs from ``start`` up to ``stop`` in steps of ``step`` (> 0), and includes
+    ``stop`` when it falls on the grid: ``300:1200:300`` is 300, 600, 900, 1200 and
+    ``0:1000:300`` is 0, 300, 600, 900.  The arithmetic is decimal, so ``0:1:0.1`` gives
+    exactly 0, 0.1, …, 1.  Values keep the order they are written in; a value listed twice
+    is an error.
+
+    Raises
+    ------
+    FeedthermError
+        One line naming ``option``: bad syntax, a step that is not positive, a range or a
+        list without values, a repeated value, or more than :data:`MAX_POINTS` values.
+    """
+    if not text.strip():
+        raise FeedthermError(f"{option}: empty list; give values such as 300,600 or a range such as 300:2400:300")
+    values: list[float] = []
+    for item in text.split(","):
+        item = item.strip()
+        if not item:
+            raise FeedthermError(f"{option}: empty item in {text!r} (two commas, or a comma at an end)")
+        if ":" in item:
+            values.extend(_range(item, option))
+        else:
+            values.append(float(_decimal(item, item, option)))
+        if len(values) > MAX_POINTS:
+            raise FeedthermError(f"{option}: more than {MAX_POINTS} values in {text!r}; "
+                                 f"a sweep runs at most {MAX_POINTS} points")
+    seen: set[float] = set()
+    for value in values:
+        if value in seen:
+            raise FeedthermError(f"{option}: {_fmt(value)} is listed twice in {text!r}")
+        seen.add(value)
+    return tuple(values)
+
+
+def _range(item: str, option: str) -> list[float]:
+    parts = item.split(":")
+    if len(parts) != 3:
+        raise FeedthermError(f"{option}: range {item!r} must be start:stop:step, e.g. 300:2400:300")
+    start, stop, step = (_decimal(part.strip(), item, option) for part in parts)
+    if step <= 0:
+        raise FeedthermError(f"{option}: range {item!r} has step {_fmt(float(step))}; the step must be positive")
+    if stop < start:
+        raise FeedthermError(f"{option}: range {item!r} is empty (stop {_fmt(float(stop))} is below start "
+                             f"{_fmt(float(start))}; ranges run upwards)")
+    try:
+        count = int((stop - start) // step) + 1
+    except InvalidOperation:  # a quotient beyond decimal precision: far too many values anyway
+        count = None
+    if count is None or count > MAX_POINTS:
+        many = f"{count}" if count is not None else "too many"
+        raise FeedthermError(f"{option}: range {item!r} gives {many} values; a sweep runs at most {MAX_POINTS} points")
+    return [float(start + i * step) for i in range(count)]
+
+
+def _decimal(text: str, item: str, option: str) -> Decimal:
+    if not _NUMBER.fullmatch(text):
+        where = "" if text == item else f" in {item!r}"
+        raise FeedthermError(f"{option}: {text!r}{where} is not a number")
+    try:
+        value = Decimal(text)
+    except InvalidOperation:  # pragma: no cover - the pattern admits only valid decimals
+        raise FeedthermError(f"{option}: {text!r} is not a number") from None
+    if not math.isfinite(float(value)):
+        raise FeedthermError(f"{option}: {text!r} is out of range")
+    return value
+
+
+def parse_grid(screw_rpm: str, nut_rpm: str, ambient_c: str, *, drive: str = "dual") -> SweepGrid:
+    """The grid of the three lists, checked: temperatures above absolute zero, a single
+    drive's nut at rest, and at most :data:`MAX_POINTS` points in all.
+
+    ``drive`` is the description's ``kinematics.drive``.
+    """
+    grid = SweepGrid(parse_values(screw_rpm, OPTIONS["screw_rpm"]), parse_values(nut_rpm, OPTIONS["nut_rpm"]),
+                     parse_values(ambient_c, OPTIONS["ambient_C"]))
+    too_cold = [value for value in grid.ambient_C if not value > -KELVIN_OFFSET]
+    if too_cold:
+        raise FeedthermError(f"--ambient: {_fmt(too_cold[0])} °C is not above absolute zero (-273.15 °C)")
+    if drive == "single" and grid.nut_rpm != (0.0,):
+        raise FeedthermError(f"--nut-rpm: a single drive (kinematics.drive = \"single\") has no nut motor; "
+                             f"give --nut-rpm 0, got {','.join(_fmt(v) for v in grid.nut_rpm)}")
+    if len(grid) > MAX_POINTS:
+        a, b, c = grid.shape
+        raise FeedthermError(f"the grid has {len(grid)} points ({a} screw × {b} nut × {c} ambient); "
+                             f"a sweep runs at most {MAX_POINTS}")
+    return grid
+
+
+def _fmt(value: float) -> str:
+    return f"{value:g}"
+
+
+# --------------------------------------------------------------------------- running
+
+
+def sensor_labels(loaded: LoadedSystem) -> dict[str, str]:
+    """The description's sensors in order (without the ambient ``T6``) -> a short label.
+
+    The label is the part of the sensor's description before its first colon
+    (``"front bearing"``), or the sensor's part name.
+    """
+    out = {}
+    for name, sensor in loaded.system.sensors.items():
+        if name == SENSOR_NAMES_AMBIENT:
+            continue
+        out[name] = sensor.description.split(":")[0].strip() or sensor.part
+    return out
+
+
+def columns(sensors: list[str]) -> list[str]:
+    """The columns of a sweep row, in CSV order."""
+    return [*OPTIONS, "table_speed_m_per_min",
+            *(f"final_{name}" for name in sensors), "final_D_um",
+            *(f"steady_{name}" for name in sensors), "steady_D_um",
+            "equilibrium_time_s", "energy_balance_error"]
+
+
+def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", duration: float | None = None,
+              motion: str = "averaged", progress: Callable[[float], None] | None = None) -> list[dict]:
+    """Simulate every point of ``grid`` as a constant condition; one row dict per point.
+
+    Parameters
+    ----------
+    loaded : LoadedSystem
+    grid : SweepGrid
+        From :func:`parse_grid`.
+    mode : {"physics", "paper"}
+    duration : float, optional
+        Length of every run [s]; default: a condition's default duration.
+    motion : {"resolved", "averaged"}
+        See :func:`~feedtherm.simulate.simulate`; averaged is much faster for long sweeps.
+    progress : callable, optional
+        Called with the fraction of the whole sweep done (0–1).
+
+    Returns
+    -------
+    list of dict
+        Keyed by :func:`columns`, in the order of :meth:`SweepGrid.points`: speeds [rpm],
+        ambient [°C], table speed [m/min] (signed, ``(n_screw − n_nut) · lead``), final and
+        steady temperatures [°C] and D [µm], equilibrium time [s] (None if not reached) and
+        the relative energy-balance error.
+    """
+    from ..simulate import simulate  # the model is loaded only when a sweep really runs
+
+    sensors = list(sensor_labels(loaded))
+    lead = loaded.system.kinematics.lead
+    points = grid.points()
+    # Every condition is built (and so validated) before the first run.
+    variants = [with_condition(loaded, CONDITION_NAME, screw, nut, ambient, duration) for screw, nut, ambient in points]
+    rows = []
+    for index, ((screw, nut, ambient), variant) in enumerate(zip(points, variants)):
+        inner = None if progress is None else _share(progress, index, len(points))
+        solution = simulate(variant, condition=CONDITION_NAME, mode=mode, duration=duration, motion=motion,
+                            progress=inner)
+        final, steady = solution.summary_values("final"), solution.summary_values("steady")
+        row = {"screw_rpm": screw, "nut_rpm": nut, "ambient_C": ambient, "table_speed_m_per_min": (screw - nut) * lead}
+        row.update({f"final_{name}": float(final[name]) for name in sensors})
+        row["final_D_um"] = float(final["D_um"])
+        row.update({f"steady_{name}": float(steady[name]) for name in sensors})
+        row["steady_D_um"] = float(steady["D_um"])
+        row["equilibrium_time_s"] = None if solution.equilibrium_time is None else float(solution.equilibrium_time)
+        row["energy_balance_error"] = float(solution.energy.relative_error)
+        rows.append(row)
+        if progress is not None:
+            progress((index + 1) / len(points))
+    return rows
+
+
+def _share(progress: Callable[[float], None], index: int, count: int) -> Callable[[float], None]:
+    """One run's progress as its share of the whole sweep."""
+    return lambda fraction: progress((index + min(max(fraction, 0.0), 1.0)) / count)
