@@ -5,7 +5,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: setup validate test bench clean
+.PHONY: setup setup-test validate test bench clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -16,9 +16,13 @@ $(STAMP): pyproject.toml
 setup: $(STAMP)
 
 validate: $(STAMP)
-	$(BIN)/feedtherm heat paper --condition I --mode physics
+	$(BIN)/feedtherm validate paper --mode physics
 
-test: $(STAMP)
+# The report test renders report.html in headless Chromium (Debian package `chromium`).
+setup-test:
+	command -v chromium >/dev/null || (apt-get update -qq && apt-get install -y -qq chromium >/dev/null)
+
+test: $(STAMP) setup-test
 	$(BIN)/python -m pytest
 
 clean:

@@ -1,0 +1,80 @@
+"""The validation report: one self-contained HTML file (``report.html``).
+
+``write_report(validation, path)`` renders a :class:`~feedtherm.analysis.validation_types.Validation`
+into one page with its images embedded as base64 PNG and its CSS inline: no external URL,
+no JavaScript.  It reads only the Validation (and the paper's Table 5 and 6 for the
+speeds and the names of the measuring points).  Sections, in order (docs/report.md):
+
+1. title and summary · 2. deviation tables · 3. sensor curves (Fig. 10) · 4. screw field
+(Fig. 11) · 5. equilibrium time · 6. final values against speed and ambient · 7. dual against
+single drive · 8. heat budget · 9. sensitivity ranking · 10. the paper's inconsistencies ·
+11. calibrated values · 12. assumptions and provenance.
+
+Modules: ``html`` (escaping builders and the page), ``figures`` (the PNGs), ``data`` (shared
+numbers), and one module per group of sections (``comparison``, ``transients``, ``operating``,
+``context``).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import uuid
+from datetime import datetime
+from pathlib import Path
+
+from ...analysis.validation_types import Validation
+from ...errors import FeedthermError
+from .comparison import deviations_section, title_section
+from .context import assumptions_section, calibrated_section, inconsistencies_section, sensitivity_section
+from .html import page
+from .operating import dual_single_section, heat_budget_section, trends_section
+from .transients import equilibrium_section, screw_field_section, sensor_curves_section
+
+REPORT_HTML = "report.html"
+
+_SECTIONS = (
+    deviations_section,
+    sensor_curves_section,
+    screw_field_section,
+    equilibrium_section,
+    trends_section,
+    dual_single_section,
+    heat_budget_section,
+    sensitivity_section,
+    inconsistencies_section,
+    calibrated_section,
+    assumptions_section,
+)
+
+
+def render_report(validation: Validation, *, generated: datetime | None = None) -> str:
+    """The report as one HTML document (a string)."""
+    body = title_section(validation, generated) + "".join(build(validation) for build in _SECTIONS)
+    return page(f"feedtherm validation — {validation.system_name}", body)
+
+
+def write_report(validation: Validation, path: Path) -> Path:
+    """Write the report and return its path.
+
+    ``path`` is the file to write when it ends in ``.html``; otherwise it is a directory
+    (created if missing) and the file is ``path/report.html``.  The page is rendered in full
+    first, then written to a temporary file beside the target and moved over it in one step,
+    so a failure never leaves a partial report.
+    """
+    path = Path(path)
+    target = path if path.suffix.lower() in (".html", ".htm") else path / REPORT_HTML
+    text = render_report(validation)
+    temporary = target.parent / f".{target.name}.partial-{uuid.uuid4().hex[:12]}"
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        temporary.write_text(text, encoding="utf-8")
+        os.replace(temporary, target)
+    except OSError as exc:
+        with contextlib.suppress(OSError):
+            temporary.unlink(missing_ok=True)
+        raise FeedthermError(f"{target}: cannot write the report ({exc.strerror or exc})") from None
+    return target
+
+
+__all__ = ["REPORT_HTML", "render_report", "write_report"]

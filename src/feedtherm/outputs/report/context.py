@@ -1,0 +1,134 @@
+"""Sections 9–12: sensitivity ranking, the paper's inconsistencies, calibrated values, provenance."""
+
+from __future__ import annotations
+
+import math
+
+from ...analysis.validation_types import ELONGATION_QUANTITY, TEMPERATURE_QUANTITIES, Sensitivity, Validation
+from . import figures
+from .html import Cell, Raw, bullets, code, definition_table, heading, number, paragraph, png_image, section, table
+
+TOP_SENSITIVITIES = 15  # in the bar chart
+TABLE_ROWS = 30  # in the open table; the rest folded below it
+
+# From AUDIT.md (§2, §4, §6): the paper's tables disagree with each other.
+PAPER_FINDINGS = (
+    "Table 2 cannot be derived from Eqs. 27–29 at the stated speeds: Eq. 27 gives about 19 W/(m²·K) on the screw "
+    "at 396 rpm, Table 2 prints 56.3, which needs about 2100 rpm (condition III's speed) or a 0.86 m screw; "
+    "the worktable's 16.2 and the nut housing's 31.3 W/(m²·K) are as far out (AUDIT §4).",
+    "Table 1 supplies far too little heat for the measured T3–T5: the nut, screw and table group would need "
+    "26–75 W of screw–nut friction heat with ordinary coefficients, while the motor heats of Table 1 allow at "
+    "most about 1 W (AUDIT §6).",
+    "Table 5 row I is inconsistent: n_s − n_n = 36 rpm as in condition II, which with the 10 mm lead of rows "
+    "II–V is 0.36 m/min, not the 0.18 m/min printed (that needs a 5 mm lead) (AUDIT §2).",
+    "Table 7 condition V is an outlier: about +12 µm off in every fit of D against the bearing and screw "
+    "temperatures. The paper's \"29 µm at a similar temperature field\" (III against V) is impossible in "
+    "linear thermoelasticity, where the elongation follows from the temperature field alone (AUDIT §4).",
+    "The stated equilibrium times at 15 and 25 °C ambient (70 and 110 min) contradict the paper's own "
+    "assumption 3, under which the ambient cannot change the equilibrium time (AUDIT §6; section 5 above).",
+)
+
+
+def sensitivity_section(validation: Validation) -> str:
+    title = "Sensitivity ranking"
+    rows = ranked(validation.sensitivities)
+    if not rows:
+        return section("sensitivity", title, paragraph("No sensitivities were computed."))
+    intro = paragraph(
+        f"Each declared assumption perturbed alone: its value multiplied by the factor shown, everything else "
+        f"unchanged, and the change of the steady state (cycle-averaged) of condition "
+        f"{validation.sensitivity_condition}. One parameter at a time: the effects do not add up when several "
+        f"values change together. Sorted by the largest temperature change over T1–T5.")
+    top = rows[:TOP_SENSITIVITIES]
+    png = figures.sensitivity_bars(top, validation.sensitivity_condition)
+    caption = f"Top {len(top)} of {len(rows)}" if len(rows) > len(top) else ""
+    body = intro + png_image(png, "Sensitivity ranking", caption=caption) + sensitivity_table(rows[:TABLE_ROWS])
+    rest = rows[TABLE_ROWS:]
+    if rest:  # complete but folded: <details> opens without JavaScript
+        body += (f"<details><summary>The other {len(rest)} parameters</summary>"
+                 f"{sensitivity_table(rest, first_rank=TABLE_ROWS + 1)}</details>")
+    return section("sensitivity", title, body)
+
+
+def sensitivity_table(rows: list[Sensitivity], first_rank: int = 1) -> str:
+    body = [[str(rank), Cell(code(row.parameter), "text"), f"×{row.factor:g}", number(row.max_temperature_effect, 2),
+             _largest_sensor(row), number(_abs_d(row), 2), Cell(row.assumption, "text small")]
+            for rank, row in enumerate(rows, start=first_rank)]
+    return table(["rank", "parameter", "factor", "max |ΔT| [K]", "at", "|ΔD| [µm]", "assumption source"], body)
+
+
+def ranked(rows: list[Sensitivity]) -> list[Sensitivity]:
+    """By largest |ΔT| over T1–T5, then |ΔD|, largest first."""
+    return sorted(rows, key=lambda r: (r.max_temperature_effect, _abs_d(r) if math.isfinite(_abs_d(r)) else 0.0),
+                  reverse=True)
+
+
+def _abs_d(row: Sensitivity) -> float:
+    return abs(row.effect.get(ELONGATION_QUANTITY, math.nan))
+
+
+def _largest_sensor(row: Sensitivity) -> str:
+    return max(TEMPERATURE_QUANTITIES, key=lambda q: abs(row.effect[q]))
+
+
+def inconsistencies_section(validation: Validation) -> str:
+    found = validation.inconsistencies
+    body = heading("Found in this validation (feedtherm check and the data)")
+    body += bullets(found) if found else paragraph("None reported.")
+    body += heading("Known from the review of the paper (AUDIT.md)") + bullets(PAPER_FINDINGS)
+    return section("inconsistencies", "Inconsistencies in the paper's data", body)
+
+
+def calibrated_section(validation: Validation) -> str:
+    title = "Calibrated values"
+    entries = validation.calibrated
+    if not entries:
+        return section("calibrated", title, paragraph(
+            "None: every value is from the paper or a declared assumption; nothing was fitted to the "
+            "measurements, so every comparison above is a prediction."))
+    keys: list[str] = []
+    for entry in entries:
+        keys += [k for k in entry if k not in keys]
+    rows = [[_plain(entry.get(k)) for k in keys] for entry in entries]
+    intro = paragraph("Values fitted by feedtherm calibrate, with the conditions they were fitted on: comparisons "
+                      "on those conditions are not independent of the measurements.")
+    return section("calibrated", title, intro + table(keys, rows, css_class="text"))
+
+
+def assumptions_section(validation: Validation) -> str:
+    title = "Assumptions and provenance"
+    parts = [heading("Assumptions in use")]
+    if validation.assumptions:
+        rows = [[_paths(entry.get("paths") or []), _plain(entry.get("source")), _plain(entry.get("reason"))]
+                for entry in validation.assumptions]
+        parts.append(table(["paths", "source", "reason"], rows, css_class="text"))
+    else:
+        parts.append(paragraph("No values are marked as assumptions."))
+    parts.append(heading("Provenance"))
+    pairs = [(key.replace("_", " "), _plain(value)) for key, value in validation.provenance.items()
+             if key != "assumptions"]
+    pairs.append(("measurement source", validation.measurement_source or "—"))
+    pairs += [(key, value) for key, value in (("model", validation.model), ("mode", validation.mode))
+              if key not in validation.provenance]
+    if validation.wall_time_s:
+        pairs.append(("wall time of the validation", f"{validation.wall_time_s:.1f} s"))
+    parts.append(definition_table(pairs))
+    return section("assumptions", title, "".join(parts))
+
+
+def _paths(paths: list[str]) -> Raw | str:
+    return Raw("<br>".join(code(p).html for p in paths)) if paths else "—"
+
+
+def _plain(value) -> str:
+    """A value as short text: lists joined, floats to 4 significant digits, None as a dash."""
+    if value is None:
+        return "—"
+    if isinstance(value, (list, tuple)):
+        return ", ".join(_plain(v) for v in value)
+    if isinstance(value, dict):
+        return "; ".join(f"{k}: {_plain(v)}" for k, v in value.items())
+    if isinstance(value, float):
+        return f"{value:.4g}"
+    return str(value)
+

@@ -1,0 +1,269 @@
+"""The report's figures as PNG bytes.
+
+Same conventions as :mod:`feedtherm.outputs.plots`: matplotlib is imported inside the
+functions, figures are ``matplotlib.figure.Figure`` objects (no pyplot state, no backend
+change).  Figures are 9 in wide at 120 dpi (1080 px) so that their text stays readable when
+the page shows them 900 px wide.
+"""
+
+from __future__ import annotations
+
+import io
+from collections.abc import Sequence
+
+import numpy as np
+
+from ...analysis.validation_types import ELONGATION_QUANTITY, TEMPERATURE_QUANTITIES, Comparison, Sensitivity
+from ...solution import KELVIN_OFFSET, SENSOR_NAMES_AMBIENT, Solution
+from ..plots import _thinned
+
+_DPI = 120
+_WIDTH = 9.0  # in
+_HOURS = 3600.0
+_MAX_HEATMAP_COLUMNS = 1200
+_SENSOR_COLOURS = {name: f"C{index}" for index, name in enumerate(TEMPERATURE_QUANTITIES)}
+_D_COLOUR = "C5"
+
+
+def sensor_curves(solution: Solution, condition: str, measured: dict[str, float],
+                  paper_equilibrium_min: float | None) -> bytes:
+    """T1–T5 [°C] over time [h] above D [µm]; the measured equilibrium values dashed (Fig. 10).
+
+    Each sensor has one legend entry showing its simulated (solid) and measured (dashed) line
+    and the measured value.
+    """
+    from matplotlib.legend_handler import HandlerTuple
+
+    figure = _figure(6.6)
+    top, bottom = figure.subplots(2, 1, sharex=True, height_ratios=(3, 2))
+    hours = solution.times / _HOURS
+    celsius = solution.sensors_celsius()
+    handles, labels = [], []
+    for name in TEMPERATURE_QUANTITIES:
+        if name not in celsius:
+            continue
+        colour = _SENSOR_COLOURS[name]
+        (line,) = top.plot(hours, celsius[name], color=colour, linewidth=1.6)
+        if name in measured:
+            level = top.axhline(measured[name], color=colour, linestyle="--", linewidth=1.2, alpha=0.85)
+            handles.append((line, level))
+            labels.append(f"{name}, measured {measured[name]:.1f} °C")
+        else:
+            handles.append(line)
+            labels.append(f"{name} (not measured)")
+    if SENSOR_NAMES_AMBIENT in celsius:
+        (line,) = top.plot(hours, celsius[SENSOR_NAMES_AMBIENT], color="0.5", linestyle=":", linewidth=1.2)
+        handles.append(line)
+        labels.append(f"{SENSOR_NAMES_AMBIENT} ambient")
+    bottom.plot(hours, solution.elongation_um, color=_D_COLOUR, linewidth=1.6, label="D simulated")
+    if ELONGATION_QUANTITY in measured:
+        bottom.axhline(measured[ELONGATION_QUANTITY], color=_D_COLOUR, linestyle="--", linewidth=1.2,
+                       label=f"D measured {measured[ELONGATION_QUANTITY]:.1f} µm")
+    for ax in (top, bottom):
+        _mark_times(ax, solution, paper_equilibrium_min, label=ax is bottom)
+        ax.grid(True, alpha=0.3)
+    top.legend(handles, labels, handler_map={tuple: HandlerTuple(ndivide=None, pad=0.6)}, handlelength=4.0,
+               loc="center left", bbox_to_anchor=(1.01, 0.5), frameon=False, fontsize=9,
+               title="simulated / measured", title_fontsize=9)
+    bottom.legend(loc="center left", bbox_to_anchor=(1.01, 0.5), frameon=False, fontsize=9)
+    top.set_ylabel("temperature [°C]")
+    bottom.set_ylabel("elongation D [µm]")
+    bottom.set_xlabel("time [h]")
+    bottom.set_xlim(hours[0], hours[-1])
+    top.set_title(f"Condition {condition}: simulated series (solid) and measured equilibrium values (dashed)")
+    return _png(figure)
+
+
+def screw_field(solution: Solution, condition: str, profile_count: int = 5) -> bytes:
+    """Screw temperature [°C] by time [h] and position [mm], above axial profiles (Fig. 11)."""
+    import matplotlib
+
+    figure = _figure(8.0)
+    top, bottom = figure.subplots(2, 1, height_ratios=(1, 1))
+    columns = _thinned(solution.times.size, _MAX_HEATMAP_COLUMNS)
+    x_mm = solution.screw_x * 1e3
+    celsius = solution.screw_temperature - KELVIN_OFFSET
+    mesh = top.pcolormesh(solution.times[columns] / _HOURS, x_mm, celsius[columns].T, shading="nearest",
+                          cmap="inferno", rasterized=True)
+    figure.colorbar(mesh, ax=top, label="screw temperature [°C]")
+    top.set_xlabel("time [h]")
+    top.set_ylabel("axial position x [mm]")
+    top.set_title(f"Condition {condition}: screw temperature (cross-section mean) over time and position")
+    rows = profile_rows(solution.times, profile_count)
+    colours = matplotlib.colormaps["viridis"](np.linspace(0.0, 0.9, len(rows)))
+    for colour, row in zip(colours, rows):
+        bottom.plot(x_mm, celsius[row], color=colour, linewidth=1.6,
+                    label=f"t = {_duration_label(solution.times[row])}")
+    bottom.set_xlabel("axial position x [mm]")
+    bottom.set_ylabel("screw temperature [°C]")
+    bottom.set_title("Axial profiles at selected times")
+    bottom.set_xlim(x_mm[0], x_mm[-1])
+    bottom.grid(True, alpha=0.3)
+    bottom.legend(loc="center left", bbox_to_anchor=(1.01, 0.5), frameon=False, fontsize=9)
+    return _png(figure)
+
+
+def trends(speed: Sequence[tuple[str, float | None]], ambient: Sequence[tuple[str, float | None]],
+           rows: dict[tuple[str, str], Comparison]) -> bytes:
+    """Final T1–T5 [°C] and D [µm] against screw speed and against ambient, simulated and measured.
+
+    ``speed`` and ``ambient`` are ``(condition, x)``; a series with an unknown x is drawn at
+    evenly spaced positions labelled by condition.
+    """
+    from matplotlib.lines import Line2D
+
+    figure = _figure(7.4)
+    axes = figure.subplots(2, 2, sharex="col")
+    panels = ((speed, "screw speed n_s [rpm] (Table 5)", "against speed (ambient 20 °C)"),
+              (ambient, "ambient temperature [°C]", "against ambient (speed of II)"))
+    for column, (points, xlabel, title) in enumerate(panels):
+        temps, elong = axes[0, column], axes[1, column]
+        xs, ticks = _positions(points)
+        names = [name for name, _ in points]
+        for quantity in TEMPERATURE_QUANTITIES:
+            _trend_lines(temps, xs, names, quantity, rows, _SENSOR_COLOURS[quantity])
+        _trend_lines(elong, xs, names, ELONGATION_QUANTITY, rows, _D_COLOUR)
+        temps.set_title(f"Final temperatures {title}", fontsize=10.5)
+        elong.set_title(f"Elongation D {title}", fontsize=10.5)
+        temps.set_ylabel("temperature [°C]")
+        elong.set_ylabel("elongation D [µm]")
+        elong.set_xlabel(xlabel)
+        elong.set_xticks(xs, ticks)
+        for ax in (temps, elong):
+            ax.grid(True, alpha=0.3)
+            if len(xs):
+                pad = 0.08 * (max(xs) - min(xs) or 1.0)
+                ax.set_xlim(min(xs) - pad, max(xs) + pad)
+    handles = [Line2D([], [], color=_SENSOR_COLOURS[q], linewidth=1.6, label=q) for q in TEMPERATURE_QUANTITIES]
+    handles += [Line2D([], [], color=_D_COLOUR, linewidth=1.6, label="D"),
+                Line2D([], [], color="0.2", marker="o", linewidth=1.6, label="simulated"),
+                Line2D([], [], color="0.2", marker="s", markerfacecolor="white", linestyle="--",
+                       linewidth=1.2, label="measured")]
+    figure.legend(handles=handles, loc="outside lower center", ncols=len(handles), frameon=False, fontsize=9)
+    return _png(figure)
+
+
+def dual_single(conditions: Sequence[str], dual: dict[str, dict[str, float]],
+                single: dict[str, dict[str, float]]) -> bytes:
+    """Mean heat [W] and final D [µm], dual beside single drive, per condition."""
+    figure = _figure(3.8)
+    heat_ax, d_ax = figure.subplots(1, 2)
+    x = np.arange(len(conditions))
+    width = 0.38
+    for ax, key, label in ((heat_ax, "heat_W", "mean heat generated [W]"), (d_ax, "D_um", "final elongation D [µm]")):
+        for offset, (values, name, colour) in zip((-width / 2, width / 2),
+                                                  ((dual, "dual drive", "C0"), (single, "single drive", "C1"))):
+            heights = [values.get(c, {}).get(key, np.nan) for c in conditions]
+            ax.bar(x + offset, heights, width, color=colour, label=name)
+        ax.set_xticks(x, conditions)
+        ax.set_xlabel("condition")
+        ax.set_ylabel(label)
+        ax.grid(True, axis="y", alpha=0.3)
+    heat_ax.set_title("Heat generated, same table speed", fontsize=10.5)
+    d_ax.set_title("Screw elongation at the end of the run", fontsize=10.5)
+    heat_ax.legend(frameon=False, fontsize=9)
+    return _png(figure)
+
+
+def heat_budget(budget: dict[str, dict[str, float]]) -> bytes:
+    """Heat [W] per source, grouped by condition; sources ordered by their total."""
+    conditions = list(budget)
+    totals: dict[str, float] = {}
+    for sources in budget.values():
+        for source, watts in sources.items():
+            totals[source] = totals.get(source, 0.0) + abs(watts)
+    sources = sorted(totals, key=totals.get, reverse=True)
+    figure = _figure(4.6)
+    ax = figure.subplots()
+    x = np.arange(len(conditions))
+    width = 0.84 / max(1, len(sources))
+    for index, source in enumerate(sources):
+        heights = [budget[c].get(source, 0.0) for c in conditions]
+        ax.bar(x - 0.42 + (index + 0.5) * width, heights, width, label=source.replace("_", " "),
+               color=f"C{index % 10}")
+    ax.set_xticks(x, conditions)
+    ax.set_xlabel("condition")
+    ax.set_ylabel("heat [W]")
+    ax.set_title("Heat per source and condition")
+    ax.grid(True, axis="y", alpha=0.3)
+    ax.legend(loc="center left", bbox_to_anchor=(1.01, 0.5), frameon=False, fontsize=9)
+    return _png(figure)
+
+
+def sensitivity_bars(rows: Sequence[Sensitivity], condition: str) -> bytes:
+    """Horizontal bars: largest |ΔT| [K] and |ΔD| [µm] of each perturbed parameter, largest on top."""
+    figure = _figure(1.6 + 0.34 * max(1, len(rows)))
+    t_ax, d_ax = figure.subplots(1, 2, sharey=True, width_ratios=(3, 2))
+    y = np.arange(len(rows))[::-1]
+    labels = [f"{_shorten(row.parameter)} ×{row.factor:g}" for row in rows]
+    t_ax.barh(y, [row.max_temperature_effect for row in rows], color="C3")
+    d_ax.barh(y, [abs(row.effect.get(ELONGATION_QUANTITY, np.nan)) for row in rows], color=_D_COLOUR)
+    t_ax.set_yticks(y, labels, fontsize=8.5)
+    t_ax.set_xlabel("largest |ΔT| over T1–T5 [K]")
+    d_ax.set_xlabel("|ΔD| [µm]")
+    t_ax.set_title(f"Steady-state effect, condition {condition}", fontsize=10.5)
+    d_ax.set_title("Elongation", fontsize=10.5)
+    for ax in (t_ax, d_ax):
+        ax.grid(True, axis="x", alpha=0.3)
+    return _png(figure)
+
+
+# --------------------------------------------------------------------------- helpers
+
+
+def profile_rows(times: np.ndarray, count: int) -> list[int]:
+    """Sample indices at about 1/16, 1/8, 1/4, 1/2 and all of the run (distinct, ascending)."""
+    end = float(times[-1])
+    fractions = [2.0 ** -k for k in range(count - 1, -1, -1)]
+    rows = sorted({int(np.argmin(np.abs(times - f * end))) for f in fractions})
+    return [row for row in rows if times[row] > times[0]] or [times.size - 1]
+
+
+def _trend_lines(ax, xs, names, quantity, rows, colour) -> None:
+    simulated = [_value(rows, name, quantity, "simulated") for name in names]
+    measured = [_value(rows, name, quantity, "measured") for name in names]
+    ax.plot(xs, simulated, color=colour, marker="o", linewidth=1.6)
+    ax.plot(xs, measured, color=colour, marker="s", markerfacecolor="white", linestyle="--", linewidth=1.2)
+
+
+def _value(rows, condition, quantity, attribute) -> float:
+    row = rows.get((condition, quantity))
+    return np.nan if row is None else getattr(row, attribute)
+
+
+def _positions(points) -> tuple[list[float], list[str]]:
+    if points and all(x is not None for _, x in points):
+        return [float(x) for _, x in points], [f"{x:g}\n({name})" for name, x in points]
+    return [float(i) for i in range(len(points))], [name for name, _ in points]
+
+
+def _mark_times(ax, solution: Solution, paper_equilibrium_min: float | None, *, label: bool) -> None:
+    if solution.equilibrium_time is not None:
+        hours = solution.equilibrium_time / _HOURS
+        ax.axvline(hours, color="0.25", linestyle=":", linewidth=1.2,
+                   label=f"model equilibrium ({hours * 60:.0f} min)" if label else None)
+    end_h = solution.times[-1] / _HOURS
+    if paper_equilibrium_min is not None and paper_equilibrium_min / 60.0 <= end_h:
+        ax.axvline(paper_equilibrium_min / 60.0, color="0.55", linestyle="-.", linewidth=1.2,
+                   label=f"paper's equilibrium ({paper_equilibrium_min:.0f} min)" if label else None)
+
+
+def _duration_label(seconds: float) -> str:
+    minutes = seconds / 60.0
+    return f"{minutes:.0f} min" if minutes < 120 else f"{minutes / 60.0:.1f} h"
+
+
+def _shorten(path: str, limit: int = 44) -> str:
+    return path if len(path) <= limit else "…" + path[-(limit - 1):]
+
+
+def _figure(height: float):
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=(_WIDTH, height), layout="constrained")
+
+
+def _png(figure) -> bytes:
+    buffer = io.BytesIO()
+    figure.savefig(buffer, dpi=_DPI, format="png")
+    return buffer.getvalue()

@@ -1,0 +1,137 @@
+"""Sections 3–5: sensor curves (Fig. 10), the screw field (Fig. 11), the equilibrium time."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...analysis.validation_types import Validation
+from ...solution import KELVIN_OFFSET, Solution
+from . import data, figures
+from .html import heading, number, paragraph, png_image, section, table
+
+NOT_REACHED = "not reached in the run"
+EQUILIBRIUM_PHYSICS = (
+    "Why the ambient temperature cannot change the equilibrium time here. The convection and radiation "
+    "coefficients are frozen for a run (the paper's assumption 3), so the model is linear: C·dT/dt = "
+    "−G·(T − T_amb) + q. Written for the rise θ = T − T_amb it reads C·dθ/dt = −G·θ + q with θ = 0 at the "
+    "start, and the ambient temperature has disappeared: it shifts every temperature by the same amount and "
+    "leaves every rise, and so the equilibrium time, unchanged. Conditions II, IV and V run at the same "
+    "speeds and differ only in ambient, so they must reach equilibrium at the same time; the paper's 70 min "
+    "at 15 °C against 110 min at 25 °C cannot come from such a model (AUDIT §6). The only ambient effect left "
+    "in physics mode comes through the temperature at which the coefficients are frozen: the air's properties "
+    "change the convection coefficients by a few per cent over 10 K, and the linearised radiation coefficient "
+    "(∝ T³) by about 10 %, far too little to move the equilibrium time by 40 min. A warmer room does not make "
+    "heat \"more difficult to dissipate\": the heat lost depends on T − T_amb, not on T_amb."
+)
+TIME_CONSTANT_PHYSICS = (
+    "The time constants are the eigenvalues of C⁻¹G: they follow from the heat capacities and the "
+    "conductances (contacts, conduction, convection), not from the heat generated. Doubling every heat "
+    "doubles every rise and leaves the time to reach 95 % of it unchanged."
+)
+SPEED_PHYSICS = (
+    "What changes with speed: the heats grow (bearing and motor losses with the shaft speeds, the screw–nut "
+    "friction with the relative speed), which raises the steady temperatures but not the time constants. "
+    "The speed does shorten the time constants through the forced convection of the rotating screw and nut "
+    "(Eq. 27: h grows with the rotational Reynolds number; paper mode scales Table 2 the same way). "
+    "It also moves the heat between fast parts (screw, nut) and slow ones "
+    "(housings, table, base), which changes which time constants dominate the sensors. Against the paper's "
+    "criterion the absolute part (less than 0.5 K change over 600 s) is met later by a larger rise, which "
+    "works against the shorter times the paper reports at higher speed (120, 100, 90 min for I–III)."
+)
+
+
+def sensor_curves_section(validation: Validation) -> str:
+    rows = data.comparisons_by_key(validation)
+    body = [paragraph(
+        "Simulated sensor temperatures T1–T5 and the elongation D over time, as in the paper's Fig. 10. The "
+        "paper publishes the measured curves only as images; its tables give the measured values at thermal "
+        "equilibrium, drawn here as dashed lines in the colour of their sensor: the level a run should "
+        "approach. T6 (dotted grey) is the ambient.")]
+    for condition, solution in validation.solutions.items():
+        measured = {q: rows[(condition, q)].measured for q in data.QUANTITIES if (condition, q) in rows}
+        png = figures.sensor_curves(solution, condition, measured, validation.measured_equilibrium_min.get(condition))
+        body.append(png_image(png, f"Sensor temperatures and elongation, condition {condition}",
+                              caption=run_caption(condition, solution)))
+    if not validation.solutions:
+        body.append(paragraph("No runs to show."))
+    return section("sensor-curves", "Sensor curves per condition (Fig. 10)", "".join(body))
+
+
+def run_caption(condition: str, solution: Solution) -> str:
+    parts = [f"Condition {condition}"]
+    screw, nut = data.screw_rpm(condition), data.nut_rpm(condition)
+    if screw is not None:
+        parts.append(f"screw {screw:.0f} rpm, nut {nut:.0f} rpm (Table 5)")
+    ambient = data.ambient_c(solution)
+    if ambient is not None:
+        parts.append(f"ambient {ambient:.1f} °C")
+    parts.append(f"run of {data.run_minutes(solution):.0f} min")
+    parts.append(f"model equilibrium: {equilibrium_text(solution)}")
+    return "; ".join(parts) + "."
+
+
+def screw_field_section(validation: Validation) -> str:
+    title = "Screw temperature over time and position (Fig. 11)"
+    condition = data.reference_condition(validation)
+    if condition is None:
+        return section("screw-field", title, paragraph("No runs to show."))
+    solution = validation.solutions[condition]
+    png = figures.screw_field(solution, condition)
+    intro = paragraph(f"Cross-section mean temperature of the screw in condition {condition}, over time and "
+                      "axial position (x from the description's origin), and axial profiles at a few times. "
+                      "The paper's Fig. 11 shows the screw hottest in the middle and cooler at both ends.")
+    return section("screw-field", title, intro + png_image(png, f"Screw temperature field, condition {condition}",
+                                                           caption=profile_facts(solution)))
+
+
+def profile_facts(solution: Solution) -> str:
+    """Where the screw is hottest at the end of the run, and how warm its ends are."""
+    final = solution.screw_temperature[-1] - KELVIN_OFFSET
+    x_mm = solution.screw_x * 1e3
+    hottest = int(np.argmax(final))
+    return (f"At the end of the run the screw is hottest at x = {number(x_mm[hottest], 0)} mm "
+            f"({number(final[hottest])} °C); its ends are at {number(final[0])} °C (x = {number(x_mm[0], 0)} mm) "
+            f"and {number(final[-1])} °C (x = {number(x_mm[-1], 0)} mm).")
+
+
+def equilibrium_section(validation: Validation) -> str:
+    body = [paragraph(
+        "When each run reached thermal equilibrium (every sensor within 95 % of its steady rise and changing by "
+        "less than 0.5 K over 600 s; docs/fast-model.md), beside the times the paper states in §4.3.")]
+    for names, title in ((data.SPEED_SERIES, "Against speed (ambient 20 °C)"),
+                         (data.AMBIENT_SERIES, "Against ambient (speeds of condition II)")):
+        run = data.series(validation, names)
+        if title.startswith("Against ambient"):
+            run.sort(key=lambda c: data.ambient_c(validation.solutions[c]) or 0.0)
+        if run:
+            body.append(heading(title))
+            body.append(equilibrium_table(validation, run))
+    others = [c for c in validation.solutions if c not in data.SPEED_SERIES + data.AMBIENT_SERIES]
+    if others:
+        body.append(heading("Other conditions"))
+        body.append(equilibrium_table(validation, others))
+    if not validation.solutions:
+        body.append(paragraph("No runs to show."))
+    body += [paragraph(EQUILIBRIUM_PHYSICS), paragraph(TIME_CONSTANT_PHYSICS), paragraph(SPEED_PHYSICS)]
+    return section("equilibrium", "Equilibrium time", "".join(body))
+
+
+def equilibrium_table(validation: Validation, conditions: list[str]) -> str:
+    rows = []
+    for condition in conditions:
+        solution = validation.solutions[condition]
+        rows.append([
+            condition,
+            number(data.screw_rpm(condition), 0),
+            number(data.ambient_c(solution), 1),
+            number(data.run_minutes(solution), 0),
+            number(data.equilibrium_minutes(solution), 0, missing=NOT_REACHED),
+            number(validation.measured_equilibrium_min.get(condition), 0),
+        ])
+    return table(["condition", "screw speed [rpm]", "ambient [°C]", "run length [min]",
+                  "model equilibrium [min]", "paper's statement [min]"], rows)
+
+
+def equilibrium_text(solution: Solution) -> str:
+    minutes = data.equilibrium_minutes(solution)
+    return NOT_REACHED if minutes is None else f"{minutes:.0f} min"

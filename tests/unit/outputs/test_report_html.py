@@ -1,0 +1,241 @@
+"""The report's HTML builders and a whole report from synthetic Solutions (no model, no browser)."""
+
+from __future__ import annotations
+
+import base64
+import io
+import re
+from datetime import datetime, timezone
+
+import pytest
+
+from feedtherm.analysis.validation_types import Comparison, Sensitivity, Validation
+from feedtherm.errors import FeedthermError
+from feedtherm.outputs import report as report_module
+from feedtherm.outputs.report import REPORT_HTML, render_report, write_report
+from feedtherm.outputs.report.comparison import condition_table, deviation_cell, summary_text
+from feedtherm.outputs.report.data import deviation_band
+from feedtherm.outputs.report.figures import profile_rows
+from feedtherm.outputs.report.html import Cell, Raw, bullets, esc, number, page, png_image, section, table
+
+# The synthetic warm-up lives beside this file (pytest puts the directory on sys.path).
+from test_run_files import make_solution
+
+PNG_1PX = base64.b64decode(
+    "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8BQDwAEhQGAhKmMIQAAAABJRU5ErkJggg==")
+HOSTILE = '<script>alert("x")</script> & \'quoted\''
+DATA_URI = re.compile(r'<img src="data:image/png;base64,([A-Za-z0-9+/=]+)"')
+
+
+# --------------------------------------------------------------------------- builders
+
+
+def test_esc_escapes_markup_and_quotes():
+    assert esc(HOSTILE) == "&lt;script&gt;alert(&quot;x&quot;)&lt;/script&gt; &amp; &#x27;quoted&#x27;"
+    assert esc(3.5) == "3.5"
+
+
+@pytest.mark.parametrize("value, kwargs, text", [
+    (12.345, {}, "12.3"),
+    (-1.25, {"decimals": 2}, "\u22121.25"),
+    (1.2, {"signed": True}, "+1.2"),
+    (-0.04, {"signed": True}, "+0.0"),  # rounds to zero: no "−0.0"
+    (None, {}, "—"),
+    (float("nan"), {"missing": "n/a"}, "n/a"),
+    (2214.0, {"decimals": 0}, "2214"),
+])
+def test_number_formatting(value, kwargs, text):
+    assert number(value, **kwargs) == text
+
+
+def test_table_escapes_text_keeps_raw_and_classes_cells():
+    html = table(["point", "value [°C]"], [[HOSTILE, Cell("+1.0", "dev-1")], ["T2", Raw("<code>x</code>")]],
+                 caption="a < b")
+    assert "<script>" not in html and "&lt;script&gt;" in html
+    assert '<td class="dev-1">+1.0</td>' in html
+    assert "<td><code>x</code></td>" in html
+    assert '<th scope="col">value [°C]</th>' in html
+    assert html.count('<th scope="row">') == 2
+    assert "<caption>a &lt; b</caption>" in html
+
+
+def test_png_image_embeds_the_bytes_as_base64_and_escapes_alt():
+    html = png_image(PNG_1PX, 'a "quoted" <alt>', caption="x & y")
+    encoded = DATA_URI.search(html).group(1)
+    assert base64.b64decode(encoded) == PNG_1PX
+    assert 'alt="a &quot;quoted&quot; &lt;alt&gt;"' in html
+    assert "<figcaption>x &amp; y</figcaption>" in html
+    with pytest.raises(ValueError):
+        png_image(b"GIF89a", "not a png")
+
+
+def test_page_section_and_bullets():
+    html = page("T <1>", section("a-b", "Title & more", bullets(["<i>", Raw("<b>ok</b>")])))
+    assert html.startswith("<!DOCTYPE html>")
+    assert "<title>T &lt;1&gt;</title>" in html and '<meta charset="utf-8">' in html
+    assert '<section id="a-b"><h2>Title &amp; more</h2>' in html
+    assert "<li>&lt;i&gt;</li><li><b>ok</b></li>" in html
+    assert "<script" not in html and "http" not in html
+
+
+@pytest.mark.parametrize("deviation, unit, band", [
+    (0.5, "C", 0), (-1.0, "C", 0), (2.0, "C", 1), (-3.0, "C", 2), (5.1, "C", 3),
+    (2.9, "um", 0), (-6.2, "um", 1), (10.0, "um", 2), (45.0, "um", 3),
+])
+def test_deviation_bands(deviation, unit, band):
+    assert deviation_band(deviation, unit) == band
+    assert deviation_cell(deviation, unit).css_class == f"dev-{band}"
+
+
+def test_condition_table_has_quantities_as_columns_with_units():
+    rows = [Comparison("I", "T1", "C", 22.61, 27.1, 28.1), Comparison("I", "D_um", "um", 23.5, 29.9, None)]
+    html = condition_table("I", rows)
+    assert "T1 [°C]" in html and "D [µm]" in html
+    assert "22.6" in html and "\u22124.5" in html  # 22.61 − 27.1
+    assert '<td class="dev-2">\u22124.5</td>' in html
+    assert "<td>—</td>" in html  # no paper value for D
+
+
+def test_profile_rows_are_distinct_and_end_at_the_last_sample():
+    import numpy as np
+
+    times = np.arange(0.0, 1801.0, 10.0)
+    rows = profile_rows(times, 5)
+    assert rows == sorted(set(rows)) and rows[-1] == times.size - 1 and times[rows[0]] > 0
+
+
+# --------------------------------------------------------------------------- whole report
+
+
+def synthetic_validation(**changes) -> Validation:
+    runs = {"I": make_solution(), "II": make_solution(equilibrium_time=None)}
+    comparisons = []
+    for condition, solution in runs.items():
+        final = solution.summary_values()
+        comparisons += [Comparison(condition, q, "C", final[q], final[q] + 1.5, final[q] + 2.5)
+                        for q in ("T1", "T2", "T3", "T4", "T5")]
+        comparisons.append(Comparison(condition, "D_um", "um", final["D_um"], final["D_um"] - 4.0, None))
+    values = dict(
+        system_name=HOSTILE, mode="physics", model="fast", comparisons=comparisons, solutions=runs,
+        single_drive={"I": make_solution()}, heat_budget={"I": {"front_bearing": 5.0, "screw_nut": 6.0},
+                                                          "II": {"front_bearing": 18.6, "screw_nut": 6.0}},
+        measured_equilibrium_min={"I": 120.0, "II": 100.0},
+        sensitivities=[Sensitivity("sources.screw_nut.mu", "AUDIT <§5>", 1.5,
+                                   {"T1": 0.1, "T2": 0.2, "T3": -2.0, "T4": 1.0, "T5": 0.3, "D_um": 4.0}),
+                       Sensitivity("sources.front_bearing.preload", "catalogue", 0.8,
+                                   {"T1": 3.0, "T2": 0.2, "T3": 0.1, "T4": 0.1, "T5": 0.1, "D_um": 1.0})],
+        sensitivity_condition="I", inconsistencies=["Table 1 < needed & <b>not bold</b>"],
+        assumptions=[{"paths": ["parts.screw", "sources.x"], "source": "a <source>", "reason": "because"}],
+        provenance={"feedtherm_version": "0.1.0", "description_sha256": "ab" * 32, "mode": "physics"},
+        measurement_source="paper Tables 6–7",
+    )
+    values.update(changes)
+    return Validation(**values)
+
+
+@pytest.fixture(scope="module")
+def rendered() -> str:
+    return render_report(synthetic_validation(), generated=datetime(2024, 5, 1, tzinfo=timezone.utc))
+
+
+def test_every_text_from_the_validation_is_escaped(rendered):
+    assert "<script" not in rendered and "<b>not bold</b>" not in rendered
+    assert "&lt;script&gt;alert(&quot;x&quot;)&lt;/script&gt;" in rendered
+    assert "&lt;b&gt;not bold&lt;/b&gt;" in rendered and "a &lt;source&gt;" in rendered
+
+
+def test_sections_in_order_and_no_external_resources(rendered):
+    ids = re.findall(r'<section id="([^"]+)"', rendered)
+    assert ids == ["deviations", "sensor-curves", "screw-field", "equilibrium", "trends", "dual-single",
+                   "heat-budget", "sensitivity", "inconsistencies", "calibrated", "assumptions"]
+    assert "generated 2024-05-01 00:00 UTC" in rendered
+    assert not re.search(r"(src|href)\s*=\s*[\"']?(https?:|//)", rendered)
+
+
+def test_images_are_valid_pngs(rendered):
+    from PIL import Image
+
+    encoded = DATA_URI.findall(rendered)
+    # 2 sensor-curve figures, the screw field, trends, dual/single, heat budget, sensitivity
+    assert len(encoded) == 7
+    for data in encoded:
+        with Image.open(io.BytesIO(base64.b64decode(data))) as image:
+            assert image.format == "PNG" and image.size[0] >= 1000
+
+
+def test_summary_names_the_largest_deviations(rendered):
+    text = summary_text(synthetic_validation())
+    assert "largest temperature deviation is \u22121.5 K" in text
+    assert "largest elongation deviation is +4.0 µm" in text
+    assert "below the measured temperatures (10 of 10 points are below)" in text
+
+
+def test_equilibrium_not_reached_and_paper_statement(rendered):
+    assert "not reached in the run" in rendered
+    assert "<td>120</td>" in rendered and "<td>100</td>" in rendered
+    assert "cannot change the equilibrium time" in rendered
+
+
+def test_sensitivities_sorted_by_largest_temperature_effect(rendered):
+    first = rendered.index("sources.front_bearing.preload")  # 3.0 K beats 2.0 K
+    assert first < rendered.index("sources.screw_nut.mu", rendered.index('id="sensitivity"'))
+    assert "condition I" in rendered
+
+
+def test_no_calibration_is_said_and_a_calibration_is_tabled(rendered):
+    assert "None: every value is from the paper" in rendered
+    html = render_report(synthetic_validation(calibrated=[
+        {"path": "sources.screw_nut.mu", "value": 0.1234567, "conditions": ["I", "III"]}]))
+    assert '<th scope="row">sources.screw_nut.mu</th><td>0.1235</td><td>I, III</td>' in html
+
+
+def test_without_single_drive_sensitivities_or_budget():
+    html = render_report(synthetic_validation(single_drive={}, sensitivities=[], heat_budget={}))
+    assert "No single-drive runs were made." in html
+    assert "No sensitivities were computed." in html and "No heat budget was computed." in html
+    assert len(DATA_URI.findall(html)) == 4
+
+
+def test_write_report_into_a_directory_or_to_a_file(tmp_path, monkeypatch):
+    validation = synthetic_validation()
+    written = write_report(validation, tmp_path / "out")
+    assert written == tmp_path / "out" / REPORT_HTML and written.read_text(encoding="utf-8").startswith("<!DOCTYPE")
+    monkeypatch.setattr(report_module, "render_report", lambda validation: "<!DOCTYPE html>")  # same path, faster
+    named = write_report(validation, tmp_path / "named.html")
+    assert named == tmp_path / "named.html" and named.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["named.html", "out"]
+    assert [p.name for p in (tmp_path / "out").iterdir()] == [REPORT_HTML]
+
+
+def test_a_failed_report_leaves_the_old_file_and_no_partial(tmp_path, monkeypatch):
+    target = tmp_path / REPORT_HTML
+    target.write_text("old", encoding="utf-8")
+
+    def broken(validation):
+        raise RuntimeError("no ink")
+
+    monkeypatch.setattr(report_module, "render_report", broken)
+    with pytest.raises(RuntimeError):
+        write_report(synthetic_validation(), tmp_path)
+    assert target.read_text(encoding="utf-8") == "old" and list(tmp_path.iterdir()) == [target]
+
+
+def test_an_unwritable_place_is_a_clear_error(tmp_path, monkeypatch):
+    monkeypatch.setattr(report_module, "render_report", lambda validation: "<!DOCTYPE html>")
+    blocker = tmp_path / "file"
+    blocker.write_text("x", encoding="utf-8")
+    with pytest.raises(FeedthermError, match="cannot write the report"):
+        write_report(synthetic_validation(), blocker / "sub")
+
+
+def test_a_long_sensitivity_ranking_is_complete_with_its_tail_folded(monkeypatch):
+    from feedtherm.outputs.report import context
+
+    monkeypatch.setattr(context.figures, "sensitivity_bars", lambda rows, condition: PNG_1PX)
+    rows = [Sensitivity(f"p.{i}", "s", 1.1, {"T1": i / 10, "T2": 0.0, "T3": 0.0, "T4": 0.0, "T5": 0.0, "D_um": 0.0})
+            for i in range(35)]
+    html = context.sensitivity_section(synthetic_validation(sensitivities=rows))
+    shown, folded = html.split("<details>")
+    assert shown.count("<code>p.") == context.TABLE_ROWS and folded.count("<code>p.") == 5
+    assert "<summary>The other 5 parameters</summary>" in folded
+    assert shown.index("<code>p.34</code>") < shown.index("<code>p.33</code>")  # largest first
