@@ -20,15 +20,17 @@ from .analysis.equilibrium import equilibrium_time
 from .boundary import MODES, boundary_conditions_at
 from .boundary.operating import OperatingPoint, operating_point
 from .errors import FeedthermError, ModelError
-from .models.fast.assemble import Network, SolverTamper
-from .models.fast.integrate import FastOptions, Integrator, Segment
-from .models.fast.layout import Layout, build_layout
+from .models.fast.assemble import SolverTamper
+from .models.fast.discretization import FastDiscretization
+from .models.integrator import Integrator, Segment
+from .models.options import FastOptions, ModelOptions
 from .solution import EnergyBalance, Solution
 from .system.duty_cycle import read_duty_cycle_csv
 from .system.load import LoadedSystem
 from .system.schema import DEFAULT_DURATION_S, DutyCycle, FeedSystem
 
-MODELS = ("fast",)
+MODELS = ("fast", "fem")
+MESHES = ("coarse", "medium", "fine")
 AMBIENT_SENSOR = "T6"
 
 
@@ -36,7 +38,8 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
              mode: str = "physics", model: str = "fast", duration: float | None = None,
              single_drive: bool = False, sample_interval: float = 10.0,
              progress: Callable[[float], None] | None = None, motion: str | None = None,
-             options: FastOptions | None = None, tamper: SolverTamper | None = None) -> Solution:
+             mesh: str | None = None, options: ModelOptions | None = None,
+             tamper: SolverTamper | None = None) -> Solution:
     """Simulate a condition or a duty cycle of ``loaded`` and return its Solution.
 
     Parameters
@@ -45,7 +48,7 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
         Exactly one: a condition name, or a duty cycle (a name in the description or a CSV
         path, ``time_s,screw_rpm,nut_rpm,ambient_C``).
     mode : {"physics", "paper"}
-    model : {"fast"}
+    model : {"fast", "fem"}
     duration : float, optional
         Length of the run [s]; default: the condition's duration (10,800 s) or the cycle's.
     single_drive : bool
@@ -55,8 +58,115 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
         Interval of the output series [s].
     motion : {"resolved", "averaged"}, optional
         Position over time (default), or the cycle-averaged contacts and heats.
+    mesh : {"coarse", "medium", "fine"}, optional
+        Mesh density of the FE model.
     """
     started = time.perf_counter()
+    system = loaded.system
+    _check_arguments(loaded, mode, model, duration, sample_interval, motion, mesh)
+    label, profile = _profile(loaded, condition, cycle, duration)
+    opts = _options(options, motion, mesh)
+    segments = _segments(system, profile, mode, single_drive)
+    disc = discretize(system, model, opts, tamper)
+    integrator = Integrator(disc, opts)
+    initial_temperature = segments[0].bc.point.ambient if system.temperatures.initial == "ambient" else system.temperatures.initial
+    T0 = np.full(disc.n_nodes, initial_temperature)
+    t_end = segments[-1].t1
+    times = np.arange(0.0, t_end + 1e-9, sample_interval)
+    if times[-1] < t_end - 1e-9:
+        times = np.append(times, t_end)
+    trace = integrator.run(segments, T0, times, progress)
+    heat_stored = float(disc.capacity @ (trace.final_state - T0))
+    energy = EnergyBalance(trace.heat_in, trace.heat_lost, heat_stored)
+
+    names = disc.probe_names
+    sensor_names = [n for n in names if n != "D"]
+    step_end, step_dt = np.array(trace.step_end), np.array(trace.step_dt)
+    step_values = np.array(trace.step_probe)
+    samples = np.array(trace.sample_probe)
+    window = _cycle_window(system, segments, opts)
+    cycle_values = _trailing_mean(step_end, step_dt, step_values, times, window)
+    final_values = _trailing_mean(step_end, step_dt, step_values, np.array([t_end]), window)[0]
+    last = segments[-1]
+    k_steady = None if last.speed > 0 else trace.final_position
+    steady_state_vector = integrator.steady(len(segments) - 1, last.bc, k_steady)
+    steady_values = disc.probe(steady_state_vector, len(disc.positions) // 2 if k_steady is None else k_steady)
+    initial_values = dict(zip(names, disc.probe(T0, 0)))
+    final = dict(zip(names, final_values))
+    steady = dict(zip(names, steady_values))
+    cycle_mask = times >= times[0] + window - 1e-9
+    t_eq = equilibrium_time(times[cycle_mask], {n: cycle_values[cycle_mask, i] for i, n in enumerate(names) if n != "D"},
+                            initial_values, steady)
+    sensors = {n: samples[:, i] for i, n in enumerate(names) if n != "D"}
+    sensors[AMBIENT_SENSOR] = np.array([_ambient_at(segments, t) for t in times])
+    final[AMBIENT_SENSOR] = _window_ambient(segments, t_end - window, t_end)
+    steady[AMBIENT_SENSOR] = last.bc.point.ambient
+    screw_T = np.array(trace.sample_screw)
+    elong = system.elongation
+    alpha = system.materials[system.parts[system.kinematics.screw].material].expansion
+    parts = {p: np.array([s[p] for s in trace.sample_parts]) for p in system.parts}
+    info = {
+        "condition": label,
+        "model": model,
+        "mode": mode,
+        "single_drive": single_drive,
+        "motion": opts.motion,
+        "time_step_s": trace.time_step,
+        "steps": len(step_end),
+        "unknowns": disc.n_nodes,
+        **{k: v for k, v in disc.stats.items() if k != "unknowns"},
+        "cycle_window_s": window,
+        "screw_rpm": last.bc.point.screw_rpm,
+        "nut_rpm": last.bc.point.nut_rpm,
+        "ambient_C": last.bc.point.ambient - 273.15,
+        "wall_time_s": time.perf_counter() - started,
+        "warnings": sorted({w for seg in segments for w in seg.bc.warnings}),
+        "provenance": provenance(loaded, mode),
+    }
+    return Solution(
+        times=times,
+        sensors=sensors,
+        elongation=samples[:, names.index("D")],
+        screw_x=disc.screw_centres,
+        screw_temperature=screw_T,
+        screw_displacement=displacement(disc.screw_edges, screw_T, alpha, system.temperatures.reference,
+                                        elong.fixed_at, disc.screw_centres),
+        nut_offset=np.array(trace.sample_offset),
+        part_temperatures=parts,
+        cycle_times=times[cycle_mask],
+        cycle_sensors={n: cycle_values[cycle_mask, i] for i, n in enumerate(names) if n != "D"},
+        cycle_elongation=cycle_values[cycle_mask, names.index("D")],
+        final=final,
+        steady=steady,
+        equilibrium_time=t_eq,
+        energy=energy,
+        info=info,
+        snapshots=trace.snapshots if model == "fem" else [],
+        mesh=disc if model == "fem" else None,
+    )
+
+
+def discretize(system: FeedSystem, model: str, options: ModelOptions, tamper: SolverTamper | None = None):
+    """The chosen model's discretisation of ``system`` (the interface the integrator uses)."""
+    if model == "fem":
+        if tamper is not None:
+            raise ModelError("solver tampering is a test hook of the fast model only")
+        from .models.fem.bench import FemDiscretization  # gmsh and scikit-fem load only here
+
+        return FemDiscretization(system, options.mesh)
+    return FastDiscretization(system, options, tamper)
+
+
+def _options(options: ModelOptions | None, motion: str | None, mesh: str | None) -> ModelOptions:
+    opts = options or ModelOptions()
+    if motion is not None:
+        opts = replace(opts, motion=motion)
+    if mesh is not None:
+        opts = replace(opts, mesh=mesh)
+    return opts
+
+
+def _check_arguments(loaded, mode, model, duration, sample_interval, motion, mesh) -> None:
     system = loaded.system
     if mode not in MODES:
         raise FeedthermError(f"--mode: must be one of {', '.join(MODES)}, got {mode!r}")
@@ -68,113 +178,32 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
         raise FeedthermError(f"--duration: must be positive, got {duration!r} s")
     if motion not in (None, "resolved", "averaged"):
         raise FeedthermError(f"--motion: must be resolved or averaged, got {motion!r}")
+    if mesh not in (None, *MESHES):
+        raise FeedthermError(f"--mesh: must be one of {', '.join(MESHES)}, got {mesh!r}")
     if not sample_interval > 0:
         raise FeedthermError(f"--sample-interval: must be positive, got {sample_interval!r} s")
-    label, profile = _profile(loaded, condition, cycle, duration)
-    opts = options or FastOptions()
-    if motion is not None:
-        opts = replace(opts, motion=motion)
     if system.temperatures.temperature_dependent_chtc:
-        raise ModelError("temperatures.temperature_dependent_chtc = true: the fast model takes CHTCs frozen "
+        raise ModelError("temperatures.temperature_dependent_chtc = true: the models take CHTCs frozen "
                          "at convection_delta_t (the paper's assumption 3); set it to false")
-    layout = build_layout(system, axial_cells=opts.axial_cells, radial_rings=opts.radial_rings,
-                          min_positions=opts.steps_per_stroke)
-    segments = _segments(system, profile, mode, single_drive)
-    network = Network(layout, tamper)
-    integrator = Integrator(layout, network, opts)
-    initial_temperature = segments[0].bc.point.ambient if system.temperatures.initial == "ambient" else system.temperatures.initial
-    T0 = np.full(layout.n_nodes, initial_temperature)
-    t_end = segments[-1].t1
-    times = np.arange(0.0, t_end + 1e-9, sample_interval)
-    if times[-1] < t_end - 1e-9:
-        times = np.append(times, t_end)
-    probes = _Probes(layout)
-    trace = integrator.run(segments, T0, times, probes.values, progress)
-    states = np.array(trace.samples)
-    heat_stored = float(layout.capacity @ (trace.final_state - T0))
-    energy = EnergyBalance(trace.heat_in, trace.heat_lost, heat_stored)
-
-    step_end = np.array(trace.step_end)
-    step_dt = np.array(trace.step_dt)
-    step_values = np.array(trace.step_probe)  # (steps, sensors + D)
-    window = _cycle_window(layout, segments, opts)
-    cycle_values = _trailing_mean(step_end, step_dt, step_values, times, window)
-    final_values = _trailing_mean(step_end, step_dt, step_values, np.array([t_end]), window)[0]
-    last = segments[-1]
-    steady_state = integrator.steady(len(segments) - 1, last.bc, None if last.speed > 0 else trace.final_position)
-    steady_values = probes.values(steady_state)
-    names = probes.names
-    initial_values = dict(zip(names, probes.values(T0)))
-    final = dict(zip(names, final_values))
-    steady = dict(zip(names, steady_values))
-    cycle_mask = times >= times[0] + window - 1e-9
-    sensor_names = [n for n in names if n != "D"]
-    t_eq = equilibrium_time(times[cycle_mask], {n: cycle_values[cycle_mask, i] for i, n in enumerate(names) if n != "D"},
-                            initial_values, steady)
-    ambient = np.array([_ambient_at(segments, t) for t in times])
-    screw = layout.screw
-    screw_T = probes.screw_mean(states)
-    elong = system.elongation
-    alpha = system.materials[system.parts[system.kinematics.screw].material].expansion
-    t_ref = system.temperatures.reference
-    sensors = {n: states[:, probes.nodes[n]] for n in sensor_names}
-    sensors[AMBIENT_SENSOR] = ambient
-    final[AMBIENT_SENSOR] = _window_ambient(segments, t_end - window, t_end)
-    steady[AMBIENT_SENSOR] = last.bc.point.ambient
-    cycle_sensors = {n: cycle_values[cycle_mask, i] for i, n in enumerate(names) if n != "D"}
-    return Solution(
-        times=times,
-        sensors=sensors,
-        elongation=probes.elongation(states),
-        screw_x=screw.centres,
-        screw_temperature=screw_T,
-        screw_displacement=displacement(screw.edges, screw_T, alpha, t_ref, elong.fixed_at, screw.centres),
-        nut_offset=np.array(trace.sample_offset),
-        part_temperatures=probes.part_means(states),
-        cycle_times=times[cycle_mask],
-        cycle_sensors=cycle_sensors,
-        cycle_elongation=cycle_values[cycle_mask, names.index("D")],
-        final=final,
-        steady=steady,
-        equilibrium_time=t_eq,
-        energy=energy,
-        info={
-            "condition": label,
-            "model": model,
-            "mode": mode,
-            "single_drive": single_drive,
-            "motion": opts.motion,
-            "time_step_s": trace.time_step,
-            "steps": len(step_end),
-            "unknowns": layout.n_nodes,
-            "screw_cells": len(screw.centres),
-            "screw_rings": screw.n_rings,
-            "cycle_window_s": window,
-            "wall_time_s": time.perf_counter() - started,
-            "warnings": sorted({w for seg in segments for w in seg.bc.warnings}),
-            "provenance": provenance(loaded, mode),
-        },
-    )
 
 
 def steady_state(loaded: LoadedSystem, condition: str, *, mode: str = "physics", single_drive: bool = False,
-                 options: FastOptions | None = None) -> dict[str, float]:
+                 model: str = "fast", options: ModelOptions | None = None) -> dict[str, float]:
     """Cycle-averaged steady state of a condition (no transient): sensors [K] and ``D`` [m].
 
-    Cheap (one sparse solve), for sensitivity studies and calibration.
+    Cheap with the fast model (one sparse solve), for sensitivity studies and calibration.
     """
     system = loaded.system
     if condition not in system.conditions:
         raise FeedthermError(f"no condition {condition!r} in {loaded.origin}")
-    opts = options or FastOptions()
-    layout = build_layout(system, axial_cells=opts.axial_cells, radial_rings=opts.radial_rings,
-                          min_positions=opts.steps_per_stroke)
+    opts = options or ModelOptions()
     label, profile = _profile(loaded, condition, None, None)
     segment = _segments(system, profile, mode, single_drive)[0]
-    integrator = Integrator(layout, Network(layout), opts)
-    probes = _Probes(layout)
-    state = integrator.steady(0, segment.bc, None if segment.speed > 0 else 0)
-    values = dict(zip(probes.names, probes.values(state)))
+    disc = discretize(system, model, opts)
+    integrator = Integrator(disc, opts)
+    k = None if segment.speed > 0 else 0
+    state = integrator.steady(0, segment.bc, k)
+    values = dict(zip(disc.probe_names, disc.probe(state, len(disc.positions) // 2 if k is None else k)))
     values[AMBIENT_SENSOR] = segment.bc.point.ambient
     return values
 
@@ -255,9 +284,9 @@ def _window_ambient(segments: list[Segment], t0: float, t1: float) -> float:
     return total / (t1 - t0) if t1 > t0 else segments[-1].bc.point.ambient
 
 
-def _cycle_window(layout: Layout, segments: list[Segment], opts: FastOptions) -> float:
+def _cycle_window(system: FeedSystem, segments: list[Segment], opts: ModelOptions) -> float:
     """Length [s] of one reciprocation cycle (the longest among moving segments)."""
-    periods = [2.0 * layout.system.kinematics.stroke / s.speed for s in segments if s.speed > 0]
+    periods = [2.0 * system.kinematics.stroke / s.speed for s in segments if s.speed > 0]
     return max(periods) if periods else opts.standstill_step
 
 
@@ -281,54 +310,4 @@ def _trailing_mean(step_end, step_dt, values, at, window) -> np.ndarray:
     return (integral(at) - integral(lo)) / span[:, None]
 
 
-class _Probes:
-    """Sensor temperatures and the elongation read from a state vector."""
-
-    def __init__(self, layout: Layout):
-        system = layout.system
-        self.layout = layout
-        self.nodes: dict[str, int] = {}
-        for name, sensor in system.sensors.items():
-            if name == AMBIENT_SENSOR:
-                continue
-            if sensor.part in layout.lumped:
-                self.nodes[name] = layout.lumped[sensor.part]
-            else:
-                body = layout.bodies[sensor.part]
-                radius = float(np.hypot(sensor.position[1], sensor.position[2]))
-                ring = int(np.clip(np.searchsorted(body.ring_radii, radius) - 1, 0, body.n_rings - 1))
-                self.nodes[name] = int(body.nodes[body.cell_at(sensor.position[0]), ring])
-        self.names = [*self.nodes, "D"]
-        self._node_index = np.array(list(self.nodes.values()), dtype=int)
-        screw = layout.screw
-        self._ring_share = screw.ring_areas() / screw.ring_areas().sum()
-        part = system.parts[system.kinematics.screw]
-        self._alpha = system.materials[part.material].expansion
-        e = system.elongation
-        # D = alpha * sum_i overlap_i (T_i - T_ref) between the fixed and the read point
-        lo, hi = min(e.fixed_at, e.read_at), max(e.fixed_at, e.read_at)
-        sign = 1.0 if e.read_at >= e.fixed_at else -1.0
-        self._d_weights = sign * screw.overlap(lo, hi)
-        self._t_ref = system.temperatures.reference
-
-    def screw_mean(self, states: np.ndarray) -> np.ndarray:
-        screw = self.layout.screw
-        return states[..., screw.nodes] @ self._ring_share
-
-    def elongation(self, states: np.ndarray) -> np.ndarray:
-        return self._alpha * ((self.screw_mean(states) - self._t_ref) @ self._d_weights)
-
-    def values(self, T: np.ndarray) -> np.ndarray:
-        return np.append(T[self._node_index], self.elongation(T))
-
-    def part_means(self, states: np.ndarray) -> dict[str, np.ndarray]:
-        out = {}
-        for part in self.layout.system.parts:
-            nodes = self.layout.part_nodes(part)
-            c = self.layout.capacity[nodes]
-            out[part] = states[:, nodes] @ (c / c.sum())
-        return out
-
-
-__all__ = ["simulate", "steady_state", "provenance", "FastOptions", "MODELS"]
-_ = ModelError  # re-exported for callers that catch model errors from here
+__all__ = ["simulate", "steady_state", "discretize", "provenance", "FastOptions", "ModelOptions", "MODELS", "MESHES"]

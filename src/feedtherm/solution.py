@@ -73,7 +73,9 @@ class Solution:
         When the run reached thermal equilibrium [s] (definition: docs/fast-model.md), None if it did not.
     energy : EnergyBalance
     info : dict
-        Model, mode, condition, time step, unknowns, wall time, provenance.
+        Model, mode, condition, time step, unknowns, wall time, provenance (JSON-able).
+    snapshots, mesh
+        FE runs only: full temperature fields every ``snapshot_interval`` and their mesh.
     """
 
     times: np.ndarray
@@ -92,6 +94,9 @@ class Solution:
     equilibrium_time: float | None
     energy: EnergyBalance
     info: dict = field(default_factory=dict)
+    # FE runs: full fields for ParaView output, (time [s], nodal temperatures [K], group offset [m])
+    snapshots: list = field(default_factory=list)
+    mesh: object = None  # the FE discretisation (points, tets, part ids) the snapshots live on
 
     @property
     def sensor_names(self) -> list[str]:

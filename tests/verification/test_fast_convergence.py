@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from feedtherm.models.fast.integrate import FastOptions
+from feedtherm.models.options import FastOptions
 from feedtherm.simulate import simulate
 from feedtherm.system.load import load_system
 

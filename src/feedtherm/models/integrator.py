@@ -1,39 +1,33 @@
-"""Time integration of the fast model (implicit Euler) with the moving group reciprocating.
+"""Time integration shared by the models (implicit Euler), with the moving group reciprocating.
 
 Each step solves ``(C/dt + G(k) + diag(g_amb(k))) T⁺ = C/dt T + q(k) + g_amb(k) T_amb``
 with ``k`` the moving group's grid position at the end of the step.  While the table moves,
-a step advances the moving group by a whole number of cells, so every position's matrix is
-factorised once and reused.  The energy account is kept apart from the solver's matrices:
-heat in from the boundary conditions, heat lost from the surface coefficients and areas,
-heat stored from the capacities.
+a step advances the group by a whole number of grid positions, so each position's matrix can
+be factorised once and reused (direct solver); large FE meshes use preconditioned conjugate
+gradients instead.  The energy account is kept apart from the solver's matrices: heat in from
+the boundary conditions, heat lost from the surface coefficients and areas
+(``ambient_links(..., for_solver=False)``), heat stored from the capacities.
+
+The model is any object with the interface documented in
+:mod:`feedtherm.models.fast.discretization`.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Callable, Literal
+from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse.linalg import splu
+from scipy.sparse.linalg import cg, splu
 
-from ...boundary import BoundaryConditions
-from .assemble import Network
-from .layout import Layout
+from ..boundary import BoundaryConditions
+from .options import ModelOptions
 
-
-@dataclass(frozen=True)
-class FastOptions:
-    """Discretisation of the fast model (defaults meet the issue's resolution)."""
-
-    axial_cells: int = 100  # at least this many cells along the screw
-    radial_rings: int = 2  # rings per screw cell
-    steps_per_stroke: int = 20  # at least this many time steps per stroke
-    standstill_step: float = 10.0  # [s] time step while the table stands still
-    max_step: float = 30.0  # [s] upper bound of any step
-    motion: Literal["resolved", "averaged"] = "resolved"  # position over time, or cycle-averaged
-    averaged_step: float = 10.0  # [s] time step of the cycle-averaged model
+#: Above this many unknowns the "auto" solver uses conjugate gradients, not cached LU.
+DIRECT_SOLVER_LIMIT = 60_000
+CG_RTOL = 1e-10
 
 
 @dataclass(frozen=True)
@@ -51,13 +45,16 @@ class Segment:
 
 @dataclass
 class Trace:
-    """What the integrator hands back: step records and samples at the requested times."""
+    """What the integrator hands back: step records, reduced samples and a few full snapshots."""
 
     step_end: list = field(default_factory=list)  # time at the end of each step [s]
     step_dt: list = field(default_factory=list)
     step_probe: list = field(default_factory=list)  # probe values at the end of each step
-    samples: list = field(default_factory=list)  # full state vectors at sample times
-    sample_offset: list = field(default_factory=list)  # moving-group offset at sample times [m]
+    sample_probe: list = field(default_factory=list)  # probe values at the sample times
+    sample_screw: list = field(default_factory=list)  # screw profile at the sample times
+    sample_parts: list = field(default_factory=list)  # part means at the sample times
+    sample_offset: list = field(default_factory=list)  # moving-group offset at the sample times [m]
+    snapshots: list = field(default_factory=list)  # (time, state, offset) every snapshot_interval
     heat_in: float = 0.0
     heat_lost: float = 0.0
     time_step: float = 0.0  # the (first moving segment's) step [s]
@@ -66,7 +63,7 @@ class Trace:
 
 
 class PositionPath:
-    """Reciprocation over grid positions 0..K along a triangle wave (in cells)."""
+    """Reciprocation over grid positions 0..K along a triangle wave (in grid steps)."""
 
     def __init__(self, n_positions: int):
         self.K = n_positions - 1
@@ -84,23 +81,18 @@ class PositionPath:
 
 
 class Integrator:
-    def __init__(self, layout: Layout, network: Network, options: FastOptions):
-        self.layout = layout
-        self.network = network
+    def __init__(self, model, options: ModelOptions):
+        self.model = model
         self.options = options
-        self._sliding = {}
         self._lu = {}
         self._loads = {}
+        solver = options.solver
+        self.direct = solver == "direct" or (solver == "auto" and model.n_nodes <= DIRECT_SOLVER_LIMIT)
 
     # -------------------------------------------------------------- cached pieces
-    def sliding(self, k: int) -> sp.csr_matrix:
-        if k not in self._sliding:
-            self._sliding[k] = self.network.sliding(k)
-        return self._sliding[k]
-
     def weights(self) -> np.ndarray:
         """Time share of each grid position under steady reciprocation (ends count half)."""
-        K = len(self.layout.positions) - 1
+        K = len(self.model.positions) - 1
         w = np.ones(K + 1)
         w[0] = w[-1] = 0.5
         return w / w.sum()
@@ -119,38 +111,56 @@ class Integrator:
                 vectors = [sum(wj * p[i] for wj, p in zip(w, parts)) for i in (1, 2, 3)]
                 self._loads[key] = (G.tocsr(), *vectors)
             else:
-                G = self.network.fixed + self.sliding(k)
-                g_amb = self.network.ambient_links(bc, k)
-                q = self.network.heat_vector(bc, k)
-                loss = self.network.ambient_links(bc, k, for_solver=False)
-                self._loads[key] = (G, g_amb, q, loss)
+                m = self.model
+                self._loads[key] = (m.conductance(k), m.ambient_links(bc, k), m.heat_vector(bc, k),
+                                    m.ambient_links(bc, k, for_solver=False))
         return self._loads[key]
 
-    def factor(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float):
-        key = (seg_id, k, round(dt, 12))
-        if key not in self._lu:
-            G, g_amb, _, _ = self.loads(seg_id, bc, k)
-            A = G + sp.diags(self.layout.capacity / dt + g_amb)
-            self._lu[key] = splu(A.tocsc())
-        return self._lu[key]
+    def solve(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float, rhs: np.ndarray,
+              guess: np.ndarray) -> np.ndarray:
+        G, g_amb, _, _ = self.loads(seg_id, bc, k)
+        if self.direct:
+            key = (seg_id, k, round(dt, 12))
+            if key not in self._lu:
+                A = G + sp.diags(self.model.capacity / dt + g_amb)
+                self._lu[key] = splu(A.tocsc())
+            return self._lu[key].solve(rhs)
+        A = (G + sp.diags(self.model.capacity / dt + g_amb)).tocsr()
+        inverse_diagonal = 1.0 / A.diagonal()
+        preconditioner = sp.linalg.LinearOperator(A.shape, matvec=lambda v: inverse_diagonal * v)
+        solution, info = cg(A, rhs, x0=guess, rtol=CG_RTOL, maxiter=5000, M=preconditioner)
+        if info != 0:
+            raise RuntimeError(f"conjugate gradients did not converge ({info})")
+        return solution
 
     def steady(self, seg_id: int, bc: BoundaryConditions, k: int | None) -> np.ndarray:
         G, g_amb, q, _ = self.loads(seg_id, bc, k)
         A = (G + sp.diags(g_amb)).tocsc()
-        return splu(A).solve(q + g_amb * bc.point.ambient)
+        rhs = q + g_amb * bc.point.ambient
+        if self.direct:
+            return splu(A).solve(rhs)
+        inverse_diagonal = 1.0 / A.diagonal()
+        preconditioner = sp.linalg.LinearOperator(A.shape, matvec=lambda v: inverse_diagonal * v)
+        solution, info = cg(A.tocsr(), rhs, x0=np.full(len(rhs), bc.point.ambient), rtol=CG_RTOL, maxiter=50000,
+                            M=preconditioner)
+        if info != 0:
+            raise RuntimeError(f"conjugate gradients did not converge ({info})")
+        return solution
 
     # -------------------------------------------------------------- time loop
     def run(self, segments: list[Segment], initial: np.ndarray, sample_times: np.ndarray,
-            probe: Callable[[np.ndarray], np.ndarray], progress: Callable[[float], None] | None = None) -> Trace:
+            progress: Callable[[float], None] | None = None) -> Trace:
+        m = self.model
         trace = Trace()
         T = initial.copy()
-        path = PositionPath(len(self.layout.positions))
+        path = PositionPath(len(m.positions))
         t = segments[0].t0
         t_end = segments[-1].t1
         samples = iter(sample_times)
         next_sample = next(samples, None)
+        next_snapshot = 0.0
         averaged = self.options.motion == "averaged"
-        C = self.layout.capacity
+        C = m.capacity
         last_report = -1.0
         for seg_id, seg in enumerate(segments):
             moving = seg.speed > 0.0
@@ -162,21 +172,25 @@ class Integrator:
                 if moving:
                     path.advance(cells_per_step * dt / dt_nominal)
                 k = None if (averaged and moving) else path.k
-                lu = self.factor(seg_id, seg.bc, k, dt)
                 _, g_amb, q, loss = self.loads(seg_id, seg.bc, k)
-                T_new = lu.solve(C / dt * T + q + g_amb * seg.bc.point.ambient)
+                T_new = self.solve(seg_id, seg.bc, k, dt, C / dt * T + q + g_amb * seg.bc.point.ambient, T)
                 t_new = t + dt
                 # energy account: heat in from the boundary conditions, losses from the surfaces
                 trace.heat_in += seg.bc.total_heat * dt
                 trace.heat_lost += float(loss @ (T_new - seg.bc.point.ambient)) * dt
+                # the moving sensors sit where the group is; averaged motion smears it over the stroke
+                k_probe = len(m.positions) // 2 if (averaged and moving) else path.k
                 while next_sample is not None and next_sample <= t_new + 1e-9:
                     w = (next_sample - t) / dt
-                    trace.samples.append((1 - w) * T + w * T_new)
-                    trace.sample_offset.append(self.layout.positions[path.k])
+                    state = (1 - w) * T + w * T_new
+                    self._record_sample(trace, state, k_probe)
+                    if next_sample >= next_snapshot - 1e-9 or next_sample >= t_end - 1e-9:
+                        trace.snapshots.append((next_sample, state, m.positions[k_probe]))
+                        next_snapshot = next_sample + self.options.snapshot_interval
                     next_sample = next(samples, None)
                 trace.step_end.append(t_new)
                 trace.step_dt.append(dt)
-                trace.step_probe.append(probe(T_new))
+                trace.step_probe.append(m.probe(T_new, k_probe))
                 T, t = T_new, t_new
                 if progress is not None and t - last_report >= 0.01 * (t_end - segments[0].t0):
                     progress((t - segments[0].t0) / (t_end - segments[0].t0))
@@ -185,16 +199,23 @@ class Integrator:
         trace.final_position = path.k
         return trace
 
+    def _record_sample(self, trace: Trace, state: np.ndarray, k: int) -> None:
+        m = self.model
+        trace.sample_probe.append(m.probe(state, k))
+        trace.sample_screw.append(m.screw_mean(state))
+        trace.sample_parts.append({p: float(v) for p, v in m.part_means(state).items()})
+        trace.sample_offset.append(m.positions[k])
+
     def _step(self, seg: Segment) -> tuple[float, float]:
-        """Nominal time step [s] and cells advanced per step in ``seg``."""
+        """Nominal time step [s] and grid positions advanced per step in ``seg``."""
         opts = self.options
         if opts.motion == "averaged" and seg.speed > 0.0:
             return min(opts.averaged_step, opts.max_step), 0.0
         if seg.speed == 0.0:
             return min(opts.standstill_step, opts.max_step), 0.0
-        K = len(self.layout.positions) - 1
+        K = len(self.model.positions) - 1
         cells = max(1, K // opts.steps_per_stroke)
-        dt = cells * self.layout.dx / seg.speed
+        dt = cells * self.model.dx / seg.speed
         if dt > opts.max_step:  # slow table: smaller steps, fractional advance per step
             return opts.max_step, cells * opts.max_step / dt
         return dt, float(cells)

@@ -1,0 +1,29 @@
+"""Options of the models and of their shared time integration."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+
+@dataclass(frozen=True)
+class ModelOptions:
+    """Discretisation and time stepping (defaults meet the issues' resolution requirements)."""
+
+    # fast model
+    axial_cells: int = 100  # at least this many cells along the screw
+    radial_rings: int = 2  # rings per screw cell
+    # FE model
+    mesh: Literal["coarse", "medium", "fine"] = "coarse"
+    # time stepping (both models)
+    steps_per_stroke: int = 20  # at least this many time steps per stroke
+    standstill_step: float = 10.0  # [s] time step while the table stands still
+    max_step: float = 30.0  # [s] upper bound of any step
+    motion: Literal["resolved", "averaged"] = "resolved"  # position over time, or cycle-averaged
+    averaged_step: float = 10.0  # [s] time step of the cycle-averaged motion
+    solver: Literal["auto", "direct", "cg"] = "auto"  # cached LU per position, or conjugate gradients
+    snapshot_interval: float = 600.0  # [s] full-field snapshots kept for field output (FE)
+
+
+#: The fast model's options (kept under its historical name).
+FastOptions = ModelOptions
