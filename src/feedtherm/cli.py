@@ -69,7 +69,9 @@ def cmd_check(args: argparse.Namespace) -> int:
 
 
 #: Models `feedtherm run --model` offers.
-RUN_MODELS = ("fast",)
+RUN_MODELS = ("fast", "fem")
+#: FE mesh densities `--mesh` offers.
+MESHES = ("coarse", "medium", "fine")
 #: A run shows a progress bar only once it has lasted this long [s]: short runs stay quiet.
 PROGRESS_DELAY_S = 1.0
 
@@ -87,7 +89,8 @@ def cmd_run(args: argparse.Namespace) -> int:
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
         solution = simulate(loaded, condition=args.condition, cycle=args.cycle, mode=args.mode, model=args.model,
                             duration=args.duration, single_drive=args.single_drive,
-                            sample_interval=args.sample_interval, progress=progress, motion=args.motion)
+                            sample_interval=args.sample_interval, progress=progress, motion=args.motion,
+                            mesh=args.mesh)
     write_run(solution, out_dir, sample_interval=args.sample_interval)
     print(summary_line(solution, out_dir))
     return 0
@@ -274,7 +277,9 @@ def build_parser() -> argparse.ArgumentParser:
     operation.add_argument("--condition", help="condition name, e.g. I")
     operation.add_argument("--cycle", help="a duty cycle declared in the description, or a CSV file "
                                            "(time_s,screw_rpm,nut_rpm,ambient_C)")
-    run.add_argument("--model", choices=RUN_MODELS, default="fast")
+    run.add_argument("--model", choices=RUN_MODELS, default="fast",
+                     help="fast: thermal network (seconds); fem: 3D finite elements (minutes)")
+    run.add_argument("--mesh", choices=MESHES, default="coarse", help="FE mesh density (with --model fem)")
     run.add_argument("--mode", choices=["physics", "paper"], default="physics")
     run.add_argument("--duration", type=_positive_seconds, metavar="S",
                      help="length of the run [s] (default: the condition's or the cycle's)")
@@ -325,7 +330,8 @@ def build_parser() -> argparse.ArgumentParser:
                            help="parameters declared under [calibration.parameters]")
     calibrate.add_argument("--cross-validate", action="store_true",
                            help="also leave each measured condition out in turn and predict it")
-    calibrate.add_argument("--model", choices=RUN_MODELS, default="fast")
+    calibrate.add_argument("--model", choices=("fast",), default="fast",
+                           help="calibration runs the fast model (hundreds of runs)")
     calibrate.add_argument("--mode", choices=["physics", "paper"], default="physics")
     calibrate.add_argument("--out", metavar="DIR", help="output directory (default: out/<system>_calibration_<mode>)")
     calibrate.set_defaults(func=cmd_calibrate)

@@ -45,7 +45,8 @@ def assert_one_line_error_and_nothing_written(result, tmp_path, *fragments, inpu
         (["--condition", "IX"], ["no condition 'IX'", "I, II, III, IV, V"]),
         (["--cycle", "I_then_standstil"], ["'I_then_standstil'", "I_then_standstill"]),
         (["--cycle", "missing.csv"], ["'missing.csv'", "nor an existing CSV file"]),
-        (["--condition", "I", "--model", "fem"], ["--model", "invalid choice: 'fem'"]),
+        (["--condition", "I", "--model", "ansys"], ["--model", "invalid choice: 'ansys'"]),
+        (["--condition", "I", "--model", "fem", "--mesh", "huge"], ["--mesh", "invalid choice: 'huge'"]),
         (["ballscrew_example", "--condition", "v10", "--mode", "paper"], ["--mode paper", "no [paper] table"]),
         (["no_such_bench.toml", "--condition", "I"], ["no_such_bench.toml: no such file"]),
     ],
@@ -116,7 +117,7 @@ def test_valid_arguments_reach_simulate_and_the_files_appear(tmp_path, monkeypat
     assert origin == "bundled:paper"
     assert {k: v for k, v in kwargs.items() if k != "progress"} == {
         "condition": "I", "cycle": None, "mode": "physics", "model": "fast", "duration": 60.0,
-        "single_drive": False, "sample_interval": 5.0, "motion": "resolved"}
+        "single_drive": False, "sample_interval": 5.0, "motion": "resolved", "mesh": "coarse"}
     out = capsys.readouterr().out
     assert out == "out/paper_I_physics: T1 21.00 °C, D 1.00 µm, energy balance error 0 %\n"
     assert len(list((tmp_path / "out" / "paper_I_physics").iterdir())) == 7
