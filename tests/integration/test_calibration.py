@@ -104,3 +104,14 @@ def test_bad_calibration_input_is_one_line(tmp_path, args, fragment):
 def test_unknown_parameter_raises_before_any_run(paper):
     with pytest.raises(FeedthermError, match="unknown parameter"):
         resolve_parameters(paper, ["nope"])
+
+
+def test_a_parameter_pushed_to_its_bound_is_flagged(paper, tmp_path):
+    # Measurements far hotter than any preload within [50, 3000] N can make: the fit ends at
+    # the upper bound, and says so.
+    lines = ["condition,quantity,unit,measured"] + [f"I,{q},C,60.0" for q in SENSORS]
+    path = tmp_path / "hot.csv"
+    path.write_text("\n".join(lines) + "\n")
+    result = calibrate(paper, read_measurements(str(path), sensors=SENSORS), ["I"], ["screw_nut_preload"])
+    assert result.at_bound == ["upper"]
+    assert result.fitted[0] == pytest.approx(3000.0)

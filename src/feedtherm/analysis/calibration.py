@@ -75,6 +75,7 @@ class CalibrationResult:
     standard_errors: np.ndarray
     correlation: np.ndarray
     identifiable: list[str]  # "" when identifiable, else the reason
+    at_bound: list[str]  # "lower", "upper" or "" per parameter: the data push past the declared range
     fit_conditions: list[str]
     residuals: list[Prediction]  # at the fitted conditions, after the fit
     held_out: list[Prediction]
@@ -202,6 +203,7 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
     result = least_squares(residuals, u0, bounds=(0.0, 1.0), diff_step=1e-3, x_scale=1.0, xtol=1e-6, ftol=1e-8)
     x = lower + result.x * span
     se, corr, identifiable = _uncertainty(result.jac / span[None, :], result.fun, x, len(rows))
+    at_bound = ["lower" if u <= 1e-6 else "upper" if u >= 1 - 1e-6 else "" for u in result.x]
     finals = model.finals(x, measured)
     held_out = [c for c in measured if c not in fit and c in loaded.system.conditions]
     calibrated = apply(loaded, parameters, x)
@@ -209,6 +211,7 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
         progress(1.0)
     return CalibrationResult(
         parameters=parameters, fitted=x, standard_errors=se, correlation=corr, identifiable=identifiable,
+        at_bound=at_bound,
         fit_conditions=list(fit), residuals=_predictions(finals, data, fit), held_out=_predictions(finals, data, held_out),
         cost=float(result.cost), model_runs=model.runs, wall_time_s=time.perf_counter() - started,
         measurement_source=data.source, calibrated=calibrated, status=result.message,

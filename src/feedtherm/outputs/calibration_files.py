@@ -88,8 +88,9 @@ def calibration_summary(result: CalibrationResult) -> dict:
         "parameters": {
             p.name: {"kind": p.kind, "fitted": x, "standard_error": se, "bounds": [p.lower, p.upper],
                      "original": p.originals[0] if p.kind == "value" else 1.0, "paths": p.paths,
-                     "identifiable": not why, "note": why}
-            for p, x, se, why in zip(result.parameters, result.fitted, result.standard_errors, result.identifiable)
+                     "identifiable": not why, "note": why, "at_bound": bound or None}
+            for p, x, se, why, bound in zip(result.parameters, result.fitted, result.standard_errors,
+                                            result.identifiable, result.at_bound)
         },
         "correlation": {"parameters": names, "matrix": np.round(result.correlation, 4).tolist()},
         "residuals": [{"condition": r.condition, "quantity": r.quantity, "unit": r.unit, "simulated": r.predicted,
@@ -131,6 +132,7 @@ def cross_summary(cross: list[tuple[str, CalibrationResult]]) -> dict:
         "largest_temperature_deviation_C": None if worst_t is None else {"condition": worst_t.condition, "quantity": worst_t.quantity, "deviation": worst_t.deviation},
         "largest_elongation_deviation_um": None if worst_d is None else {"condition": worst_d.condition, "deviation": worst_d.deviation},
         "fits": {left: {p.name: x for p, x in zip(res.parameters, res.fitted)} for left, res in cross},
+        "at_bound": {left: {p.name: b for p, b in zip(res.parameters, res.at_bound) if b} for left, res in cross},
     }
 
 
@@ -140,9 +142,11 @@ def print_calibration(result: CalibrationResult, out_dir: Path, cross=None, cons
                   title_justify="left")
     for column in ("parameter", "fitted", "std. error", "original", "bounds", "note"):
         table.add_column(column)
-    for p, x, se, why in zip(result.parameters, result.fitted, result.standard_errors, result.identifiable):
+    for p, x, se, why, bound in zip(result.parameters, result.fitted, result.standard_errors, result.identifiable,
+                                    result.at_bound):
         original = p.originals[0] if p.kind == "value" else 1.0
-        table.add_row(p.name, f"{x:.4g}", f"{se:.2g}", f"{original:.4g}", f"[{p.lower:g}, {p.upper:g}]", why or "")
+        note = "; ".join(n for n in (why, f"at the {bound} bound: the data push past the declared range" if bound else "") if n)
+        table.add_row(p.name, f"{x:.4g}", f"{se:.2g}", f"{original:.4g}", f"[{p.lower:g}, {p.upper:g}]", note)
     console.print(table)
     for title, rows in (("fit residuals", result.residuals), ("held-out predictions", result.held_out)):
         if rows:
