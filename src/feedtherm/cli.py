@@ -222,7 +222,8 @@ def cmd_validate(args: argparse.Namespace) -> int:
 
     measurements_of(loaded, args.measured)  # bad measurement files fail before any run
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
-        validation = validate(loaded, mode=args.mode, model=args.model, measured=args.measured, progress=progress)
+        validation = validate(loaded, mode=args.mode, model=args.model, mesh=args.mesh, measured=args.measured,
+                              progress=progress)
     write_validation(validation, out_dir)
     print_validation(validation, out_dir)
     return 0
@@ -254,25 +255,43 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _system_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("system", nargs="?", default="paper",
+                        help="a TOML description or a bundled name (default: paper)")
+
+
+def _mode_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--mode", choices=["physics", "paper"], default="physics",
+                        help="physics: every value from the correlations; paper: Tables 1-2 scaled (default physics)")
+
+
+def _measured_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--measured", metavar="FILE",
+                        help="measurements (condition,quantity,unit,measured); default: the description's own")
+
+
+def _out_argument(parser: argparse.ArgumentParser, default: str) -> None:
+    parser.add_argument("--out", metavar="DIR", help=f"output directory (default: {default})")
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="feedtherm", description="Thermal model of machine-tool feed drives.")
     parser.add_argument("--version", action="version", version=f"feedtherm {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
-    system_help = "a TOML description or a bundled name (default: paper)"
     heat = sub.add_parser("heat", help="heat per source and CHTC per surface at a condition")
-    heat.add_argument("system", nargs="?", default="paper", help=system_help)
+    _system_argument(heat)
     heat.add_argument("--condition", required=True, help="condition name, e.g. I")
-    heat.add_argument("--mode", choices=["physics", "paper"], default="physics")
+    _mode_argument(heat)
     heat.add_argument("--json", action="store_true", help="print one JSON object")
     heat.set_defaults(func=cmd_heat)
 
     check = sub.add_parser("check", help="validate a description and list its inconsistencies")
-    check.add_argument("system", nargs="?", default="paper", help=system_help)
+    _system_argument(check)
     check.set_defaults(func=cmd_check)
 
     run = sub.add_parser("run", help="simulate a condition or a duty cycle and write CSV, JSON and PNG files")
-    run.add_argument("system", nargs="?", default="paper", help=system_help)
+    _system_argument(run)
     operation = run.add_mutually_exclusive_group(required=True)
     operation.add_argument("--condition", help="condition name, e.g. I")
     operation.add_argument("--cycle", help="a duty cycle declared in the description, or a CSV file "
@@ -280,7 +299,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--model", choices=RUN_MODELS, default="fast",
                      help="fast: thermal network (seconds); fem: 3D finite elements (minutes)")
     run.add_argument("--mesh", choices=MESHES, default="coarse", help="FE mesh density (with --model fem)")
-    run.add_argument("--mode", choices=["physics", "paper"], default="physics")
+    _mode_argument(run)
     run.add_argument("--duration", type=_positive_seconds, metavar="S",
                      help="length of the run [s] (default: the condition's or the cycle's)")
     run.add_argument("--motion", choices=["resolved", "averaged"], default="resolved",
@@ -288,7 +307,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--single-drive", action="store_true", help="operate a dual drive as a single (screw-only) drive")
     run.add_argument("--sample-interval", type=_positive_seconds, default=10.0, metavar="S",
                      help="spacing of the written samples [s] (default: 10)")
-    run.add_argument("--out", metavar="DIR", help="output directory (default: out/<system>_<condition>_<mode>)")
+    _out_argument(run, "out/<system>_<condition>_<mode>")
     run.set_defaults(func=cmd_run)
 
     sweep = sub.add_parser("sweep", help="simulate the full grid of screw speeds × nut speeds × ambients; "
@@ -298,33 +317,32 @@ def build_parser() -> argparse.ArgumentParser:
     import re
 
     sweep._negative_number_matcher = re.compile(r"^-\.?\d")
-    sweep.add_argument("system", nargs="?", default="paper", help=system_help)
+    _system_argument(sweep)
     list_help = "comma-separated values and/or ranges start:stop:step (stop included when on the grid)"
     sweep.add_argument("--screw-rpm", required=True, metavar="LIST", help=f"screw speeds [rpm], signed: {list_help}")
     sweep.add_argument("--nut-rpm", required=True, metavar="LIST",
                        help="nut speeds [rpm], signed (0 for a single drive), same syntax")
     sweep.add_argument("--ambient", required=True, metavar="LIST", help="ambient temperatures [°C], same syntax")
-    sweep.add_argument("--mode", choices=["physics", "paper"], default="physics")
+    _mode_argument(sweep)
     sweep.add_argument("--duration", type=_positive_seconds, metavar="S",
                        help="length of every run [s] (default: a condition's, 10800)")
     sweep.add_argument("--motion", choices=["resolved", "averaged"], default="averaged",
                        help="cycle-averaged contacts and heats (default, fast), or the nut's position over time")
-    sweep.add_argument("--out", metavar="DIR", help="output directory (default: out/<system>_sweep_<mode>)")
+    _out_argument(sweep, "out/<system>_sweep_<mode>")
     sweep.set_defaults(func=cmd_sweep)
 
     validate = sub.add_parser("validate", help="run every measured condition and compare with the measurements")
-    validate.add_argument("system", nargs="?", default="paper", help=system_help)
+    _system_argument(validate)
     validate.add_argument("--model", choices=RUN_MODELS, default="fast")
-    validate.add_argument("--mode", choices=["physics", "paper"], default="physics")
-    validate.add_argument("--measured", metavar="FILE",
-                          help="measurements (condition,quantity,unit,measured); default: the description's own")
-    validate.add_argument("--out", metavar="DIR", help="output directory (default: out/<system>_validation_<mode>)")
+    validate.add_argument("--mesh", choices=MESHES, default="coarse", help="FE mesh density (with --model fem)")
+    _mode_argument(validate)
+    _measured_argument(validate)
+    _out_argument(validate, "out/<system>_validation_<mode>")
     validate.set_defaults(func=cmd_validate)
 
     calibrate = sub.add_parser("calibrate", help="fit declared parameters to measured conditions; predict the others")
-    calibrate.add_argument("system", nargs="?", default="paper", help=system_help)
-    calibrate.add_argument("--measured", metavar="FILE",
-                           help="measurements (condition,quantity,unit,measured); default: the description's own")
+    _system_argument(calibrate)
+    _measured_argument(calibrate)
     calibrate.add_argument("--fit", required=True, metavar="C,C,...", help="conditions to fit, e.g. I,II,IV")
     calibrate.add_argument("--params", required=True, metavar="NAME,...",
                            help="parameters declared under [calibration.parameters]")
@@ -332,8 +350,8 @@ def build_parser() -> argparse.ArgumentParser:
                            help="also leave each measured condition out in turn and predict it")
     calibrate.add_argument("--model", choices=("fast",), default="fast",
                            help="calibration runs the fast model (hundreds of runs)")
-    calibrate.add_argument("--mode", choices=["physics", "paper"], default="physics")
-    calibrate.add_argument("--out", metavar="DIR", help="output directory (default: out/<system>_calibration_<mode>)")
+    _mode_argument(calibrate)
+    _out_argument(calibrate, "out/<system>_calibration_<mode>")
     calibrate.set_defaults(func=cmd_calibrate)
     return parser
 

@@ -35,8 +35,8 @@ def measurements_of(loaded: LoadedSystem, measured: str | None) -> MeasurementSe
     return data
 
 
-def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast", measured: str | None = None,
-             progress: Callable[[float], None] | None = None) -> Validation:
+def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast", mesh: str | None = None,
+             measured: str | None = None, progress: Callable[[float], None] | None = None) -> Validation:
     """Run every measured condition of ``loaded`` and compare it with its measurements."""
     started = time.perf_counter()
     system = loaded.system
@@ -54,11 +54,11 @@ def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast"
 
     solutions, single, budget, comparisons = {}, {}, {}, []
     for condition in conditions:
-        run = simulate(loaded, condition=condition, mode=mode, model=model)
+        run = simulate(loaded, condition=condition, mode=mode, model=model, mesh=mesh)
         solutions[condition] = run
         tick()
         if dual:
-            single[condition] = simulate(loaded, condition=condition, mode=mode, model=model, single_drive=True)
+            single[condition] = simulate(loaded, condition=condition, mode=mode, model=model, mesh=mesh, single_drive=True)
             tick()
         budget[condition] = {name: h.power for name, h in boundary_conditions(system, condition, mode).heats.items()}
         final = run.summary_values("final")
