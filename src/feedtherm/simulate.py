@@ -114,7 +114,8 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
         "time_step_s": trace.time_step,
         "steps": len(step_end),
         "unknowns": disc.n_nodes,
-        **{k: v for k, v in disc.stats.items() if k != "unknowns"},
+        **({"mesh": opts.mesh, "mesh_statistics": disc.stats} if model == "fem"
+           else {k: v for k, v in disc.stats.items() if k != "unknowns"}),
         "cycle_window_s": window,
         "screw_rpm": last.bc.point.screw_rpm,
         "nut_rpm": last.bc.point.nut_rpm,

@@ -67,7 +67,49 @@ def write_run(solution: Solution, out_dir: Path, *, sample_interval: float) -> l
     out_dir = Path(out_dir)
     with staged_directory(out_dir) as stage:
         names = write_tables(solution, stage, sample_interval=sample_interval) + draw_run_plots(solution, stage)
+        names += write_field_outputs(solution, stage)
+    if solution.snapshots:
+        _remove_stale_fields(out_dir, set(names))
     return [out_dir / name for name in names]
+
+
+def field_series(solution: Solution):
+    """The FE run's snapshots as a :class:`~feedtherm.outputs.fields.FieldSeries` (None for the fast model)."""
+    from .fields import FieldSeries
+
+    if not solution.snapshots or solution.mesh is None:
+        return None
+    mesh = solution.mesh
+    times = np.array([t for t, _, _ in solution.snapshots])
+    rows = [int(np.argmin(np.abs(solution.times - t))) for t in times]
+    info = solution.info
+    title = f"condition {info.get('condition')}, {info.get('mode')} mode, fem model ({info.get('mesh', '')} mesh)"
+    return FieldSeries(
+        points=np.asarray(mesh.points).T, tets=np.asarray(mesh.tets).T, part_id=np.asarray(mesh.part_id),
+        part_names=mesh.part_names, moving_part=mesh.moving_part, snapshot_times=times,
+        temperatures=np.array([state for _, state, _ in solution.snapshots]),
+        offsets=np.array([offset for _, _, offset in solution.snapshots]),
+        screw_x=solution.screw_x, screw_displacement=solution.screw_displacement[rows], title=title,
+    )
+
+
+def write_field_outputs(solution: Solution, directory: Path) -> list[str]:
+    """fields.pvd, its .vtu snapshots and the two field images of an FE run (nothing otherwise)."""
+    series = field_series(solution)
+    if series is None:
+        return []
+    from .field_images import write_field_images
+    from .fields import write_pvd
+
+    paths = write_pvd(series, directory) + write_field_images(series, directory)
+    return [Path(p).name for p in paths]
+
+
+def _remove_stale_fields(out_dir: Path, keep: set[str]) -> None:
+    """Snapshots of an earlier, longer run in the same directory would join ParaView's file series."""
+    for path in Path(out_dir).glob("fields_*.vtu"):
+        if path.name not in keep:
+            path.unlink()
 
 
 def write_tables(solution: Solution, directory: Path, *, sample_interval: float) -> list[str]:
@@ -169,6 +211,7 @@ def run_summary(solution: Solution) -> dict:
         "unknowns": info.get("unknowns"),
         "elongation_change_um": {"final": final["D_um"] - start_um, "steady": steady["D_um"] - start_um},
         "warnings": info.get("warnings", []),  # e.g. correlations used outside their range
+        "mesh": info.get("mesh_statistics"),  # FE runs: vertices, tetrahedra, per part, element size
         "provenance": info.get("provenance", {}),
     })
 
