@@ -15,5 +15,14 @@ Modules, one job each:
 - :mod:`.energy` -- the energy balance from separate integrals, not from the solver's matrices.
 - :mod:`.fields` -- reading a field: section means along an axis, values at points.
 
-See ``docs/fem-core.md``.
+The bench model (a whole feed system) on top of the core:
+
+- :mod:`.geometry` -- each part meshed with gmsh at a density, cached on disk.
+- :mod:`.facets` -- boundary triangles, surface quadrature, closest points on triangles.
+- :mod:`.faces` -- the facets of a declared surface (box and cylinder face selectors).
+- :mod:`.coupling` -- the non-conforming interface conductance of a joint (fixed or sliding).
+- :mod:`.readout` -- sensors at points, the screw's section means, part means.
+- :mod:`.bench` -- :class:`~.bench.FemDiscretization`, the interface the shared integrator uses.
+
+See ``docs/fem-core.md`` and ``docs/fem-model.md``.
 """

@@ -1,0 +1,404 @@
+"""The finite element discretisation of a whole feed system, for the shared time integrator.
+
+:class:`FemDiscretization` meshes every part of a system with gmsh (:mod:`.geometry`),
+couples the parts' separate meshes at their joints with non-conforming interface
+conductances (:mod:`.coupling`), and offers the same duck-typed interface as the fast
+model's network, position by position of the moving group:
+
+``n_nodes``, ``capacity`` (lumped, [J/K]), ``positions``/``dx`` (the moving group's offsets
+``-stroke/2 + dx·k``, ``k = 0…K``), ``conductance(k)`` (conduction in every part plus every
+joint, sliding ones at position k), ``ambient_links(bc, k)`` (``∫ h N dA`` over each declared
+surface's exposed facets, [W/K] per node), ``heat_vector(bc, k)`` ([W] per node),
+``probe_names``/``probe(T, k)`` (sensors [K], then ``D`` [m]), ``screw_edges``/
+``screw_centres``/``screw_mean`` (section means along the screw), ``part_means`` and
+``stats``.
+
+Heat placement follows the fast model's ``Network.heat_vector``: a share of a source into
+a part goes in by volume, unless another part receiving the same source is joined to it;
+then it enters over that joint's contact (the screw–nut friction half into the nut's bore,
+half into the screw under the nut at position k; the guideway friction into the carriages'
+bottoms and the rail tops under them). Surfaces lose heat only where no joint covers them
+(the screw under the bearings and, at position k, under the nut; the rail tops under the
+carriages). See ``docs/fem-model.md``.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import scipy.sparse as sp
+
+from ...boundary import BoundaryConditions
+from ...errors import ModelError
+from ...system.geometry import bounds
+from ...system.schema import FeedSystem
+from .coupling import CONTACT_TOLERANCE, Contact, ContactQuadrature, interface_matrix, side_load, touching
+from .faces import curvature_sag, surface_facets
+from .facets import RULE, NearestFacets, boundary_triangles
+from .geometry import mesh_system
+from .heat import cell_basis, conduction_matrix
+from .readout import point_matrix, slab_matrix, tet_volumes
+
+__all__ = ["FemDiscretization", "AMBIENT_SENSOR", "cycle_weights", "steady_cycle_averaged"]
+
+AMBIENT_SENSOR = "T6"
+
+
+class _Joint:
+    """One joint: its contact (A = the integration side, the finer one) and how A moves relative to B."""
+
+    def __init__(self, index, joint, a, b, contact: Contact, moves: bool, sign: float):
+        self.index, self.joint, self.a, self.b = index, joint, a, b
+        self.contact = contact
+        self.moves = moves  # one side moves with the group, the other does not
+        self.sign = sign  # A's points go into B's frame shifted by sign · offset
+        self._cq: dict[int, ContactQuadrature] = {}
+        self._K: dict[int, sp.csr_matrix] = {}
+
+    def key(self, k: int) -> int:
+        return k if self.moves else 0
+
+    def parts(self) -> tuple[str, str]:
+        return self.a, self.b
+
+
+class FemDiscretization:
+    """FE model of ``system`` at mesh ``density`` (``"coarse"``, ``"medium"``, ``"fine"``).
+
+    Parameters
+    ----------
+    system : FeedSystem
+    density : str
+    radial_rings : ignored
+        Accepted for the fast model's signature; the mesh resolves the section.
+    axial_cells : int
+        At least this many screw bins for the section means (and the grid of positions, as
+        in the fast model).
+    min_positions : int
+        At least this many moving steps per stroke (``K``).
+    lumped_contact : bool
+        Lumped (default, M-matrix) or consistent interface matrices, see :mod:`.coupling`.
+    use_cache : bool
+        Read and write the mesh cache.
+    tamper : optional
+        A ``SolverTamper`` (``drop_sources``, ``area_scale``), applied only where
+        ``for_solver=True``, to prove an energy check works.
+    conductivity_factor : dict, optional
+        Part name → factor on its conductivity. A diagnostic: a factor of 1000 makes a part
+        nearly isothermal, as the fast model's lumped parts are.
+
+    Attributes for field output: ``points`` (3, N) [m] with every part at rest (the moving
+    group at the middle of the stroke, offset 0), ``tets`` (4, M), ``part_id`` (M,) into
+    ``part_names``, ``moving_part`` (one flag per part).
+    """
+
+    def __init__(self, system: FeedSystem, density: str = "coarse", *, radial_rings=None, axial_cells: int = 100,
+                 min_positions: int = 20, lumped_contact: bool = True, use_cache: bool = True, tamper=None,
+                 conductivity_factor: dict[str, float] | None = None):
+        started = time.perf_counter()
+        self.system = system
+        self.density = density
+        self.tamper = tamper
+        self.lumped_contact = lumped_contact
+        self.conductivity_factor = dict(conductivity_factor or {})
+        self.mesh = mesh = mesh_system(system, density, use_cache=use_cache)
+        self.points = mesh.points
+        self.tets = mesh.tets
+        self.part_id = mesh.part_of_tet
+        self.part_names = list(mesh.parts)
+        self.moving_part = [system.parts[name].moving for name in mesh.parts]
+        self.n_nodes = mesh.points.shape[1]
+        self._moving = {name: part.moving for name, part in system.parts.items()}
+        self._setup_positions(axial_cells, min_positions)
+        self._setup_volumes()
+        self.triangles = {name: boundary_triangles(mesh.points, mesh.tets[:, mesh.part_tets(name)]) for name in mesh.parts}
+        self._nearest = {name: NearestFacets(mesh.points, tri) for name, tri in self.triangles.items()}
+        self.sag = {name: curvature_sag(system.parts[name], mesh.points, self.triangles[name]) for name in mesh.parts}
+        self.fixed = self._conduction()
+        self._setup_joints()
+        for j in self.joints:
+            if not j.moves:
+                self.fixed = self.fixed + self._joint_matrix(j, 0)
+        self.fixed = self.fixed.tocsr()
+        self._setup_surfaces()
+        self._setup_readout()
+        self._conductance: dict[int, sp.csr_matrix] = {}
+        self._heat_shares: dict[tuple, np.ndarray] = {}
+        self._surface_areas: dict[tuple[str, int], tuple[np.ndarray, np.ndarray]] = {}
+        self._coverage: dict[tuple, np.ndarray] = {}
+        self.stats = self._stats(time.perf_counter() - started)
+
+    # ------------------------------------------------------------------ set-up
+    def _setup_positions(self, axial_cells: int, min_positions: int) -> None:
+        kin = self.system.kinematics
+        lo, hi = bounds(self.system.parts[kin.screw])
+        length = hi[0] - lo[0]
+        count = max(min_positions, math.ceil(kin.stroke / (length / axial_cells)))
+        self.dx = kin.stroke / count
+        self.positions = -kin.stroke / 2.0 + self.dx * np.arange(count + 1)
+        n = max(1, int(round(length / self.dx)))
+        edges = lo[0] + self.dx * np.arange(n + 1)
+        edges[-1] = hi[0]
+        self.screw_edges = edges
+        self.screw_centres = 0.5 * (edges[1:] + edges[:-1])
+
+    def _setup_volumes(self) -> None:
+        mesh = self.mesh
+        vol = tet_volumes(mesh.points, mesh.tets)
+        self.tet_volume = vol
+        self.node_volume = np.bincount(mesh.tets.ravel(), weights=np.tile(vol / 4.0, 4), minlength=self.n_nodes)
+        rho_c = np.empty(mesh.tets.shape[1])
+        self.conductivity = np.empty(mesh.tets.shape[1])
+        for i, name in enumerate(mesh.parts):
+            material = self.system.materials[self.system.parts[name].material]
+            sel = mesh.part_of_tet == i
+            rho_c[sel] = material.density * material.specific_heat
+            self.conductivity[sel] = material.conductivity * self.conductivity_factor.get(name, 1.0)
+        self.capacity = np.bincount(mesh.tets.ravel(), weights=np.tile(rho_c * vol / 4.0, 4), minlength=self.n_nodes)
+        self.part_volume = {name: float(vol[mesh.part_tets(name)].sum()) for name in mesh.parts}
+
+    def _conduction(self) -> sp.csr_matrix:
+        from skfem import MeshTet
+
+        skmesh = MeshTet(self.mesh.points, self.mesh.tets)
+        return conduction_matrix(cell_basis(skmesh), self.conductivity)
+
+    def _setup_joints(self) -> None:
+        self.joints: list[_Joint] = []
+        for i, joint in enumerate(self.system.joints):
+            a, b = joint.between
+            if joint.sliding and self._moving[a] == self._moving[b]:
+                raise ModelError(f"joints[{i}]: a sliding joint needs one moving and one fixed part ({a}, {b})")
+            if not joint.sliding and self._moving[a] != self._moving[b]:
+                raise ModelError(f"joints[{i}]: {a} and {b}: a joint between a moving and a fixed part must be sliding")
+            if self.mesh.sizes[b] < self.mesh.sizes[a]:
+                a, b = b, a  # integrate over the finer side
+            tol = CONTACT_TOLERANCE + self.sag[a] + self.sag[b]
+            level = 1 + max(0, math.ceil(math.log2(self.mesh.sizes[a] / self.mesh.sizes[b]) - 1e-9))
+            contact = Contact(self.points, self.triangles[a], self.triangles[b], tol, name=f"{a}-{b}", level=level)
+            self.joints.append(_Joint(i, joint, a, b, contact, moves=joint.sliding,
+                                      sign=float(self._moving[a]) - float(self._moving[b])))
+
+    def _setup_surfaces(self) -> None:
+        """Per declared surface: quadrature of its facets and the joints that may cover them."""
+        self.surfaces = {}
+        for name, surface in self.system.surfaces.items():
+            part = surface.part
+            tri = self.triangles[part]
+            mask = surface_facets(surface, self.system.parts[part], self.points, tri, path=f"surfaces.{name}")
+            facets = np.nonzero(mask)[0]
+            if facets.size == 0:
+                raise ModelError(f"surfaces.{name}: no facet of {part}'s mesh lies on the selected faces")
+            x, w, owner = tri.quadrature(self.points, facets)
+            partners = [(j.b if j.a == part else j.a, j) for j in self.joints if part in j.parts()]
+            nodes = tri.nodes[:, owner].T
+            self.surfaces[name] = {"x": x, "w": w, "nodes": nodes, "normals": tri.normals[:, owner],
+                                   "bary": np.tile(RULE[0], (facets.size, 1)),
+                                   "unique": np.unique(nodes.ravel(), return_inverse=True),
+                                   "partners": partners, "part": part,
+                                   "moves": any(self._moving[q] != self._moving[part] for q, _ in partners)}
+
+    def _setup_readout(self) -> None:
+        mesh, system = self.mesh, self.system
+        names, rows = [], []
+        for name, sensor in system.sensors.items():
+            if name == AMBIENT_SENSOR:
+                continue
+            names.append(name)
+            tets = mesh.tets[:, mesh.part_tets(sensor.part)]
+            try:
+                rows.append(point_matrix(mesh.points, tets, [np.array(sensor.position)], self.n_nodes))
+            except ValueError as exc:
+                raise ModelError(f"sensors.{name}.position: {exc} ({sensor.part})") from None
+        self.probe_names = [*names, "D"]
+        self._probe = sp.vstack(rows).tocsr() if rows else sp.csr_matrix((0, self.n_nodes))
+        screw = system.kinematics.screw
+        self._screw_bins = slab_matrix(mesh.points, mesh.tets[:, mesh.part_tets(screw)], self.screw_edges, self.n_nodes)
+        e = system.elongation
+        lo, hi = min(e.fixed_at, e.read_at), max(e.fixed_at, e.read_at)
+        sign = 1.0 if e.read_at >= e.fixed_at else -1.0
+        overlap = np.clip(np.minimum(self.screw_edges[1:], hi) - np.maximum(self.screw_edges[:-1], lo), 0.0, None)
+        self._alpha = system.materials[system.parts[screw].material].expansion
+        self._d_weights = sign * overlap
+        self._t_ref = system.temperatures.reference
+        self._part_weights = {}
+        for name in mesh.parts:
+            nodes = mesh.part_nodes(name)
+            v = self.node_volume[nodes]
+            self._part_weights[name] = (nodes, v / v.sum())
+
+    # ------------------------------------------------------------------ joints
+    def _cq(self, j: _Joint, k: int) -> ContactQuadrature:
+        key = j.key(k)
+        if key not in j._cq:
+            shift = j.sign * self.positions[k] if j.moves else 0.0
+            j._cq[key] = j.contact.quadrature(shift)
+        return j._cq[key]
+
+    def contact_area(self, j: _Joint, k: int = 0) -> float:
+        """Contact area of joint ``j`` in the mesh at position k [m²]."""
+        return self._cq(j, k).area
+
+    def _joint_matrix(self, j: _Joint, k: int) -> sp.csr_matrix:
+        key = j.key(k)
+        if key not in j._K:
+            cq = self._cq(j, k)
+            h_c = j.joint.area / (j.joint.tcr * cq.area)  # R''_eff = R'' A_geo / A_declared
+            j._K[key] = interface_matrix(self.n_nodes, cq, h_c, lumped=self.lumped_contact)
+        return j._K[key]
+
+    def joint_matrix(self, index: int, k: int = 0) -> sp.csr_matrix:
+        """The interface matrix of ``system.joints[index]`` at position k [W/K]."""
+        return self._joint_matrix(self.joints[index], k)
+
+    def joint_sides(self, index: int) -> tuple[np.ndarray, np.ndarray]:
+        """Node indices of the two parts of ``system.joints[index]``, in its declared order."""
+        a, b = self.system.joints[index].between
+        return self.mesh.part_nodes(a), self.mesh.part_nodes(b)
+
+    # ------------------------------------------------------------------ interface
+    def conductance(self, k: int) -> sp.csr_matrix:
+        """Conduction in every part and every joint's coupling, moving group at position k [W/K]."""
+        if k not in self._conductance:
+            G = self.fixed
+            for j in self.joints:
+                if j.moves:
+                    G = G + self._joint_matrix(j, k)
+            self._conductance[k] = G.tocsr()
+        return self._conductance[k]
+
+    def surface_area(self, name: str, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """Nodes and their exposed areas ``∫ N dA`` [m²] of surface ``name`` at position k."""
+        s = self.surfaces[name]
+        key = (name, k if s["moves"] else 0)
+        if key not in self._surface_areas:
+            covered = np.zeros(s["w"].size, dtype=bool)
+            for other, j in s["partners"]:
+                covered |= self._covered(name, other, j, k)
+            w = (s["w"] * ~covered)[:, None] * s["bary"]
+            nodes, inverse = s["unique"]
+            areas = np.bincount(inverse, weights=w.ravel(), minlength=nodes.size)
+            self._surface_areas[key] = (nodes, areas)
+        return self._surface_areas[key]
+
+    def _covered(self, name: str, other: str, j: _Joint, k: int) -> np.ndarray:
+        """Quadrature points of surface ``name`` that part ``other`` covers at position k."""
+        s = self.surfaces[name]
+        relative = float(self._moving[s["part"]]) - float(self._moving[other])
+        key = (name, other, k if relative else 0)
+        if key not in self._coverage:
+            x = s["x"].copy()
+            x[0] += relative * self.positions[k]  # into the other part's mesh frame
+            self._coverage[key] = touching(x, s["normals"], self._nearest[other], j.contact.tol)
+        return self._coverage[key]
+
+    def ambient_links(self, bc: BoundaryConditions, k: int, for_solver: bool = True) -> np.ndarray:
+        """Conductance [W/K] of every node to the ambient: ``h·∫N dA`` over exposed facets."""
+        g = np.zeros(self.n_nodes)
+        for name, transfer in bc.surfaces.items():
+            nodes, areas = self.surface_area(name, k)
+            h = transfer.total
+            declared = self.system.surfaces[name].area
+            if declared is not None:  # the description's area is authoritative: h·A matches
+                h *= declared / areas.sum()
+            if for_solver and self.tamper is not None:
+                h *= self.tamper.area_scale.get(name, 1.0)
+            g[nodes] += h * areas
+        return g
+
+    def heat_vector(self, bc: BoundaryConditions, k: int, for_solver: bool = True) -> np.ndarray:
+        """Heat [W] into every node, moving group at position k."""
+        q = np.zeros(self.n_nodes)
+        for name, heat in bc.heats.items():
+            if for_solver and self.tamper is not None and name in self.tamper.drop_sources:
+                continue
+            for part, share in heat.into.items():
+                partner = next((p for p in heat.into if p != part and self._joined(p, part) is not None), None)
+                q += heat.power * share * self._heat_share(part, partner, k)
+        return q
+
+    def _joined(self, a: str, b: str) -> _Joint | None:
+        return next((j for j in self.joints if {j.a, j.b} == {a, b}), None)
+
+    def _heat_share(self, part: str, partner: str | None, k: int) -> np.ndarray:
+        if partner is None:
+            key = (part, None, 0)
+        else:
+            j = self._joined(part, partner)
+            key = (part, partner, j.key(k))
+        if key not in self._heat_shares:
+            if partner is None:  # by volume
+                nodes = self.mesh.part_nodes(part)
+                share = np.zeros(self.n_nodes)
+                v = np.bincount(self.mesh.tets[:, self.mesh.part_tets(part)].ravel(),
+                                weights=np.tile(self.tet_volume[self.mesh.part_tets(part)] / 4.0, 4),
+                                minlength=self.n_nodes)
+                share[nodes] = v[nodes] / v[nodes].sum()
+            else:  # over the contact
+                share = side_load(self.n_nodes, self._cq(j, k), "a" if part == j.a else "b")
+            self._heat_shares[key] = share
+        return self._heat_shares[key]
+
+    # ------------------------------------------------------------------ readout
+    def screw_mean(self, states: np.ndarray) -> np.ndarray:
+        """Volume mean screw temperature per axial bin, shape ``(..., bins)``."""
+        states = np.asarray(states)
+        return (self._screw_bins @ states.reshape(-1, self.n_nodes).T).T.reshape(*states.shape[:-1], -1)
+
+    def elongation(self, states: np.ndarray) -> np.ndarray:
+        """D [m] = α ∫ (T̄ − T_ref) dx from ``fixed_at`` to ``read_at``."""
+        return self._alpha * ((self.screw_mean(states) - self._t_ref) @ self._d_weights)
+
+    def probe(self, T: np.ndarray, k: int | None = None) -> np.ndarray:
+        """Sensor temperatures [K] (system order, without T6), then D [m].
+
+        ``k`` is accepted for the shared integrator; the moving group's sensors sit at fixed
+        points of its own mesh, so the values do not depend on it.
+        """
+        return np.append(self._probe @ T, self.elongation(T))
+
+    def part_means(self, states: np.ndarray) -> dict[str, np.ndarray]:
+        """Volume mean temperature of every part, shape ``(...)`` per part."""
+        states = np.asarray(states)
+        return {name: states[..., nodes] @ w for name, (nodes, w) in self._part_weights.items()}
+
+    def _stats(self, seconds: float) -> dict:
+        mesh = self.mesh
+        return {
+            "density": self.density,
+            "vertices": int(self.n_nodes),
+            "tetrahedra": int(mesh.tets.shape[1]),
+            "parts": {name: {"vertices": int(mesh.node_ranges[name][1] - mesh.node_ranges[name][0]),
+                             "tetrahedra": int(mesh.part_tets(name).size),
+                             "size_mm": round(mesh.sizes[name] * 1e3, 3)} for name in mesh.parts},
+            "mesh_seconds": round(mesh.seconds, 2),
+            "mesh_cached": mesh.cached,
+            "mesh_file": str(mesh.path) if mesh.path else None,
+            "setup_seconds": round(seconds, 2),
+            "positions": len(self.positions),
+            "screw_bins": len(self.screw_centres),
+        }
+
+
+def cycle_weights(n_positions: int) -> np.ndarray:
+    """Time share of each grid position under steady reciprocation (the ends count half)."""
+    w = np.ones(n_positions)
+    w[0] = w[-1] = 0.5
+    return w / w.sum()
+
+
+def steady_cycle_averaged(model, bc: BoundaryConditions) -> np.ndarray:
+    """Steady state of the cycle-averaged operator [K] (a direct solve).
+
+    Solves ``(Σ w_k G(k) + diag Σ w_k g(k)) T = Σ w_k q(k) + Σ w_k g(k) T_amb`` with the
+    weights of :func:`cycle_weights`, as the shared integrator's averaged motion does.
+    """
+    from scipy.sparse.linalg import splu
+
+    w = cycle_weights(len(model.positions))
+    G = sum(wk * model.conductance(k) for k, wk in enumerate(w))
+    g = sum(wk * model.ambient_links(bc, k) for k, wk in enumerate(w))
+    q = sum(wk * model.heat_vector(bc, k) for k, wk in enumerate(w))
+    return splu((G + sp.diags(g)).tocsc()).solve(q + g * bc.point.ambient)
