@@ -183,9 +183,10 @@ def snapshot_mesh(series: FieldSeries, snapshot: int):
     tets = series.tets
     if len(series.points) < np.iinfo(np.int32).max:
         tets = tets.astype(np.int32)  # half the size of int64; ParaView reads either
+    # contiguous arrays: meshio would otherwise copy them and say so on stdout
     return meshio.Mesh(
-        series.displaced_points(snapshot),
-        [("tetra", tets)],
+        np.ascontiguousarray(series.displaced_points(snapshot)),
+        [("tetra", np.ascontiguousarray(tets))],
         point_data={TEMPERATURE_FIELD: series.celsius(snapshot)},
         cell_data={PART_FIELD: [series.part_id.astype(np.int32)]},
     )

@@ -162,7 +162,7 @@ class FemDiscretization:
     def _conduction(self) -> sp.csr_matrix:
         from skfem import MeshTet
 
-        skmesh = MeshTet(self.mesh.points, self.mesh.tets)
+        skmesh = MeshTet(np.ascontiguousarray(self.mesh.points), np.ascontiguousarray(self.mesh.tets))
         return conduction_matrix(cell_basis(skmesh), self.conductivity)
 
     def _setup_joints(self) -> None:
