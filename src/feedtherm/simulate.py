@@ -38,7 +38,7 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
              mode: str = "physics", model: str = "fast", duration: float | None = None,
              single_drive: bool = False, sample_interval: float = 10.0,
              progress: Callable[[float], None] | None = None, motion: str | None = None,
-             mesh: str | None = None, options: ModelOptions | None = None,
+             mesh: str | None = None, start: str = "initial", options: ModelOptions | None = None,
              tamper: SolverTamper | None = None) -> Solution:
     """Simulate a condition or a duty cycle of ``loaded`` and return its Solution.
 
@@ -60,6 +60,9 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
         Position over time (default), or the cycle-averaged contacts and heats.
     mesh : {"coarse", "medium", "fine"}, optional
         Mesh density of the FE model.
+    start : {"initial", "steady"}
+        Start from the initial temperature (default), or from the cycle-averaged steady state
+        of the first operating point (to study the periodic steady state directly).
     """
     started = time.perf_counter()
     system = loaded.system
@@ -69,8 +72,15 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
     segments = _segments(system, profile, mode, single_drive)
     disc = discretize(system, model, opts, tamper)
     integrator = Integrator(disc, opts)
-    initial_temperature = segments[0].bc.point.ambient if system.temperatures.initial == "ambient" else system.temperatures.initial
-    T0 = np.full(disc.n_nodes, initial_temperature)
+    if start not in ("initial", "steady"):
+        raise FeedthermError(f"start must be 'initial' or 'steady', got {start!r}")
+    if start == "steady":
+        first = segments[0]
+        T0 = integrator.steady(0, first.bc, None if first.speed > 0 else 0)
+    else:
+        initial_temperature = (segments[0].bc.point.ambient if system.temperatures.initial == "ambient"
+                               else system.temperatures.initial)
+        T0 = np.full(disc.n_nodes, initial_temperature)
     t_end = segments[-1].t1
     times = np.arange(0.0, t_end + 1e-9, sample_interval)
     if times[-1] < t_end - 1e-9:
