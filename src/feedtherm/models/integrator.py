@@ -26,7 +26,7 @@ from ..boundary import BoundaryConditions
 from .options import ModelOptions
 
 #: Above this many unknowns the "auto" solver uses conjugate gradients, not cached LU.
-DIRECT_SOLVER_LIMIT = 20_000
+DIRECT_SOLVER_LIMIT = 60_000
 CG_RTOL = 1e-10
 
 
