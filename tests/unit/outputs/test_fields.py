@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from skfem import MeshTet
 
-from feedtherm.outputs import field_images
+from feedtherm.outputs import field_images, render
 from feedtherm.outputs.field_images import (
     SCREW_DEFORMATION_PNG,
     TEMPERATURE_FIELD_PNG,
@@ -176,7 +176,7 @@ def test_rasteriser_keeps_the_nearest_triangle_whatever_the_order():
     depth = np.r_[np.zeros(4), np.ones(4)]  # the second square is nearer
     triangles = np.array([[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]])
     for order in (triangles, triangles[::-1]):
-        frame = field_images._rasterise(xy, depth, order, 12, 12)
+        frame = render._rasterise(xy, depth, order, 12, 12)
         won = order[frame.triangle[:10, :10]]
         assert (won >= 4).all()
         assert (frame.triangle[10:, :] == -1).all() and (frame.triangle[:, 10:] == -1).all()
