@@ -18,9 +18,13 @@ setup: $(STAMP)
 validate: $(STAMP)
 	$(BIN)/feedtherm validate paper --mode physics
 
-# The report test renders report.html in headless Chromium (Debian package `chromium`).
-setup-test:
+# The report test renders report.html in headless Chromium (Debian package `chromium`); the
+# FE tests need the X/GL libraries that gmsh's wheel links against (Debian packages).
+GMSH_LIBS := libglu1-mesa libgl1 libopengl0 libxrender1 libxcursor1 libxfixes3 libxext6 libxft2 libxinerama1 libx11-6
+
+setup-test: $(STAMP)
 	command -v chromium >/dev/null || (apt-get update -qq && apt-get install -y -qq chromium >/dev/null)
+	$(BIN)/python -c "import gmsh" 2>/dev/null || (apt-get update -qq && apt-get install -y -qq $(GMSH_LIBS) >/dev/null)
 
 test: $(STAMP) setup-test
 	$(BIN)/python -m pytest
