@@ -13,6 +13,7 @@ class ModelOptions:
     # fast model
     axial_cells: int = 100  # at least this many cells along the screw
     radial_rings: int = 2  # rings per screw cell
+    cell_size: float = 0.04  # [m] size of the sub-volumes of the parts not resolved along the screw axis
     # FE model
     mesh: Literal["coarse", "medium", "fine"] = "coarse"
     # time stepping (both models)

@@ -1,9 +1,10 @@
 """Conductance matrix, ambient links and heat vector of the fast model at one position.
 
-The network is a graph: nodes (axial cells × rings, lumped parts) joined by conductances
-[W/K]; some nodes also link to the ambient air.  What depends on the moving group's position
-``k`` — the sliding contacts, the part of the screw the nut covers, the moving heat — is
-rebuilt per position; everything else is built once.
+The network is a graph: nodes (axial cells × rings of the screw and the rails, sub-volume
+cells of every other part) joined by conductances [W/K]; some nodes also link to the ambient
+air.  What depends on the moving group's position ``k`` — the sliding contacts, the part of
+the screw the nut covers, the moving heat — is rebuilt per position; everything else is
+built once.
 """
 
 from __future__ import annotations
@@ -16,7 +17,8 @@ import scipy.sparse as sp
 
 from ...boundary import BoundaryConditions
 from ...errors import ModelError
-from ...system.schema import Joint
+from ...system.geometry import surface_area
+from .contacts import JointContact, fused_links, side, surface_samples
 from .layout import AxialBody, Layout, contact_ranges
 
 
@@ -63,26 +65,40 @@ class Network:
         self.system = layout.system
         self.tamper = tamper or SolverTamper()
         self._check_joints()
+        self.sides = {name: side(cells, layout.cell_size) for name, cells in layout.cells.items()}
+        conductivity = {name: self._material(name).conductivity for name in self.system.parts}
+        surface_length = {name: self._surface_resistance_length(body) for name, body in layout.bodies.items()}
+        self.contacts = [JointContact(layout, joint, self.sides, conductivity, surface_length) for joint in self.system.joints]
         fixed = Edges()
         for body in layout.bodies.values():
             self._body_conduction(body, fixed)
-        for joint in self.system.joints:
-            if not joint.sliding:
-                self._joint(joint, fixed, offset=0.0)
+        for name, cells in layout.cells.items():
+            k = conductivity[name]
+            for grid, first in zip(cells.grids, cells.first):
+                a, b, g = grid.links
+                fixed.add(first + a, first + b, k * g)
+            fixed.add(*fused_links(self.sides[name]))
+        for contact in self.contacts:
+            if not contact.joint.sliding:
+                fixed.add(*contact.links(0))
         self.fixed = laplacian(layout.n_nodes, fixed)
+        self._surface_cache: dict[tuple[str, int], tuple[np.ndarray, np.ndarray]] = {}
 
     # ------------------------------------------------------------------ structure
     def _check_joints(self) -> None:
         parts = self.system.parts
+        bodies = self.layout.bodies
         for i, joint in enumerate(self.system.joints):
             a, b = joint.between
             moving = [parts[a].moving, parts[b].moving]
             if joint.sliding and moving.count(True) != 1:
                 raise ModelError(f"joints[{i}]: a sliding joint needs one moving and one fixed part ({a}, {b})")
-            if joint.sliding and not any(p in self.layout.bodies for p in (a, b)):
+            if joint.sliding and not any(p in bodies for p in (a, b)):
                 raise ModelError(f"joints[{i}]: the fixed side of a sliding joint must be resolved along x")
             if not joint.sliding and moving.count(True) == 1:
                 raise ModelError(f"joints[{i}]: {a} and {b}: a joint between a moving and a fixed part must be sliding")
+            if a in bodies and b in bodies:
+                raise ModelError(f"joint {a}-{b}: two axially resolved parts cannot be joined")
 
     def _material(self, part: str):
         return self.system.materials[self.system.parts[part].material]
@@ -101,15 +117,10 @@ class Network:
                 g = 2 * math.pi * k * body.lengths / math.log(rc[j + 1] / rc[j])
                 edges.add(body.nodes[:, j], body.nodes[:, j + 1], g)
 
-    def _surface_resistance_length(self, body: AxialBody) -> float:
-        """Conduction length [m] from the outer ring's node to the body's surface (per ln term)."""
-        if body.cylindrical:
-            r = body.ring_radii
-            return math.log(r[-1] / (0.5 * (r[-1] + r[-2])))  # used as ln(r_o/r_c) / (2 pi k l)
-        return body.cross_section / (2.0 * (math.sqrt(body.cross_section) * 2))  # area / perimeter
-
-    def _lumped_resistance(self, part: str, area: float) -> float:
-        return self.layout.surface_length[part] / (self._material(part).conductivity * area)
+    @staticmethod
+    def _surface_resistance_length(body: AxialBody) -> float:
+        """Conduction length [m] from a non-cylindrical body's node to its surface (area / perimeter)."""
+        return body.cross_section / (2.0 * (math.sqrt(body.cross_section) * 2))
 
     def contact_weights(self, part: str, body: AxialBody, offset: float) -> np.ndarray:
         """Share of a contact per cell of ``body`` (sums to 1) where ``part`` touches it."""
@@ -121,37 +132,16 @@ class Network:
             raise ModelError(f"{part} does not touch {body.part} at offset {offset * 1e3:.1f} mm")
         return overlap / total
 
-    def _joint(self, joint: Joint, edges: Edges, offset: float) -> None:
-        a, b = joint.between
-        bodies = self.layout.bodies
-        if a in bodies and b in bodies:
-            raise ModelError(f"joint {a}-{b}: two axially resolved parts cannot be joined")
-        if a not in bodies and b not in bodies:
-            g = 1.0 / (joint.tcr / joint.area + self._lumped_resistance(a, joint.area) + self._lumped_resistance(b, joint.area))
-            edges.add(self.layout.lumped[a], self.layout.lumped[b], g)
-            return
-        body_name, other = (a, b) if a in bodies else (b, a)
-        body = bodies[body_name]
-        part_offset = offset if self.system.parts[other].moving else 0.0
-        weights = self.contact_weights(other, body, part_offset)
-        cells = np.nonzero(weights)[0]
-        area = joint.area * weights[cells]
-        k_body = self._material(body_name).conductivity
-        if body.cylindrical:
-            contact_length = np.maximum(weights[cells] * sum(x1 - x0 for x0, x1 in contact_ranges(self.system, other, body, part_offset)), 1e-12)
-            r_surface = self._surface_resistance_length(body) / (2 * math.pi * k_body * contact_length)
-        else:
-            r_surface = self._surface_resistance_length(body) / (k_body * area)
-        g = 1.0 / (joint.tcr / area + self._lumped_resistance(other, area) + r_surface)
-        edges.add(np.full(len(cells), self.layout.lumped[other]), body.nodes[cells, -1], g)
+    def _contact(self, a: str, b: str) -> JointContact | None:
+        return next((c for c in self.contacts if set(c.joint.between) == {a, b}), None)
 
     # ------------------------------------------------------------------ per position
     def sliding(self, k: int) -> sp.csr_matrix:
         """Conductance matrix of the sliding contacts with the moving group at position ``k``."""
         edges = Edges()
-        for joint in self.system.joints:
-            if joint.sliding:
-                self._joint(joint, edges, offset=self.layout.positions[k])
+        for contact in self.contacts:
+            if contact.joint.sliding:
+                edges.add(*contact.links(k))
         return laplacian(self.layout.n_nodes, edges)
 
     def ambient_links(self, bc: BoundaryConditions, k: int, *, for_solver: bool = True) -> np.ndarray:
@@ -169,16 +159,65 @@ class Network:
         offset = self.layout.positions[k]
         for name, transfer in bc.surfaces.items():
             surface = self.system.surfaces[name]
-            if surface.part in self.layout.lumped:
-                out[name] = (np.array([self.layout.lumped[surface.part]]), np.array([transfer.area]))
+            if surface.part in self.layout.cells:
+                out[name] = self._cell_surface(name, k)
                 continue
-            body = self.layout.bodies[surface.part]
-            share = body.lengths / body.lengths.sum()
-            exposed = np.ones_like(share)
-            if body.cylindrical and "lateral" in surface.faces:
-                exposed = 1.0 - self._covered(body, offset) / body.lengths
-            out[name] = (body.nodes[:, -1], transfer.area * share * np.clip(exposed, 0.0, 1.0))
+            out[name] = self._body_surface(name, k, offset)
         return out
+
+    def _body_surface(self, name: str, k: int, offset: float) -> tuple[np.ndarray, np.ndarray]:
+        """Exposed area [m²] per axial cell of a surface on the screw or a rail.
+
+        The faces' area by cell length, less what the parts seated on the body cover: on the
+        screw's lateral face the bearings and the nut (by their length), on a rail's faces
+        the contacts of the parts joined to it (the carriages). A declared ``area`` is
+        spread over the exposed cells the same way.
+        """
+        surface = self.system.surfaces[name]
+        body = self.layout.bodies[surface.part]
+        faces = surface_area(surface.model_copy(update={"area": None}), self.system.parts[surface.part])
+        areas = faces * body.lengths / body.lengths.sum()
+        if body.cylindrical:
+            if "lateral" in surface.faces:
+                areas = areas * np.clip(1.0 - self._covered(body, offset) / body.lengths, 0.0, 1.0)
+        else:
+            for contact in self.contacts:
+                if body.part in contact.joint.between:
+                    cells, covered = contact.covered_faces(k, set(surface.faces))
+                    np.subtract.at(areas, cells, covered)
+            areas = np.clip(areas, 0.0, None)
+        if surface.area is not None and areas.sum() > 0.0:
+            areas = areas * surface.area / areas.sum()
+        return body.nodes[:, -1], areas
+
+    def _cell_surface(self, name: str, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """Exposed area [m²] per cell of a surface on a part cut into cells.
+
+        The selected faces less what is fused to another primitive of the part and what a
+        joined part covers; a declared ``area`` is spread over the exposed faces the same way.
+        """
+        surface = self.system.surfaces[name]
+        part = surface.part
+        partners = [c for c in self.contacts if part in c.joint.between]
+        moves = any(self.system.parts[p].moving != self.system.parts[part].moving
+                    for c in partners for p in c.joint.between)
+        key = (name, k if moves else 0)
+        if key not in self._surface_cache:
+            sd = self.sides[part]
+            selected = surface_samples(sd, surface)
+            exposed = selected & sd.free
+            outside = sd.samples.outside()
+            for contact in partners:
+                idx = np.nonzero(exposed)[0]
+                exposed[idx[contact.covers(part, outside[idx], k)]] = False
+            areas = np.bincount(sd.nodes, weights=sd.samples.areas * exposed, minlength=self.layout.n_nodes)
+            if surface.area is not None:
+                if areas.sum() <= 0.0:  # nothing exposed: spread the declared area over the faces
+                    areas = np.bincount(sd.nodes, weights=sd.samples.areas * selected, minlength=self.layout.n_nodes)
+                areas *= surface.area / areas.sum()
+            nodes = np.nonzero(areas)[0]
+            self._surface_cache[key] = (nodes, areas[nodes])
+        return self._surface_cache[key]
 
     def _covered(self, body: AxialBody, offset: float) -> np.ndarray:
         """Length of each cell covered by parts seated on the body's surface (bearings, nut)."""
@@ -193,7 +232,12 @@ class Network:
         return np.minimum(covered, body.lengths)
 
     def heat_vector(self, bc: BoundaryConditions, k: int, *, for_solver: bool = True) -> np.ndarray:
-        """Heat [W] into every node with the moving group at position ``k``."""
+        """Heat [W] into every node with the moving group at position ``k``.
+
+        A source's share into a part goes in by volume, unless another part receiving the
+        same source is joined to it: then it enters over that joint's contact (the
+        screw–nut friction into the screw under the nut and into the nut's bore).
+        """
         q = np.zeros(self.layout.n_nodes)
         offset = self.layout.positions[k]
         for name, heat in bc.heats.items():
@@ -201,11 +245,17 @@ class Network:
                 continue
             for part, share in heat.into.items():
                 power = heat.power * share
-                if part in self.layout.lumped:
-                    q[self.layout.lumped[part]] += power
+                partner = next((p for p in heat.into if p != part and self._joined(p, part)), None)
+                if part in self.layout.cells:
+                    if partner is not None:
+                        nodes, weights = self._contact(part, partner).share(part, k)
+                        np.add.at(q, nodes, power * weights)
+                    else:
+                        cells = self.layout.cells[part]
+                        volumes = cells.volumes
+                        q[cells.nodes] += power * volumes / volumes.sum()
                     continue
                 body = self.layout.bodies[part]
-                partner = next((p for p in heat.into if p != part and self._joined(p, part)), None)
                 if partner is not None:  # heat that arises at a contact enters where the contact is
                     part_offset = offset if self.system.parts[partner].moving else 0.0
                     q[body.nodes[:, -1]] += power * self.contact_weights(partner, body, part_offset)

@@ -21,7 +21,7 @@ class FastDiscretization:
     def __init__(self, system: FeedSystem, options: ModelOptions, tamper: SolverTamper | None = None):
         self.system = system
         self.layout = build_layout(system, axial_cells=options.axial_cells, radial_rings=options.radial_rings,
-                                   min_positions=options.steps_per_stroke)
+                                   min_positions=options.steps_per_stroke, cell_size=options.cell_size)
         self.network = Network(self.layout, tamper)
         self.n_nodes = self.layout.n_nodes
         self.capacity = self.layout.capacity
@@ -45,19 +45,23 @@ class FastDiscretization:
     # -------------------------------------------------------------- probes
     def _probes(self) -> None:
         layout, system = self.layout, self.system
-        self.sensor_nodes: dict[str, int] = {}
+        rows = []  # each sensor reads a weighted mean of nodes
+        names = []
         for name, sensor in system.sensors.items():
             if name == "T6":
                 continue
-            if sensor.part in layout.lumped:
-                self.sensor_nodes[name] = layout.lumped[sensor.part]
+            if sensor.part in layout.cells:  # between the centres of the cells around it
+                nodes, weights = layout.cells[sensor.part].interpolation(sensor.position)
             else:
                 body = layout.bodies[sensor.part]
                 radius = float(np.hypot(sensor.position[1], sensor.position[2]))
                 ring = int(np.clip(np.searchsorted(body.ring_radii, radius) - 1, 0, body.n_rings - 1))
-                self.sensor_nodes[name] = int(body.nodes[body.cell_at(sensor.position[0]), ring])
-        self.probe_names = [*self.sensor_nodes, "D"]
-        self._node_index = np.array(list(self.sensor_nodes.values()), dtype=int)
+                nodes, weights = np.array([body.nodes[body.cell_at(sensor.position[0]), ring]]), np.ones(1)
+            names.append(name)
+            row = np.zeros(layout.n_nodes)
+            np.add.at(row, nodes, weights)
+            rows.append(row)
+        self.probe_names = [*names, "D"]
         screw = layout.screw
         self.screw_edges = screw.edges
         self.screw_centres = screw.centres
@@ -69,6 +73,18 @@ class FastDiscretization:
         sign = 1.0 if e.read_at >= e.fixed_at else -1.0
         self._d_weights = sign * screw.overlap(lo, hi)  # D = alpha sum_i overlap_i (T_i - T_ref)
         self._t_ref = system.temperatures.reference
+        # one dense matrix reads every sensor and D (a probe is taken at every time step)
+        d_row = np.zeros(layout.n_nodes)
+        d_row[screw.nodes] = self._alpha * np.outer(self._d_weights, self._ring_share)
+        self._probe = np.vstack([*rows, d_row])
+        self._probe_offset = np.zeros(len(self.probe_names))
+        self._probe_offset[-1] = -self._alpha * self._t_ref * self._d_weights.sum()
+        self._part_names = list(system.parts)
+        means = np.zeros((len(self._part_names), layout.n_nodes))
+        for i, part in enumerate(self._part_names):
+            nodes = layout.part_nodes(part)
+            means[i, nodes] = self.capacity[nodes] / self.capacity[nodes].sum()
+        self._means = means
 
     def screw_mean(self, states: np.ndarray) -> np.ndarray:
         return states[..., self.layout.screw.nodes] @ self._ring_share
@@ -77,17 +93,16 @@ class FastDiscretization:
         return self._alpha * ((self.screw_mean(states) - self._t_ref) @ self._d_weights)
 
     def probe(self, T: np.ndarray, k: int = 0) -> np.ndarray:
-        return np.append(T[self._node_index], self.elongation(T))
+        return self._probe @ T + self._probe_offset
 
     def part_means(self, states: np.ndarray) -> dict[str, np.ndarray]:
-        out = {}
-        for part in self.system.parts:
-            nodes = self.layout.part_nodes(part)
-            c = self.capacity[nodes]
-            out[part] = states[..., nodes] @ (c / c.sum())
-        return out
+        """Capacity-weighted mean temperature of every part."""
+        values = np.asarray(states) @ self._means.T
+        return {part: values[..., i] for i, part in enumerate(self._part_names)}
 
     @property
     def stats(self) -> dict:
         screw = self.layout.screw
-        return {"unknowns": self.n_nodes, "screw_cells": len(screw.centres), "screw_rings": screw.n_rings}
+        return {"unknowns": self.n_nodes, "screw_cells": len(screw.centres), "screw_rings": screw.n_rings,
+                "part_cells": sum(c.nodes.size for c in self.layout.cells.values()),
+                "cell_size_mm": round(self.layout.cell_size * 1e3, 3)}

@@ -1,12 +1,14 @@
-"""Nodes of the fast model: axially resolved bodies and lumped parts.
+"""Nodes of the fast model: axially resolved bodies and the other parts' sub-volumes.
 
 * The screw is cut into axial cells (at least ``axial_cells``) and, in each cell, into
   ``radial_rings`` concentric rings of equal thickness, because the nut's contact
   conductance (~6000 W/(m² K)) makes the screw's Biot number under the nut about 2.
 * Every other fixed part that a moving part slides on (the guideways) is cut into axial
   cells (one ring), so the moving contact has a place to be.
-* Every other part is one lumped node at its mean temperature; its conduction to a joint
-  adds ``L_c / (k A_joint)`` with the lumped-capacitance length ``L_c = V / A_surface``.
+* Every other part is cut into cells of about ``cell_size`` along its primitives
+  (:mod:`.cells`): heat enters such parts at small patches (a motor's flange, a bearing
+  seat, a housing's top) and spreads over them, so one node per part misses both the
+  spreading resistance and the local temperature a sensor reads.
 
 The cell size divides the stroke exactly, so that the moving group's positions fall on the
 cell grid and each position's system matrix can be factorised once.
@@ -15,12 +17,13 @@ cell grid and each position's system matrix can be factorised once.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from ...system.geometry import BOX_FACES, bounds, part_volume
 from ...system.schema import Cylinder, FeedSystem, Part
+from .cells import PartCells, part_cells
 
 CONTACT_TOLERANCE = 1e-3  # [m] primitives closer than this touch
 END_CONTACT = 1e-6  # [m] axial extent given to an end-to-end contact (it lands in the end cell)
@@ -69,20 +72,20 @@ class AxialBody:
 class Layout:
     system: FeedSystem
     bodies: dict[str, AxialBody]
-    lumped: dict[str, int]  # part -> node index
+    cells: dict[str, PartCells]  # the other parts, cut into sub-volumes
     capacity: np.ndarray  # [J/K] per node
     n_nodes: int
     dx: float  # axial cell size of the screw [m]
     positions: np.ndarray  # offsets [m] of the moving group at grid positions k = 0..K
-    surface_length: dict[str, float] = field(default_factory=dict)  # L_c of lumped parts
+    cell_size: float = 0.0  # [m] target size of the sub-volumes
 
     @property
     def screw(self) -> AxialBody:
         return self.bodies[self.system.kinematics.screw]
 
     def part_nodes(self, part: str) -> np.ndarray:
-        if part in self.lumped:
-            return np.array([self.lumped[part]])
+        if part in self.cells:
+            return self.cells[part].nodes
         return self.bodies[part].nodes.ravel()
 
     def part_capacity(self, part: str) -> np.ndarray:
@@ -101,8 +104,9 @@ def axial_parts(system: FeedSystem) -> list[str]:
 
 
 def build_layout(system: FeedSystem, *, axial_cells: int = 100, radial_rings: int = 2,
-                 min_positions: int = 20) -> Layout:
-    """Node layout: axial bodies on a grid whose cell size divides the stroke."""
+                 min_positions: int = 20, cell_size: float = 0.04) -> Layout:
+    """Node layout: axial bodies on a grid whose cell size divides the stroke, then the
+    other parts' sub-volumes of about ``cell_size`` [m]."""
     screw_part = system.parts[system.kinematics.screw]
     lo, hi = bounds(screw_part)
     length = hi[0] - lo[0]
@@ -121,18 +125,47 @@ def build_layout(system: FeedSystem, *, axial_cells: int = 100, radial_rings: in
         next_node += body.nodes.size
         volumes = np.outer(body.lengths, body.ring_areas())
         capacity.extend((material.density * material.specific_heat * volumes).ravel())
-    lumped: dict[str, int] = {}
-    surface_length: dict[str, float] = {}
+    cells: dict[str, PartCells] = {}
     for name, part in system.parts.items():
         if name in bodies:
             continue
         material = system.materials[part.material]
-        lumped[name] = next_node
-        next_node += 1
-        capacity.append(material.density * material.specific_heat * part_volume(part))
-        surface_length[name] = part_volume(part) / _total_surface(part)
+        cells[name] = part_cells(name, part, material.conductivity, cell_size, next_node, feature_breaks(system, name))
+        next_node += cells[name].nodes.size
+        capacity.extend(material.density * material.specific_heat * cells[name].volumes)
     offsets = -stroke / 2.0 + dx * np.arange(positions_count + 1)
-    return Layout(system, bodies, lumped, np.array(capacity), next_node, dx, offsets, surface_length)
+    return Layout(system, bodies, cells, np.array(capacity), next_node, dx, offsets, cell_size)
+
+
+def feature_breaks(system: FeedSystem, name: str) -> list:
+    """Coordinates each primitive's grid of cells should pass through: the faces of the
+    primitives it touches (of its own part, or of a part joined to it), so that a footprint,
+    a fused face or a seat falls on whole cells. A primitive sliding past (a moving part on a
+    fixed one) gives only its position across the motion (y, z)."""
+    part = system.parts[name]
+    partners = [(name, True)]
+    for joint in system.joints:
+        if name in joint.between:
+            other = joint.between[1] if joint.between[0] == name else joint.between[0]
+            partners.append((other, system.parts[other].moving == part.moving))
+    out = []
+    for prim in [*part.boxes, *part.cylinders]:
+        lo, hi = _primitive_bounds(prim)
+        axes = range(3) if not isinstance(prim, Cylinder) else ["xyz".index(prim.axis)]
+        found = {a: [] for a in axes}
+        for other, same_frame in partners:
+            for q in [*system.parts[other].boxes, *system.parts[other].cylinders]:
+                if q is prim:
+                    continue
+                qlo, qhi = _primitive_bounds(q)
+                if any(max(qlo[a] - hi[a], lo[a] - qhi[a]) > CONTACT_TOLERANCE for a in range(3)):
+                    continue  # apart
+                for a in axes:
+                    if a == 0 and not same_frame:
+                        continue
+                    found[a].extend([qlo[a], qhi[a]])
+        out.append([found[a] for a in range(3)] if not isinstance(prim, Cylinder) else found[axes[0]])
+    return out
 
 
 def _axial_body(name: str, part: Part, dx: float, rings: int, first_node: int) -> AxialBody:
@@ -152,17 +185,6 @@ def _axial_body(name: str, part: Part, dx: float, rings: int, first_node: int) -
         rings = 1
     nodes = first_node + np.arange(n * rings).reshape(n, rings)
     return AxialBody(name, edges, radii, area, nodes, cylindrical)
-
-
-def _total_surface(part: Part) -> float:
-    total = 0.0
-    for box in part.boxes:
-        sx, sy, sz = box.size
-        total += 2 * (sx * sy + sy * sz + sx * sz)
-    for cyl in part.cylinders:
-        total += math.pi * cyl.outer_diameter * cyl.length + math.pi * cyl.inner_diameter * cyl.length
-        total += 2 * math.pi / 4 * (cyl.outer_diameter**2 - cyl.inner_diameter**2)
-    return total
 
 
 def contact_ranges(system: FeedSystem, part: str, body: AxialBody, offset: float = 0.0) -> list[tuple[float, float]]:
