@@ -90,7 +90,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         solution = simulate(loaded, condition=args.condition, cycle=args.cycle, mode=args.mode, model=args.model,
                             duration=args.duration, single_drive=args.single_drive,
                             sample_interval=args.sample_interval, progress=progress, motion=args.motion,
-                            mesh=args.mesh)
+                            mesh=args.mesh, solver=args.solver)
     write_run(solution, out_dir, sample_interval=args.sample_interval)
     print(summary_line(solution, out_dir))
     return 0
@@ -305,6 +305,9 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--motion", choices=["resolved", "averaged"], default="resolved",
                      help="the moving nut's position over time (default), or cycle-averaged contacts and heats")
     run.add_argument("--single-drive", action="store_true", help="operate a dual drive as a single (screw-only) drive")
+    run.add_argument("--solver", choices=["auto", "direct", "cg"], default="auto",
+                     help="linear solver of the time steps: cached LU per position (direct), Jacobi-preconditioned "
+                          "conjugate gradients (cg), or auto: direct up to 60,000 unknowns")
     run.add_argument("--sample-interval", type=_positive_seconds, default=10.0, metavar="S",
                      help="spacing of the written samples [s] (default: 10)")
     _out_argument(run, "out/<system>_<condition>_<mode>")

@@ -31,6 +31,7 @@ from .system.schema import DEFAULT_DURATION_S, DutyCycle, FeedSystem
 
 MODELS = ("fast", "fem")
 MESHES = ("coarse", "medium", "fine")
+SOLVERS = ("auto", "direct", "cg")
 AMBIENT_SENSOR = "T6"
 
 
@@ -39,7 +40,7 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
              single_drive: bool = False, sample_interval: float = 10.0,
              progress: Callable[[float], None] | None = None, motion: str | None = None,
              mesh: str | None = None, start: str = "initial", options: ModelOptions | None = None,
-             tamper: SolverTamper | None = None) -> Solution:
+             tamper: SolverTamper | None = None, solver: str | None = None) -> Solution:
     """Simulate a condition or a duty cycle of ``loaded`` and return its Solution.
 
     Parameters
@@ -63,12 +64,14 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
     start : {"initial", "steady"}
         Start from the initial temperature (default), or from the cycle-averaged steady state
         of the first operating point (to study the periodic steady state directly).
+    solver : {"auto", "direct", "cg"}, optional
+        Linear solver of the time steps (default: ``options.solver``, "auto").
     """
     started = time.perf_counter()
     system = loaded.system
-    _check_arguments(loaded, mode, model, duration, sample_interval, motion, mesh)
+    _check_arguments(loaded, mode, model, duration, sample_interval, motion, mesh, solver)
     label, profile = _profile(loaded, condition, cycle, duration)
-    opts = _options(options, motion, mesh)
+    opts = _options(options, motion, mesh, solver)
     segments = _segments(system, profile, mode, single_drive)
     disc = discretize(system, model, opts, tamper)
     integrator = Integrator(disc, opts)
@@ -123,6 +126,7 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
         "motion": opts.motion,
         "time_step_s": trace.time_step,
         "steps": len(step_end),
+        "solver": integrator.solver_name,
         "unknowns": disc.n_nodes,
         **({"mesh": opts.mesh, "mesh_statistics": disc.stats} if model == "fem"
            else {k: v for k, v in disc.stats.items() if k != "unknowns"}),
@@ -168,8 +172,11 @@ def discretize(system: FeedSystem, model: str, options: ModelOptions, tamper: So
     return FastDiscretization(system, options, tamper)
 
 
-def _options(options: ModelOptions | None, motion: str | None, mesh: str | None) -> ModelOptions:
+def _options(options: ModelOptions | None, motion: str | None, mesh: str | None,
+             solver: str | None = None) -> ModelOptions:
     opts = options or ModelOptions()
+    if solver is not None:
+        opts = replace(opts, solver=solver)
     if motion is not None:
         opts = replace(opts, motion=motion)
     if mesh is not None:
@@ -177,7 +184,7 @@ def _options(options: ModelOptions | None, motion: str | None, mesh: str | None)
     return opts
 
 
-def _check_arguments(loaded, mode, model, duration, sample_interval, motion, mesh) -> None:
+def _check_arguments(loaded, mode, model, duration, sample_interval, motion, mesh, solver=None) -> None:
     system = loaded.system
     if mode not in MODES:
         raise FeedthermError(f"--mode: must be one of {', '.join(MODES)}, got {mode!r}")
@@ -191,6 +198,8 @@ def _check_arguments(loaded, mode, model, duration, sample_interval, motion, mes
         raise FeedthermError(f"--motion: must be resolved or averaged, got {motion!r}")
     if mesh not in (None, *MESHES):
         raise FeedthermError(f"--mesh: must be one of {', '.join(MESHES)}, got {mesh!r}")
+    if solver not in (None, *SOLVERS):
+        raise FeedthermError(f"--solver: must be one of {', '.join(SOLVERS)}, got {solver!r}")
     if not sample_interval > 0:
         raise FeedthermError(f"--sample-interval: must be positive, got {sample_interval!r} s")
     if system.temperatures.temperature_dependent_chtc:

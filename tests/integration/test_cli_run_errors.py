@@ -117,7 +117,8 @@ def test_valid_arguments_reach_simulate_and_the_files_appear(tmp_path, monkeypat
     assert origin == "bundled:paper"
     assert {k: v for k, v in kwargs.items() if k != "progress"} == {
         "condition": "I", "cycle": None, "mode": "physics", "model": "fast", "duration": 60.0,
-        "single_drive": False, "sample_interval": 5.0, "motion": "resolved", "mesh": "coarse"}
+        "single_drive": False, "sample_interval": 5.0, "motion": "resolved", "mesh": "coarse",
+        "solver": "auto"}
     out = capsys.readouterr().out
     assert out == "out/paper_I_physics: T1 21.00 °C, D 1.00 µm, energy balance error 0 %\n"
     assert len(list((tmp_path / "out" / "paper_I_physics").iterdir())) == 7

@@ -208,6 +208,8 @@ def run_summary(solution: Solution) -> dict:
                      "heat_stored": energy.heat_stored, "residual": energy.residual},
         "wall_time_s": info.get("wall_time_s"),
         "time_step_s": info.get("time_step_s"),
+        "steps": info.get("steps"),
+        "solver": info.get("solver"),
         "unknowns": info.get("unknowns"),
         "elongation_change_um": {"final": final["D_um"] - start_um, "steady": steady["D_um"] - start_um},
         "warnings": info.get("warnings", []),  # e.g. correlations used outside their range

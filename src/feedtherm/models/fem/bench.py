@@ -395,10 +395,10 @@ def steady_cycle_averaged(model, bc: BoundaryConditions) -> np.ndarray:
     Solves ``(Σ w_k G(k) + diag Σ w_k g(k)) T = Σ w_k q(k) + Σ w_k g(k) T_amb`` with the
     weights of :func:`cycle_weights`, as the shared integrator's averaged motion does.
     """
-    from scipy.sparse.linalg import splu
+    from ..integrator import factorize
 
     w = cycle_weights(len(model.positions))
     G = sum(wk * model.conductance(k) for k, wk in enumerate(w))
     g = sum(wk * model.ambient_links(bc, k) for k, wk in enumerate(w))
     q = sum(wk * model.heat_vector(bc, k) for k, wk in enumerate(w))
-    return splu((G + sp.diags(g)).tocsc()).solve(q + g * bc.point.ambient)
+    return factorize(G + sp.diags(g)).solve(q + g * bc.point.ambient)
