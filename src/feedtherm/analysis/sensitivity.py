@@ -11,6 +11,7 @@ uncertain parameter.  Heat capacities do not act on a steady state and are left 
 
 from __future__ import annotations
 
+import re
 from typing import Callable
 
 from ..simulate import steady_state
@@ -38,6 +39,22 @@ def perturbable_paths(loaded: LoadedSystem) -> list[str]:
     return paths
 
 
+def readable_name(loaded: LoadedSystem, path: str) -> str:
+    """A joint's path by the parts it joins: ``joints[9].tcr`` -> ``joint nut–screw: tcr``.
+
+    Other paths are already named (``sources.front_bearing.preload``) and give ``""``.
+    """
+    match = re.fullmatch(r"joints\[(\d+)\]\.(.+)", path)
+    if match is None:
+        return ""
+    index, rest = int(match.group(1)), match.group(2)
+    joints = loaded.system.joints
+    if index >= len(joints):
+        return ""
+    a, b = joints[index].between
+    return f"joint {a}–{b}: {rest}"
+
+
 def source_of(loaded: LoadedSystem, path: str) -> str:
     """The provenance entry covering ``path`` (the longest matching prefix)."""
     best, text = (-1, -1), "undeclared"
@@ -60,7 +77,7 @@ def sensitivities(loaded: LoadedSystem, condition: str, *, mode: str = "physics"
         perturbed = steady_state(variant, condition, mode=mode)
         effect = {name: perturbed[name] - base[name] for name in base if name not in ("D", "T6")}
         effect[ELONGATION_QUANTITY] = (perturbed["D"] - base["D"]) * 1e6
-        out.append(Sensitivity(path, source_of(loaded, path), factor, effect))
+        out.append(Sensitivity(path, source_of(loaded, path), factor, effect, name=readable_name(loaded, path)))
         if progress is not None:
             progress((i + 1) / len(paths))
     return sorted(out, key=lambda s: (s.max_temperature_effect, abs(s.effect[ELONGATION_QUANTITY])), reverse=True)

@@ -34,6 +34,11 @@ class Sensitivity:
     assumption: str  # the provenance entry's source
     factor: float  # the value was multiplied by this
     effect: dict[str, float]  # quantity -> change (K or µm)
+    name: str = ""  # a readable name where the path has an index ("joint nut–screw: tcr")
+
+    @property
+    def label(self) -> str:
+        return self.name or self.parameter
 
     @property
     def max_temperature_effect(self) -> float:

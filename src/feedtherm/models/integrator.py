@@ -25,6 +25,7 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import cg, splu
 
 from ..boundary import BoundaryConditions
+from ..errors import ModelError
 from .options import ModelOptions
 
 #: Above this many unknowns the "auto" solver uses conjugate gradients, not cached LU.
@@ -157,7 +158,8 @@ class Integrator:
         A, preconditioner = self._cg[key]
         solution, info = cg(A, rhs, x0=guess, rtol=CG_RTOL, maxiter=5000, M=preconditioner)
         if info != 0:
-            raise RuntimeError(f"conjugate gradients did not converge ({info})")
+            raise ModelError(f"--solver cg: conjugate gradients did not converge in {info} iterations of a time step; "
+                             "use --solver direct")
         return solution
 
     def _step_matrix(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float) -> sp.spmatrix:
@@ -173,7 +175,8 @@ class Integrator:
         solution, info = cg(A.tocsr(), rhs, x0=np.full(len(rhs), bc.point.ambient), rtol=CG_RTOL, maxiter=50000,
                             M=jacobi(A))
         if info != 0:
-            raise RuntimeError(f"conjugate gradients did not converge ({info})")
+            raise ModelError(f"--solver cg: conjugate gradients did not converge in {info} iterations of the steady "
+                             "state; use --solver direct")
         return solution
 
     # -------------------------------------------------------------- time loop

@@ -123,7 +123,10 @@ def synthetic_validation(**changes) -> Validation:
         sensitivities=[Sensitivity("sources.screw_nut.mu", "AUDIT <§5>", 1.5,
                                    {"T1": 0.1, "T2": 0.2, "T3": -2.0, "T4": 1.0, "T5": 0.3, "D_um": 4.0}),
                        Sensitivity("sources.front_bearing.preload", "catalogue", 0.8,
-                                   {"T1": 3.0, "T2": 0.2, "T3": 0.1, "T4": 0.1, "T5": 0.1, "D_um": 1.0})],
+                                   {"T1": 3.0, "T2": 0.2, "T3": 0.1, "T4": 0.1, "T5": 0.1, "D_um": 1.0}),
+                       Sensitivity("joints[6].tcr", "assumed", 1.1,
+                                   {"T1": 0.0, "T2": 0.0, "T3": 0.5, "T4": 0.1, "T5": 0.0, "D_um": 0.5},
+                                   name="joint <nut>–screw: tcr")],
         sensitivity_condition="I", inconsistencies=["Table 1 < needed & <b>not bold</b>"],
         assumptions=[{"paths": ["parts.screw", "sources.x"], "source": "a <source>", "reason": "because"}],
         provenance={"feedtherm_version": "0.1.0", "description_sha256": "ab" * 32, "mode": "physics"},
@@ -180,6 +183,12 @@ def test_sensitivities_sorted_by_largest_temperature_effect(rendered):
     first = rendered.index("sources.front_bearing.preload")  # 3.0 K beats 2.0 K
     assert first < rendered.index("sources.screw_nut.mu", rendered.index('id="sensitivity"'))
     assert "condition I" in rendered
+
+
+def test_a_joint_is_named_by_its_parts_under_its_path(rendered):
+    table = rendered[rendered.index('id="sensitivity"'):]
+    path = table.index("<code>joints[6].tcr</code>")
+    assert table.index("joint &lt;nut&gt;–screw: tcr") > path  # the name, escaped, after the path
 
 
 def test_no_calibration_is_said_and_a_calibration_is_tabled(rendered):

@@ -6,7 +6,8 @@ import math
 
 from ...analysis.validation_types import ELONGATION_QUANTITY, TEMPERATURE_QUANTITIES, Sensitivity, Validation
 from . import figures
-from .html import Cell, Raw, bullets, code, definition_table, heading, number, paragraph, png_image, section, table
+from .html import (Cell, Raw, bullets, code, definition_table, esc, heading, number, paragraph, png_image, section,
+                   table)
 
 TOP_SENSITIVITIES = 15  # in the bar chart
 TABLE_ROWS = 30  # in the open table; the rest folded below it
@@ -51,10 +52,17 @@ def sensitivity_section(validation: Validation) -> str:
 
 
 def sensitivity_table(rows: list[Sensitivity], first_rank: int = 1) -> str:
-    body = [[str(rank), Cell(code(row.parameter), "text"), f"×{row.factor:g}", number(row.max_temperature_effect, 2),
+    body = [[str(rank), Cell(_parameter_cell(row), "text"), f"×{row.factor:g}", number(row.max_temperature_effect, 2),
              _largest_sensor(row), number(_abs_d(row), 2), Cell(row.assumption, "text small")]
             for rank, row in enumerate(rows, start=first_rank)]
     return table(["rank", "parameter", "factor", "max |ΔT| [K]", "at", "|ΔD| [µm]", "assumption source"], body)
+
+
+def _parameter_cell(row: Sensitivity) -> Raw:
+    """The path as code, and under it the readable name where there is one."""
+    if not row.name:
+        return code(row.parameter)
+    return Raw(f"{code(row.parameter).html}<br><span class=\"muted\">{esc(row.name)}</span>")
 
 
 def ranked(rows: list[Sensitivity]) -> list[Sensitivity]:

@@ -195,7 +195,7 @@ def sensitivity_bars(rows: Sequence[Sensitivity], condition: str) -> bytes:
     figure = _figure(1.6 + 0.34 * max(1, len(rows)))
     t_ax, d_ax = figure.subplots(1, 2, sharey=True, width_ratios=(3, 2))
     y = np.arange(len(rows))[::-1]
-    labels = [f"{_shorten(row.parameter)} ×{row.factor:g}" for row in rows]
+    labels = [f"{_shorten(row.label)} ×{row.factor:g}" for row in rows]
     t_ax.barh(y, [row.max_temperature_effect for row in rows], color="C3")
     d_ax.barh(y, [abs(row.effect.get(ELONGATION_QUANTITY, np.nan)) for row in rows], color=_D_COLOUR)
     t_ax.set_yticks(y, labels, fontsize=8.5)

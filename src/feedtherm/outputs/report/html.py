@@ -179,6 +179,7 @@ table.data td { text-align: right; font-variant-numeric: tabular-nums; white-spa
 table.data th[scope=row] { text-align: left; font-weight: normal; white-space: nowrap; }
 table.text td, table.data td.text { text-align: left; white-space: normal; }
 td.small { font-size: 12.5px; color: var(--muted); }
+span.muted { font-size: 12.5px; color: var(--muted); }
 details { margin: 4px 0 14px; }
 summary { cursor: pointer; color: #2a5d8f; }
 table.text th[scope=row] { text-align: left; font-weight: normal; }
