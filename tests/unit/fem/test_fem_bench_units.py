@@ -185,3 +185,21 @@ def test_face_selectors_of_boxes_and_cylinders():
     rod = Part(material="m", cylinders=[Cylinder(origin=("0 m", "0 m", "0 m"), length="0.1 m", outer_diameter="20 mm")])
     with pytest.raises(Exception, match="does not exist on a cylinder"):
         surface_facets(Surface(part="p", faces=["+y"], convection=conv, emissivity=0.5), rod, p, tri)
+
+
+def test_a_face_shared_by_two_coplanar_boxes_keeps_its_whole_area():
+    # One block described as two boxes that meet at x = 0.15 m; the mesh's nodes sit at
+    # x = 0, 0.1, 0.2, 0.3, so the top facets between 0.1 and 0.2 straddle the boxes' edge.
+    # Every facet goes to the box that holds its centroid: the two tops add up to the
+    # block's top, and each box's top alone is half of it to within one element.
+    p, t = _box_mesh(np.linspace(0, 0.3, 4), np.linspace(0, 0.2, 3), np.linspace(0, 0.1, 2))
+    tri = boundary_triangles(p, t)
+    part = Part(material="m", boxes=[Box(origin=("0 m", "0 m", "0 m"), size=("0.15 m", "0.2 m", "0.1 m")),
+                                     Box(origin=("0.15 m", "0 m", "0 m"), size=("0.15 m", "0.2 m", "0.1 m"))])
+    conv = {"kind": "natural", "orientation": "horizontal_plate_up", "length": "0.1 m"}
+    both = surface_facets(Surface(part="p", faces=["+z"], convection=conv, emissivity=0.5), part, p, tri)
+    assert tri.areas[both].sum() == pytest.approx(0.3 * 0.2)
+    first = surface_facets(Surface(part="p", faces=["+z"], boxes=[0], convection=conv, emissivity=0.5), part, p, tri)
+    second = surface_facets(Surface(part="p", faces=["+z"], boxes=[1], convection=conv, emissivity=0.5), part, p, tri)
+    assert not (first & second).any()
+    assert tri.areas[first].sum() == pytest.approx(0.03, abs=0.1 * 0.2 / 2)

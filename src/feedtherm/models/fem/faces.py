@@ -5,9 +5,12 @@ A surface of the description selects faces of a part's primitives (see
 the holes in its boxes, and ``lateral``, ``bore``, ``ends``, ``+x``/``-x`` (the ends at the
 larger/smaller coordinate along the cylinder's axis) of its cylinders. A facet belongs to
 a face when its three vertices lie on it (gmsh puts the vertices of a curved face on the
-exact cylinder) and its outward normal points the face's way. Parts of a primitive's face
-that are fused to another primitive, or cut away, have no boundary facets: the mesh gives
-the true exposed area, where ``surface_area`` adds up whole faces.
+exact cylinder), its centroid lies within the face's extent, and its outward normal points
+the face's way. The centroid, not every vertex, decides the extent: where two primitives of
+a part meet in one plane (two boxes' tops), gmsh triangulates the fused face across their
+common edge, and a facet straddling it belongs to the one that holds its centroid. Parts of
+a primitive's face that are fused to another primitive, or cut away, have no boundary
+facets: the mesh gives the true exposed area, where ``surface_area`` adds up whole faces.
 """
 
 from __future__ import annotations
@@ -53,9 +56,10 @@ def _box_face(box: Box, face: str, corners: np.ndarray, normals: np.ndarray) -> 
     hi = lo + np.array(box.size)
     plane = hi[i] if sign > 0 else lo[i]
     ok = (np.abs(corners[:, i] - plane) < ON_FACE).all(axis=0)
+    centroid = corners.mean(axis=0)  # (3, n)
     for k in range(3):
         if k != i:
-            ok &= ((corners[:, k] >= lo[k] - ON_FACE) & (corners[:, k] <= hi[k] + ON_FACE)).all(axis=0)
+            ok &= (centroid[k] >= lo[k] - ON_FACE) & (centroid[k] <= hi[k] + ON_FACE)
     return ok & (sign * normals[i] > 0.9)
 
 
@@ -73,7 +77,8 @@ def _radial(cyl: Cylinder, corners: np.ndarray):
 
 def _cylinder_face(cyl: Cylinder, face: str, corners: np.ndarray, normals: np.ndarray, path: str = "") -> np.ndarray:
     i, along, r, radial = _radial(cyl, corners)
-    within = ((along >= -ON_FACE) & (along <= cyl.length + ON_FACE)).all(axis=0)
+    middle = along.mean(axis=0)  # the centroid's axial coordinate decides, as for boxes
+    within = (middle >= -ON_FACE) & (middle <= cyl.length + ON_FACE)
     centre_dir = radial.mean(axis=0)
     centre_dir /= np.maximum(np.linalg.norm(centre_dir, axis=0), 1e-30)
     outward = np.einsum("ij,ij->j", centre_dir, normals)
