@@ -1,4 +1,5 @@
-"""FE field output: fields.pvd + .vtu snapshots (read back with meshio) and the two PNG images.
+"""FE field output: fields.pvd + .vtu snapshots (read back with meshio and with VTK's own reader) and
+the two PNG images.
 
 The field is synthetic: a fixed "base" box and a moving "table" box on top of it, meshed
 separately on the same grid lines (no shared nodes), with a temperature rising along x.
@@ -156,6 +157,28 @@ def test_vtu_snapshots_read_back_with_celsius_part_id_and_moved_table(series, tm
     # temperature in °C: 20 °C + 100 K/m · x at rest, at the last snapshot
     last = meshio.read(tmp_path / "fields_0002.vtu")
     np.testing.assert_allclose(last.point_data["temperature_C"], 20.0 + 100.0 * series.points[:, 0])
+
+
+def test_vtk_reads_every_snapshot_the_collection_names(series, tmp_path):
+    """ParaView reads .vtu files with VTK's XML reader: the files must satisfy it, not only meshio."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkCommonDataModel import VTK_TETRA
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+
+    write_pvd(series, tmp_path)
+    datasets = list(ET.parse(tmp_path / "fields.pvd").getroot().find("Collection"))
+    assert len(datasets) == series.n_snapshots
+    for k, dataset in enumerate(datasets):
+        reader = vtkXMLUnstructuredGridReader()
+        reader.SetFileName(str(tmp_path / dataset.get("file")))
+        reader.Update()
+        assert reader.GetErrorCode() == 0
+        grid = reader.GetOutput()
+        assert grid.GetNumberOfPoints() == len(series.points) and grid.GetNumberOfCells() == len(series.tets)
+        assert {grid.GetCellType(i) for i in range(grid.GetNumberOfCells())} == {VTK_TETRA}
+        temperature = vtk_to_numpy(grid.GetPointData().GetArray("temperature_C"))
+        np.testing.assert_allclose(temperature, series.temperatures[k] - K)
+        np.testing.assert_array_equal(vtk_to_numpy(grid.GetCellData().GetArray("part_id")), series.part_id)
 
 
 def test_write_pvd_removes_older_snapshots_only(series, tmp_path):
