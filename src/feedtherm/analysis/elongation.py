@@ -7,7 +7,7 @@ Free thermal strain, integrated from the axially fixed bearing:
 with :math:`\\bar T` the cross-section mean temperature, α the expansion coefficient and
 :math:`T_{ref}` the reference (zero-strain) temperature.  D is u at the read point.  This
 is the 1-D limit of linear thermo-elasticity for a shaft free to expand beyond its fixed
-bearing (the paper's rear bearing "cannot limit the axial displacement"; AUDIT.md §4).
+bearing (the paper's rear bearing "cannot limit the axial displacement"; docs/paper-audit.md §4).
 """
 
 from __future__ import annotations

@@ -2,7 +2,7 @@
 
 All convection correlations of the paper (§3.2, Eqs. 24-29) need the properties of air
 at the *qualitative temperature* ε, which the paper leaves undefined in Eq. 25; the
-review (AUDIT §1, Eq. 25) identifies it as the film temperature
+review (docs/paper-audit.md §1, Eq. 25) identifies it as the film temperature
 :math:`T_f = (T_s + T_\\infty)/2`, the textbook choice (Incropera et al. 2007, §7.1 and
 §9.6).  :func:`film_temperature` computes it and :func:`air_properties` returns the
 properties there.
@@ -92,7 +92,7 @@ def film_temperature(T_surface, T_ambient):
     Notes
     -----
     This is the paper's "qualitative temperature" ε of Eq. 25, which the printed equation
-    shows as if it were an exponent (AUDIT §1, Eq. 25).
+    shows as if it were an exponent (docs/paper-audit.md §1, Eq. 25).
 
     References
     ----------
@@ -142,7 +142,7 @@ def air_properties(T, p=P_ATM):
     returns a value there.
 
     *Expansion coefficient.*  β is the ideal-gas value 1/T, as in the paper's Eq. 26
-    (AUDIT: β = 1/T_f in 1/K).  For air at 1 atm and 200-500 K the real-gas value
+    (docs/paper-audit.md: β = 1/T_f in 1/K).  For air at 1 atm and 200-500 K the real-gas value
     :math:`-\rho^{-1}(\partial\rho/\partial T)_p` from CoolProp is larger by only
     0.04-0.9 %.
 

@@ -2,7 +2,7 @@ r"""Rolling-bearing friction torque and heat after Palmgren (paper Eqs. 15–22,
 
 :math:`M = M_l + M_v` (load and viscous parts), :math:`H = M\omega`. Interfaces are SI
 (loads [N], d_m [m], ν [m²/s], torque [N·m], heat [W], speed [rpm]); Palmgren's
-N·mm/mm/mm²/s forms are converted inside. Corrections (AUDIT §1): P₁ ≥ F_r (Eqs. 18,
+N·mm/mm/mm²/s forms are converted inside. Corrections (docs/paper-audit.md §1): P₁ ≥ F_r (Eqs. 18,
 20); deep-groove z = 4e-4..6e-4, not 9e-4 (Eq. 19); d_m³ in Eq. 21; 160e-7·f₀·d_m³ in
 Eq. 22.
 
@@ -31,7 +31,7 @@ from feedtherm.physics.validity import check_range
 
 #: Palmgren's f₀ by bearing type and lubrication, [-]: Harris & Kotzalas 2006 (f₀ table
 #: after Palmgren 1959); pairs take 2× the single-row value (SKF rule). Deep groove with
-#: grease: Harris gives 0.7–2 (light to heavy series); 1.5 is AUDIT §3's value. AUDIT
+#: grease: Harris gives 0.7–2 (light to heavy series); 1.5 is docs/paper-audit.md §3's value. AUDIT
 #: uses 2 per angular-contact bearing, 4 per pair. Typical values, not product data.
 F0_TYPICAL: dict[str, dict[str, float]] = {
     "deep_groove": {"grease": 1.5, "oil_mist": 1.0, "oil_bath": 2.0},
@@ -112,7 +112,7 @@ def palmgren_f1_deep_groove(P0, C0, z=5e-4):
     Notes
     -----
     The paper prints z = 9e-4, which Harris does not tabulate; deep-groove bearings
-    have z = 0.0004–0.0006 with y = 0.55 (AUDIT §1, rows 19–20). A warning is emitted
+    have z = 0.0004–0.0006 with y = 0.55 (docs/paper-audit.md §1, rows 19–20). A warning is emitted
     for z outside [4e-4, 6e-4] and for P₀/C₀ outside (0, 1].
 
     References
@@ -312,7 +312,7 @@ def bearing_heat(torque, n_rpm):
 
     References
     ----------
-    .. [1] Paper Eq. 15; AUDIT §3 (bearing speeds).
+    .. [1] Paper Eq. 15; docs/paper-audit.md §3 (bearing speeds).
     """
     if isinstance(torque, BearingTorque):
         torque = torque.total

@@ -4,7 +4,7 @@ Dimensionless groups, Nusselt correlations (pure functions of Ra or Re, Pr; scal
 arrays) and surface-level helpers returning h [W/(m²·K)] with air properties at the
 film temperature (the paper's "qualitative temperature" ε).  Temperatures in K.
 
-Corrections to the printed paper (AUDIT §1): Eq. 24 L in m; Eq. 25 C and n per
+Corrections to the printed paper (docs/paper-audit.md §1): Eq. 24 L in m; Eq. 25 C and n per
 geometry and regime, ε = film temperature; Eq. 26 ν in m²/s, β = 1/T_f; Eq. 27
 Re = ωd²/ν; Eq. 28 plate average 0.664 (the printed local 0.332 is kept as the named
 variant :func:`Nu_flat_plate_laminar_local`); Eq. 29 valid only for 4e3 < Re < 1.5e4,
@@ -112,7 +112,7 @@ def Nu_mixed(Nu_forced, Nu_natural, n=3.0, assisting=True):
 
     References
     ----------
-    .. [1] AUDIT §1, Eq. 29. Incropera (2007), §9.9.
+    .. [1] docs/paper-audit.md §1, Eq. 29. Incropera (2007), §9.9.
     .. [2] S. W. Churchill, AIChE J. 23 (1977) 10-16.
     """
     if not n > 0:

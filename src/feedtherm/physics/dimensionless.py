@@ -6,7 +6,7 @@ Shared by :mod:`~feedtherm.physics.natural_convection` and
 natural and forced modules can use them without importing the module that re-exports
 them (which would be an import cycle).
 
-Corrections to the printed paper (AUDIT §1): Eq. 24 L in m; Eq. 26 ν in m²/s,
+Corrections to the printed paper (docs/paper-audit.md §1): Eq. 24 L in m; Eq. 26 ν in m²/s,
 β = 1/T_f; Eq. 27 Re = ωd²/ν.
 
 "Incropera (2007)" is F. P. Incropera, D. P. DeWitt, T. L. Bergman, A. S. Lavine,
@@ -50,7 +50,7 @@ def grashof(L, T_surface, T_ambient, nu, beta, g=G_STANDARD):
 
     References
     ----------
-    .. [1] Paper, Eq. 26; AUDIT §1, Eq. 26. Incropera (2007), Eq. 9.12.
+    .. [1] Paper, Eq. 26; docs/paper-audit.md §1, Eq. 26. Incropera (2007), Eq. 9.12.
     """
     L, nu = _arr(L, "L", positive=True), _arr(nu, "nu", positive=True)
     dT = np.abs(np.asarray(T_surface, dtype=float) - np.asarray(T_ambient, dtype=float))
@@ -129,7 +129,7 @@ def reynolds_rotating(omega, d, nu):
 
     Notes
     -----
-    The Re of Eq. 27, which the paper does not state (AUDIT §1, Eq. 27).
+    The Re of Eq. 27, which the paper does not state (docs/paper-audit.md §1, Eq. 27).
 
     References
     ----------
@@ -161,6 +161,6 @@ def h_from_nusselt(Nu, k, L):
 
     References
     ----------
-    .. [1] Paper, Eq. 24; AUDIT §1, Eq. 24.
+    .. [1] Paper, Eq. 24; docs/paper-audit.md §1, Eq. 24.
     """
     return _out(_arr(Nu, "Nu") * _arr(k, "k", positive=True) / _arr(L, "L", positive=True))

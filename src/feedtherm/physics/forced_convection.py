@@ -4,7 +4,7 @@ Nusselt correlations of rotating and translating surfaces (pure functions of Re,
 scalars or arrays) and surface-level helpers returning h [W/(m²·K)] with air properties
 at the film temperature.  Temperatures in K.
 
-Corrections to the printed paper (AUDIT §1): Eq. 24 L in m; Eq. 27 Re = ωd²/ν;
+Corrections to the printed paper (docs/paper-audit.md §1): Eq. 24 L in m; Eq. 27 Re = ωd²/ν;
 Eq. 28 plate average 0.664 (the printed local 0.332 is kept as the named variant
 :func:`Nu_flat_plate_laminar_local`); Eq. 29 valid only for 4e3 < Re < 1.5e4, so at
 feed speeds blend with natural convection
@@ -50,7 +50,7 @@ def Nu_rotating_cylinder(Re, Pr):
 
     References
     ----------
-    .. [1] Paper, Eq. 27; AUDIT §1, Eq. 27.
+    .. [1] Paper, Eq. 27; docs/paper-audit.md §1, Eq. 27.
     .. [2] Kays & Bjorklund, Trans. ASME 80 (1958) 70-78, as quoted in Incropera
        (2007), Ch. 7.
     """
@@ -91,7 +91,7 @@ def Nu_flat_plate_laminar_average(Re, Pr):
 
     References
     ----------
-    .. [1] Paper, Eq. 28 (prints the local 0.332); AUDIT §1, Eq. 28.
+    .. [1] Paper, Eq. 28 (prints the local 0.332); docs/paper-audit.md §1, Eq. 28.
     .. [2] Incropera (2007), Eq. 7.30.
     """
     return _flat_plate("Nu_flat_plate_laminar_average", 0.664, Re, Pr)
@@ -117,7 +117,7 @@ def Nu_flat_plate_laminar_local(Re, Pr):
     Notes
     -----
     Named variant for reproducing the paper only: used as a plate average it halves h
-    (AUDIT §1, Eq. 28). Valid Re_x < 5e5, Pr ≥ 0.6 (warns outside).
+    (docs/paper-audit.md §1, Eq. 28). Valid Re_x < 5e5, Pr ≥ 0.6 (warns outside).
 
     References
     ----------
@@ -146,12 +146,12 @@ def Nu_plate_normal_to_flow(Re, Pr):
     Notes
     -----
     Valid 4e3 ≤ Re ≤ 1.5e4 and Pr ≳ 0.7 (checked as ≥ 0.7); warns outside. Re = 0
-    returns 0 without warning. At feed speeds Re is 20-170 (AUDIT §1, Eq. 29): blend
+    returns 0 without warning. At feed speeds Re is 20-170 (docs/paper-audit.md §1, Eq. 29): blend
     with natural convection.
 
     References
     ----------
-    .. [1] Paper, Eq. 29; AUDIT §1, Eq. 29.
+    .. [1] Paper, Eq. 29; docs/paper-audit.md §1, Eq. 29.
     .. [2] Incropera (2007), Eq. 7.52, Table 7.3 (vertical flat plate, gas).
     """
     Re, Pr = _arr(Re, "Re"), _arr(Pr, "Pr", positive=True)
@@ -188,7 +188,7 @@ def h_rotating_cylinder(d, n_rpm, T_film):
 
     References
     ----------
-    .. [1] Paper, Eqs. 24 and 27; AUDIT §1, Eq. 27.
+    .. [1] Paper, Eqs. 24 and 27; docs/paper-audit.md §1, Eq. 27.
     """
     air = air_properties(_temperature("T_film", T_film))
     d = float(_arr(d, "d", positive=True))
@@ -221,7 +221,7 @@ def h_flat_plate_forced(L, u, T_film):
 
     References
     ----------
-    .. [1] Paper, Eqs. 24 and 28; AUDIT §1, Eq. 28.
+    .. [1] Paper, Eqs. 24 and 28; docs/paper-audit.md §1, Eq. 28.
     """
     air = air_properties(_temperature("T_film", T_film))
     L = float(_arr(L, "L", positive=True))
@@ -255,7 +255,7 @@ def h_face_normal_to_motion(L, u, T_film):
 
     References
     ----------
-    .. [1] Paper, Eqs. 24 and 29; AUDIT §1, Eq. 29.
+    .. [1] Paper, Eqs. 24 and 29; docs/paper-audit.md §1, Eq. 29.
     """
     air = air_properties(_temperature("T_film", T_film))
     L = float(_arr(L, "L", positive=True))

@@ -8,7 +8,7 @@ conductivity in Eq. 24); it is kept as :func:`guideway_heat_paper` for reproduct
 References
 ----------
 .. [1] Paper, §3.1, Eq. 13, and Table 1 (guideways 0.39 W at 0.18 m/min).
-.. [2] AUDIT §1 row 13 and §4 (μ_g = 0.005, 4 N seal drag per carriage, 4 carriages).
+.. [2] docs/paper-audit.md §1 row 13 and §4 (μ_g = 0.005, 4 N seal drag per carriage, 4 carriages).
 """
 
 from __future__ import annotations
@@ -49,7 +49,7 @@ def guideway_friction_force(mu, normal_load, seal_drag_per_carriage, n_carriages
 
     References
     ----------
-    .. [1] AUDIT §1 row 13 (H_g = v(μ_g W + F_seal)) and §4 (defaults).
+    .. [1] docs/paper-audit.md §1 row 13 (H_g = v(μ_g W + F_seal)) and §4 (defaults).
     """
     mu = _nonneg(mu, "mu", "[-]")
     W = _nonneg(normal_load, "normal_load", "[N]")
@@ -80,13 +80,13 @@ def guideway_heat(friction_force, speed):
 
     Notes
     -----
-    Table 5's feed 0.18 m/min is 0.003 m/s; with the AUDIT §4 defaults (μ = 0.005,
+    Table 5's feed 0.18 m/min is 0.003 m/s; with the docs/paper-audit.md §4 defaults (μ = 0.005,
     W ≈ 589 N, 4 × 4 N seal drag) this gives ≈ 0.057 W, not Table 1's 0.39 W.
 
     References
     ----------
     .. [1] Paper, Eq. 13 (standard form, λ dropped).
-    .. [2] AUDIT §1 row 13.
+    .. [2] docs/paper-audit.md §1 row 13.
     """
     F = _nonneg(friction_force, "friction_force", "[N]")
     v = _finite(speed, "speed", "[m/s]")
@@ -120,12 +120,12 @@ def guideway_heat_paper(lam, f_g, F_g, v):
     **Paper-reproduction variant**; prefer :func:`guideway_heat`.  Table 1's 0.39 W at
     v = 0.003 m/s needs λf_gF_g = 130 N, about 7× a realistic size-20 guide
     (15–20 N).  It would follow with λf_gF_g = 2.2 N if the feed 0.18 had been
-    entered in m/min instead of m/s (AUDIT §1 row 13).
+    entered in m/min instead of m/s (docs/paper-audit.md §1 row 13).
 
     References
     ----------
     .. [1] Paper, Eq. 13 and Table 1.
-    .. [2] AUDIT §1 row 13.
+    .. [2] docs/paper-audit.md §1 row 13.
     """
     lam = _nonneg(lam, "lam", "[-]")
     f_g = _nonneg(f_g, "f_g", "[-]")

@@ -10,7 +10,7 @@ Table 1 needs the printed form, kept as :func:`motor_loss_paper`.
 References
 ----------
 .. [1] Paper, §3.1, Eq. 14, and Table 1.
-.. [2] AUDIT §1 row 14 and §4 (M_m = 0.30 N·m, δ = 0.85 reproduce 1.87 / 1.70 W).
+.. [2] docs/paper-audit.md §1 row 14 and §4 (M_m = 0.30 N·m, δ = 0.85 reproduce 1.87 / 1.70 W).
 """
 
 from __future__ import annotations
@@ -76,12 +76,12 @@ def motor_loss(torque, n_rpm, efficiency):
     -----
     Motoring operation; magnitudes of torque and speed are used.  For the same η the
     loss is 1/η times the paper's printed form :func:`motor_loss_paper`.  The paper
-    never defines M_m; state it explicitly (AUDIT §1 row 14).
+    never defines M_m; state it explicitly (docs/paper-audit.md §1 row 14).
 
     References
     ----------
     .. [1] Paper, Eq. 14 (corrected: P_out(1/η − 1), not P_out(1 − η)).
-    .. [2] AUDIT §1 row 14.
+    .. [2] docs/paper-audit.md §1 row 14.
     """
     eta = _efficiency(efficiency)
     return _out(motor_output_power(torque, n_rpm) * (1.0 / eta - 1.0))
@@ -145,13 +145,13 @@ def motor_loss_paper(torque, n_rpm, efficiency):
     -----
     **Paper-reproduction variant; physically the loss of a given output is
     P_out(1/η − 1), see** :func:`motor_loss`.  With M_m = 0.30 N·m and δ = 0.85 it
-    reproduces Table 1: 1.87 W at 396 rpm and 1.70 W at 360 rpm (AUDIT §4). The
+    reproduces Table 1: 1.87 W at 396 rpm and 1.70 W at 360 rpm (docs/paper-audit.md §4). The
     printed constant 9550 is used as printed (exact 9549.3; difference 0.007 %).
 
     References
     ----------
     .. [1] Paper, Eq. 14 and Table 1.
-    .. [2] AUDIT §1 row 14 and §4.
+    .. [2] docs/paper-audit.md §1 row 14 and §4.
     """
     eta = _efficiency(efficiency)
     torque_Nmm = np.abs(_finite(torque, "torque", "[N·m]")) * 1e3

@@ -5,7 +5,7 @@ scalars or arrays) and :func:`h_natural`, the film coefficient h [W/(m²·K)] wi
 properties at the film temperature (the paper's "qualitative temperature" ε).
 Temperatures in K.
 
-Corrections to the printed paper (AUDIT §1): Eq. 24 L in m; Eq. 25 C and n per
+Corrections to the printed paper (docs/paper-audit.md §1): Eq. 24 L in m; Eq. 25 C and n per
 geometry and regime, ε = film temperature; Eq. 26 ν in m²/s, β = 1/T_f.
 
 "Incropera (2007)" is F. P. Incropera, D. P. DeWitt, T. L. Bergman, A. S. Lavine,
@@ -69,7 +69,7 @@ def Nu_natural_horizontal_cylinder_Morgan(Ra):
 
     References
     ----------
-    .. [1] Paper, Eq. 25; AUDIT §1, Eq. 25.
+    .. [1] Paper, Eq. 25; docs/paper-audit.md §1, Eq. 25.
     .. [2] Incropera (2007), §9.6.3, Table 9.1 (V. T. Morgan, Adv. Heat Transfer 11,
        1975, 199-264).
     """
@@ -104,7 +104,7 @@ def Nu_natural_vertical_plate(Ra):
 
     References
     ----------
-    .. [1] Paper, Eq. 25; AUDIT §1, Eq. 25.
+    .. [1] Paper, Eq. 25; docs/paper-audit.md §1, Eq. 25.
     .. [2] Incropera (2007), §9.6.1 (Nu = C Ra^n, McAdams' C and n; W. H. McAdams,
        *Heat Transmission*, 3rd ed., 1954).
     """
@@ -138,7 +138,7 @@ def Nu_natural_horizontal_plate_up(Ra):
 
     References
     ----------
-    .. [1] Paper, Eq. 25; AUDIT §1, Eq. 25.
+    .. [1] Paper, Eq. 25; docs/paper-audit.md §1, Eq. 25.
     .. [2] Incropera (2007), §9.6.2, Eqs. 9.29 (L = A/P), 9.30 and 9.31.
     """
     Ra = _arr(Ra, "Ra")
@@ -167,7 +167,7 @@ def Nu_natural_horizontal_plate_down(Ra):
 
     References
     ----------
-    .. [1] Paper, Eq. 25; AUDIT §1, Eq. 25.
+    .. [1] Paper, Eq. 25; docs/paper-audit.md §1, Eq. 25.
     .. [2] Incropera (2007), §9.6.2, Eq. 9.32.
     """
     Ra = _arr(Ra, "Ra")
@@ -227,7 +227,7 @@ def h_natural(orientation, L, T_surface, T_ambient):
 
     References
     ----------
-    .. [1] Paper, Eqs. 24-26; AUDIT §1, Eqs. 24-26. Incropera (2007), §9.6.
+    .. [1] Paper, Eqs. 24-26; docs/paper-audit.md §1, Eqs. 24-26. Incropera (2007), §9.6.
     """
     if orientation not in _NATURAL_NU:
         raise ValueError(f"unknown orientation {orientation!r}; valid choices: "

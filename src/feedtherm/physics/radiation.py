@@ -1,6 +1,6 @@
 """Radiative exchange of a small grey surface with large isothermal surroundings.
 
-The paper omits radiation (AUDIT §1, "missing"); at 20-30 °C it is comparable to
+The paper omits radiation (docs/paper-audit.md §1, "missing"); at 20-30 °C it is comparable to
 natural convection (h_r ≈ 1.8 W/(m²·K) at ε = 0.3 and ≈ 4.9 at ε = 0.8).  The
 surroundings (walls of the room) are taken at the ambient air temperature.
 Temperatures are in K.
@@ -66,7 +66,7 @@ def h_radiation(emissivity, T_surface, T_ambient):
 
     References
     ----------
-    .. [1] AUDIT §1, "missing" (radiation).
+    .. [1] docs/paper-audit.md §1, "missing" (radiation).
     .. [2] Incropera, DeWitt, Bergman, Lavine, *Fundamentals of Heat and Mass Transfer*,
        6th ed., Wiley, 2007, Eqs. 1.8-1.9.
     """

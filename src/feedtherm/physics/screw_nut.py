@@ -1,6 +1,6 @@
-r"""Friction torque and heat of the sliding screw–nut pair (paper Eq. 23; AUDIT §5).
+r"""Friction torque and heat of the sliding screw–nut pair (paper Eq. 23; docs/paper-audit.md §5).
 
-The *sliding* model of a trapezoidal thread (AUDIT §5): Shigley's power-screw torque
+The *sliding* model of a trapezoidal thread (docs/paper-audit.md §5): Shigley's power-screw torque
 with the flank angle, a split-nut preload and Couette grease shear.  Tr flanks are
 conformal helicoids (no Hertz radius R), so this is the model for the real nut; the
 rolling terms of the paper's three-part *rolling-analogy* model (Eqs. 1–12, corrected,
@@ -46,7 +46,7 @@ def helix_angle(lead, d2):
 
     References
     ----------
-    .. [1] Shigley's *Mechanical Engineering Design*, §8-2 (power screws); AUDIT §5.
+    .. [1] Shigley's *Mechanical Engineering Design*, §8-2 (power screws); docs/paper-audit.md §5.
     """
     return _out(np.arctan(_positive("lead", lead) / (math.pi * _positive("d2", d2))))
 
@@ -74,7 +74,7 @@ def thread_friction_angle(mu, flank_half_angle):
 
     References
     ----------
-    .. [1] Shigley's *Mechanical Engineering Design*, §8-2, Eq. (8-5); AUDIT §5.
+    .. [1] Shigley's *Mechanical Engineering Design*, §8-2, Eq. (8-5); docs/paper-audit.md §5.
     """
     mu = _mu("thread_friction_angle (power screw)", mu)
     beta = np.asarray(flank_half_angle, dtype=float)
@@ -112,7 +112,7 @@ def load_friction_torque(F_axial, d2, lead, mu, flank_half_angle):
 
     References
     ----------
-    .. [1] Shigley's *Mechanical Engineering Design*, §8-2, Eq. (8-1), (8-5); AUDIT §5.
+    .. [1] Shigley's *Mechanical Engineering Design*, §8-2, Eq. (8-1), (8-5); docs/paper-audit.md §5.
     """
     phi, rho = helix_angle(lead, d2), thread_friction_angle(mu, flank_half_angle)
     F = np.abs(np.asarray(F_axial, dtype=float))
@@ -149,7 +149,7 @@ def preload_friction_torque(F_preload, d2, lead, mu, flank_half_angle):
     References
     ----------
     .. [1] Shigley's *Mechanical Engineering Design*, §8-2, Eqs. (8-1), (8-2), (8-5);
-       AUDIT §5.
+       docs/paper-audit.md §5.
     """
     F_p = _nonnegative("F_preload", F_preload)
     phi, rho = helix_angle(lead, d2), thread_friction_angle(mu, flank_half_angle)
@@ -183,7 +183,7 @@ def grease_shear_torque(eta, omega, r2, area, gap):
     References
     ----------
     .. [1] Petroff (1883); Shigley's *Mechanical Engineering Design*, §12 (Petroff's
-       equation); AUDIT §5.
+       equation); docs/paper-audit.md §5.
     """
     eta = _nonnegative("eta", eta)
     r2, area, gap = _positive("r2", r2), _positive("area", area), _positive("gap", gap)
@@ -216,7 +216,7 @@ def flank_normal_load(F_axial, n_flanks, flank_half_angle, helix_angle):
 
     References
     ----------
-    .. [1] Paper, Eqs. 3, 8 (Q_j); Shigley §8-2; AUDIT §5.
+    .. [1] Paper, Eqs. 3, 8 (Q_j); Shigley §8-2; docs/paper-audit.md §5.
     """
     sigma, F = _positive("n_flanks", n_flanks), np.abs(np.asarray(F_axial, dtype=float))
     return _out(F / (sigma * np.cos(flank_half_angle) * np.cos(helix_angle)))
@@ -269,7 +269,7 @@ def sliding_screw_torque(F_axial, F_preload, d2, lead, mu, flank_half_angle, eta
 
     References
     ----------
-    .. [1] Shigley's *Mechanical Engineering Design*, §8-2; Petroff (1883); AUDIT §5.
+    .. [1] Shigley's *Mechanical Engineering Design*, §8-2; Petroff (1883); docs/paper-audit.md §5.
     """
     M_load = load_friction_torque(F_axial, d2, lead, mu, flank_half_angle)
     M_pre = preload_friction_torque(F_preload, d2, lead, mu, flank_half_angle)
@@ -303,7 +303,7 @@ def screw_nut_heat(torque, n_screw_rpm, n_nut_rpm):
 
     References
     ----------
-    .. [1] Paper, Eq. 23 (AUDIT §1, §2).
+    .. [1] Paper, Eq. 23 (docs/paper-audit.md §1, §2).
     """
     n_rel = np.asarray(n_screw_rpm, dtype=float) - np.asarray(n_nut_rpm, dtype=float)
     return frictional_power(torque, n_rel)

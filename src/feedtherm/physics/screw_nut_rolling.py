@@ -1,7 +1,7 @@
 r"""The paper's three-part rolling-analogy friction torque of the screw–nut pair (Eqs. 1–12).
 
 Differential sliding, elastic hysteresis and EHL rolling resistance, with the paper's
-printed errors corrected (AUDIT §1).  Tr flanks are conformal helicoids (no Hertz radius
+printed errors corrected (docs/paper-audit.md §1).  Tr flanks are conformal helicoids (no Hertz radius
 R), so the sliding model of :mod:`feedtherm.physics.screw_nut` is the model for the real
 nut; the rolling terms here come out ~10³× too small.  Kept to reproduce and audit the
 paper.  SI units throughout.
@@ -72,7 +72,7 @@ def hamrock_modulus(E1, nu1, E2, nu2):
 
     References
     ----------
-    .. [1] Paper, Eqs. 9–10 (AUDIT §1). Hamrock & Dowson, *Ball Bearing Lubrication* (1981).
+    .. [1] Paper, Eqs. 9–10 (docs/paper-audit.md §1). Hamrock & Dowson, *Ball Bearing Lubrication* (1981).
     """
     return _out(2.0 * effective_modulus(E1, nu1, E2, nu2))
 
@@ -141,7 +141,7 @@ def differential_sliding_torque_contact(mu, Q, a, R, X1, X2):
 
     References
     ----------
-    .. [1] Paper, Eq. 3 (AUDIT §1). Heathcote (1921); Johnson, *Contact Mechanics* (1985)
+    .. [1] Paper, Eq. 3 (docs/paper-audit.md §1). Heathcote (1921); Johnson, *Contact Mechanics* (1985)
        §8; Harris & Kotzalas, *Rolling Bearing Analysis* 5th ed.
     """
     mu = _mu("differential_sliding_torque_contact (Eq. 3)", mu)
@@ -172,7 +172,7 @@ def differential_sliding_torque(contact_torques, contact_angle):
 
     References
     ----------
-    .. [1] Paper, Eq. 5 (AUDIT §1).
+    .. [1] Paper, Eq. 5 (docs/paper-audit.md §1).
     """
     torques = np.asarray(contact_torques, dtype=float)
     return float(np.sum(torques * np.cos(np.asarray(contact_angle, dtype=float))))
@@ -206,7 +206,7 @@ def hertz_semi_minor_axis(gamma, Q, E_star, sum_rho):
 
     References
     ----------
-    .. [1] Paper, Eq. 8 (AUDIT §1). Johnson, *Contact Mechanics* (1985) §4.2; Harris &
+    .. [1] Paper, Eq. 8 (docs/paper-audit.md §1). Johnson, *Contact Mechanics* (1985) §4.2; Harris &
        Kotzalas, *Rolling Bearing Analysis* 5th ed.
     """
     gamma, E_star = _positive("gamma", gamma), _positive("E_star", E_star)
@@ -248,7 +248,7 @@ def hysteresis_torque_contact(alpha_h, Q, b, R, r_m, kappa=KAPPA_SPHERE):
 
     References
     ----------
-    .. [1] Paper, Eqs. 6–8 (AUDIT §1). Johnson, *Contact Mechanics* (1985) §9.2; Tabor
+    .. [1] Paper, Eqs. 6–8 (docs/paper-audit.md §1). Johnson, *Contact Mechanics* (1985) §9.2; Tabor
        (1955).
     """
     check_range("hysteresis_torque_contact (Eqs. 6-8)", "alpha_h", alpha_h, 0.0, 1.0)
@@ -349,7 +349,7 @@ def ehl_rolling_resistance(E_prime, Rx, k, G, U, W, f_t=1.0):
 
     References
     ----------
-    .. [1] Paper, Eq. 9 (AUDIT §1). Houpert, *Tribol. Trans.* (1999); Harris & Kotzalas,
+    .. [1] Paper, Eq. 9 (docs/paper-audit.md §1). Houpert, *Tribol. Trans.* (1999); Harris & Kotzalas,
        *Rolling Bearing Analysis* 5th ed.
     """
     E_prime, Rx, k = _positive("E_prime", E_prime), _positive("Rx", Rx), _positive("k", k)
@@ -382,7 +382,7 @@ def viscous_torque_contact(F_l, d2):
 
     References
     ----------
-    .. [1] Paper, Eqs. 11–12 (AUDIT §1).
+    .. [1] Paper, Eqs. 11–12 (docs/paper-audit.md §1).
     """
     return _out(np.asarray(F_l, dtype=float) * _positive("d2", d2) / 2.0)
 
@@ -409,6 +409,6 @@ def paper_friction_torque(M_d, M_f, M_l):
 
     References
     ----------
-    .. [1] Paper, Eq. 1 (AUDIT §1).
+    .. [1] Paper, Eq. 1 (docs/paper-audit.md §1).
     """
     return _out(np.asarray(M_d, float) + np.asarray(M_f, float) + np.asarray(M_l, float))

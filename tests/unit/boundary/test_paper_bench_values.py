@@ -112,7 +112,7 @@ def test_paper_mode_at_III_follows_the_written_scaling_rule(bench):
         assert paper_iii.heats[source].power == pytest.approx(expected, rel=1e-12)
     # e.g. the front bearing: 4.95 W * 46.83 / 5.024 = 46.1 W (the physics ratio III/I is 9.3)
     ratio = physics_iii.heats["front_bearing"].power / physics_i.heats["front_bearing"].power
-    assert 8.0 < ratio < 11.0  # AUDIT §3: x9.4 for this pair from I to III
+    assert 8.0 < ratio < 11.0  # docs/paper-audit.md §3: x9.4 for this pair from I to III
     assert paper_iii.heats["screw_nut"].power == pytest.approx(physics_iii.heats["screw_nut"].power, rel=1e-12)
     expected_shaft = 56.3 * physics_iii.surfaces["screw_shaft"].convection / physics_i.surfaces["screw_shaft"].convection
     assert paper_iii.surfaces["screw_shaft"].convection == pytest.approx(expected_shaft, rel=1e-12)

@@ -120,7 +120,7 @@ def synthetic_validation(**changes) -> Validation:
         single_drive={"I": make_solution()}, heat_budget={"I": {"front_bearing": 5.0, "screw_nut": 6.0},
                                                           "II": {"front_bearing": 18.6, "screw_nut": 6.0}},
         measured_equilibrium_min={"I": 120.0, "II": 100.0},
-        sensitivities=[Sensitivity("sources.screw_nut.mu", "AUDIT <§5>", 1.5,
+        sensitivities=[Sensitivity("sources.screw_nut.mu", "docs/paper-audit.md <§5>", 1.5,
                                    {"T1": 0.1, "T2": 0.2, "T3": -2.0, "T4": 1.0, "T5": 0.3, "D_um": 4.0}),
                        Sensitivity("sources.front_bearing.preload", "catalogue", 0.8,
                                    {"T1": 3.0, "T2": 0.2, "T3": 0.1, "T4": 0.1, "T5": 0.1, "D_um": 1.0}),

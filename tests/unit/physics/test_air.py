@@ -60,7 +60,7 @@ def test_derived_properties_are_consistent():
 
 
 def test_expansion_coefficient_is_ideal_gas_inverse_temperature():
-    # AUDIT Eq. 26: beta = 1/T_f in 1/K, e.g. 1/298.15 = 3.35402e-3 1/K.
+    # docs/paper-audit.md Eq. 26: beta = 1/T_f in 1/K, e.g. 1/298.15 = 3.35402e-3 1/K.
     a = air_properties(298.15)
     assert a.expansion_coefficient == pytest.approx(3.35402e-3, rel=1e-5)
     assert a.temperature == 298.15

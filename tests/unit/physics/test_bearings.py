@@ -1,6 +1,6 @@
 """Palmgren bearing friction (paper Eqs. 15–22, corrected).
 
-Every expected value is either printed in the paper / AUDIT or worked out by hand in
+Every expected value is either printed in the paper / docs/paper-audit.md or worked out by hand in
 the comments next to it; none is the code's own output.  Notation in the comments:
 ω(n) = 2π n / 60; ω(396) = 41.4690 rad/s, ω(360) = 37.6991, ω(1116) = 116.867,
 ω(2214) = 231.850, ω(1080) = 113.097, ω(2160) = 226.195.
@@ -44,7 +44,7 @@ def _no_warnings(func, *args, **kwargs):
 
 
 def test_f1_angular_contact_front_pair_audit():
-    # AUDIT §3 back-out, front 25x62 pair: P0 ≈ Fa = 3100 N, C0 = 40 kN -> f1 = 4.3e-4.
+    # docs/paper-audit.md §3 back-out, front 25x62 pair: P0 ≈ Fa = 3100 N, C0 = 40 kN -> f1 = 4.3e-4.
     # P0/C0 = 0.0775; ln 0.0775 = -2.5575; ×0.33 = -0.8440; e^-0.8440 = 0.4300.
     assert _no_warnings(palmgren_f1_angular_contact, 3100.0, 40e3) == pytest.approx(
         4.300e-4, rel=1e-3
@@ -52,7 +52,7 @@ def test_f1_angular_contact_front_pair_audit():
 
 
 def test_f1_angular_contact_rear_pair_audit():
-    # AUDIT §3: rear pair Fa = 2.7 kN -> f1 = 4.1e-4.
+    # docs/paper-audit.md §3: rear pair Fa = 2.7 kN -> f1 = 4.1e-4.
     # 2700/40000 = 0.0675; ln = -2.6956; ×0.33 = -0.8895; e^ = 0.4108.
     assert palmgren_f1_angular_contact(2700.0, 40e3) == pytest.approx(4.108e-4, rel=1e-3)
 
@@ -118,7 +118,7 @@ def test_P1_angular_contact_rule_P1_at_least_Fr(Fa, Fr, printed, expected):
 
 
 def test_P1_deep_groove_loaded_and_floating():
-    # AUDIT 6205 row: 3·2500 − 0.1·50 = 7495 N.
+    # docs/paper-audit.md 6205 row: 3·2500 − 0.1·50 = 7495 N.
     assert palmgren_P1_deep_groove(2500.0, 50.0) == pytest.approx(7495.0)
     # Floating rear bearing, Fa = 0, Fr = 50 N: printed Eq. 20 gives −5 N; rule gives Fr.
     assert palmgren_P1_deep_groove(0.0, 50.0) == pytest.approx(50.0)
@@ -138,13 +138,13 @@ def test_P1_vectorised_and_rejects_negative_load():
 
 
 def test_load_torque_front_pair_audit():
-    # AUDIT: M_l = 81 N·mm. f1 = 4.300e-4, P1 = 4335 N, dm = 43.5 mm:
+    # docs/paper-audit.md: M_l = 81 N·mm. f1 = 4.300e-4, P1 = 4335 N, dm = 43.5 mm:
     # 4.300e-4 · 4335 · 43.5 = 81.09 N·mm = 0.08109 N·m.
     assert bearing_load_torque(4.300e-4, 4335.0, DM_25x62) == pytest.approx(0.08109, rel=1e-3)
 
 
 def test_load_torque_6205_given_audit_f1():
-    # AUDIT 6205 row: f1 = 3.3e-4, P1 = 7495 N, dm = 38.5 mm -> 3.3e-4·7495·38.5 = 95.2 N·mm.
+    # docs/paper-audit.md 6205 row: f1 = 3.3e-4, P1 = 7495 N, dm = 38.5 mm -> 3.3e-4·7495·38.5 = 95.2 N·mm.
     assert bearing_load_torque(3.3e-4, 7495.0, DM_6205) == pytest.approx(0.0952, rel=1e-3)
 
 
@@ -159,7 +159,7 @@ def test_load_torque_rejects_bad_dm(dm):
 
 
 def test_viscous_torque_front_pair_audit():
-    # AUDIT: M_v = 38 N·mm. ν n = 100·396 = 39600; 39600^(2/3) = e^(2/3·10.5865) = 1162.2;
+    # docs/paper-audit.md: M_v = 38 N·mm. ν n = 100·396 = 39600; 39600^(2/3) = e^(2/3·10.5865) = 1162.2;
     # dm³ = 43.5³ = 82312.9; 1e-7 · 4 · 1162.2 · 82312.9 = 38.26 N·mm.
     assert bearing_viscous_torque(4.0, NU_100, 396.0, DM_25x62) == pytest.approx(
         0.03826, rel=1e-3
@@ -167,7 +167,7 @@ def test_viscous_torque_front_pair_audit():
 
 
 def test_viscous_torque_eq21_printed_lacks_cube():
-    # Printed Eq. 21 (dm, not dm³): 1e-7·4·1162.2·43.5 = 0.0202 N·mm (AUDIT: "0.02").
+    # Printed Eq. 21 (dm, not dm³): 1e-7·4·1162.2·43.5 = 0.0202 N·mm (docs/paper-audit.md: "0.02").
     printed_Nmm = 1e-7 * 4.0 * (100.0 * 396.0) ** (2.0 / 3.0) * 43.5
     assert printed_Nmm == pytest.approx(0.0202, rel=2e-3)
     corrected_Nmm = bearing_viscous_torque(4.0, NU_100, 396.0, DM_25x62) * 1e3
@@ -225,31 +225,31 @@ def test_bearing_torque_dataclass():
     [(4.95, 396.0, 119.4), (5.31, 360.0, 140.9), (4.36, 396.0, 105.1)],
 )
 def test_required_torques_from_table1(heat_W, n_rpm, torque_Nmm):
-    # AUDIT §3: M = H / ω. 4.95/41.4690 = 0.11937; 5.31/37.6991 = 0.14085;
-    # 4.36/41.4690 = 0.10514 N·m. (AUDIT prints 105.2 for the rear: that uses the
+    # docs/paper-audit.md §3: M = H / ω. 4.95/41.4690 = 0.11937; 5.31/37.6991 = 0.14085;
+    # 4.36/41.4690 = 0.10514 N·m. (docs/paper-audit.md prints 105.2 for the rear: that uses the
     # paper's rounded 1.047e-4, 4.36/(1.047e-4·396) = 105.16; exact 2π/60 gives 105.14.)
     assert bearing_heat(torque_Nmm * 1e-3, n_rpm) == pytest.approx(heat_W, rel=1e-3)
 
 
 def test_front_pair_reproduces_table1_and_speed_scaling():
-    # AUDIT back-out, front 25x62 pair, Fa = 3.1 kN: M = 81.09 + 38.25 = 119.34 N·mm
+    # docs/paper-audit.md back-out, front 25x62 pair, Fa = 3.1 kN: M = 81.09 + 38.25 = 119.34 N·mm
     # -> H(I) = 0.11934 · 41.469 = 4.949 W (Table 1: 4.95).
     # II: M_v = 4e-7·(111600)^(2/3)·82312.9 = 4e-7·2319.4·82312.9 = 76.37;
     #     (81.09 + 76.37)·116.867e-3 = 18.40 W.  III: (81.09 + 120.59)·231.850e-3 = 46.76 W.
     f1 = palmgren_f1_angular_contact(3100.0, 40e3)
     P1 = palmgren_P1_angular_contact(3100.0, 50.0)
     t = bearing_friction_torque(f1, P1, DM_25x62, 4.0, NU_100, 396.0)
-    assert t.load == pytest.approx(0.081, abs=1e-3)  # AUDIT 81 N·mm
-    assert t.viscous == pytest.approx(0.038, abs=1e-3)  # AUDIT 38 N·mm
+    assert t.load == pytest.approx(0.081, abs=1e-3)  # docs/paper-audit.md 81 N·mm
+    assert t.viscous == pytest.approx(0.038, abs=1e-3)  # docs/paper-audit.md 38 N·mm
     assert bearing_heat(t, 396.0) == pytest.approx(4.95, rel=2e-3)
-    for n, expected in ((1116.0, 18.4), (2214.0, 46.7)):  # AUDIT: 18.4 / 46.7 W
+    for n, expected in ((1116.0, 18.4), (2214.0, 46.7)):  # docs/paper-audit.md: 18.4 / 46.7 W
         tn = bearing_friction_torque(f1, P1, DM_25x62, 4.0, NU_100, n)
         assert bearing_heat(tn.total, n) == pytest.approx(expected, rel=2e-3)
 
 
 def test_rear_pair_reproduces_table1():
     # Fa = 2.7 kN: f1 = 4.108e-4, P1 = 3775 N, M_l = 4.108e-4·3775·43.5 = 67.46 N·mm;
-    # H = (67.46 + 38.25)·41.469e-3 = 4.384 W (Table 1: 4.36; AUDIT: 4.4).
+    # H = (67.46 + 38.25)·41.469e-3 = 4.384 W (Table 1: 4.36; docs/paper-audit.md: 4.4).
     f1 = palmgren_f1_angular_contact(2700.0, 40e3)
     t = bearing_friction_torque(f1, palmgren_P1_angular_contact(2700.0, 50.0), DM_25x62,
                                 4.0, NU_100, 396.0)
@@ -257,12 +257,12 @@ def test_rear_pair_reproduces_table1():
 
 
 def test_nut_pair_at_nut_speed_reproduces_table1():
-    # AUDIT nut 7010 DB pair, Fa = 0.84 kN, f1 = 2.8e-4 (implies C0 ≈ 39.8 kN):
-    # P1 = 1.4·840 − 5 = 1171 N; M_l = 2.8e-4·1171·65 = 21.31 N·mm (AUDIT 21).
-    # M_v = 4e-7·(36000)^(2/3)·65³ = 4e-7·1090.3·274625 = 119.77 N·mm (AUDIT 120).
+    # docs/paper-audit.md nut 7010 DB pair, Fa = 0.84 kN, f1 = 2.8e-4 (implies C0 ≈ 39.8 kN):
+    # P1 = 1.4·840 − 5 = 1171 N; M_l = 2.8e-4·1171·65 = 21.31 N·mm (docs/paper-audit.md 21).
+    # M_v = 4e-7·(36000)^(2/3)·65³ = 4e-7·1090.3·274625 = 119.77 N·mm (docs/paper-audit.md 120).
     # At the nut speed 360 rpm: 141.08·37.6991e-3 = 5.319 W (Table 1: 5.31).
     # II (1080): M_v = 4e-7·2269.5·274625 = 249.3; (21.31 + 249.3)·113.097e-3 = 30.6 W.
-    # III (2160): M_v = 4e-7·3603.0·274625 = 395.8; 417.1·226.195e-3 = 94.3 W (AUDIT 94.2).
+    # III (2160): M_v = 4e-7·3603.0·274625 = 395.8; 417.1·226.195e-3 = 94.3 W (docs/paper-audit.md 94.2).
     P1 = palmgren_P1_angular_contact(840.0, 50.0)
     t = bearing_friction_torque(2.8e-4, P1, DM_7010, 4.0, NU_100, 360.0)
     assert t.load == pytest.approx(0.021, abs=1e-3)
@@ -274,7 +274,7 @@ def test_nut_pair_at_nut_speed_reproduces_table1():
 
 
 def test_rear_6205_audit_row_uses_printed_z():
-    # AUDIT row "Rear: 6205 via Eqs. 19–20": f1 = 3.3e-4, M_l 95 / M_v 10, H 4.4/13.4/29.3.
+    # docs/paper-audit.md row "Rear: 6205 via Eqs. 19–20": f1 = 3.3e-4, M_l 95 / M_v 10, H 4.4/13.4/29.3.
     # M_v = 1.5e-7·1162.2·38.5³ = 1.5e-7·1162.2·57066.6 = 9.95 N·mm.
     # H(I) = (95.22 + 9.95)·41.469e-3 = 4.361 W; II: M_v = 1.5e-7·2319.4·57066.6 = 19.85,
     # 115.07·116.867e-3 = 13.45 W; III: M_v = 31.35, 126.57·231.850e-3 = 29.35 W.
@@ -295,24 +295,24 @@ def test_rear_6205_audit_row_uses_printed_z():
     ("label", "Fa", "Fr", "C0", "dm", "f0", "n", "deep", "expected_W"),
     [
         # 25x62 pair, Fa = 2.15 kN: f1 = 1e-3·0.05375^0.33 = 3.811e-4, P1 = 3005 N,
-        # M_l = 49.81, M_v = 38.25 -> 88.07 N·mm · 41.469e-3 = 3.652 W (AUDIT 3.65).
+        # M_l = 49.81, M_v = 38.25 -> 88.07 N·mm · 41.469e-3 = 3.652 W (docs/paper-audit.md 3.65).
         ("25x62 2.15 kN", 2150.0, 50.0, 40e3, DM_25x62, 4.0, 396.0, False, 3.65),
         # Fa = 3.15 kN: f1 = 4.323e-4, P1 = 4405, M_l = 82.83 -> 121.08 · 41.469e-3 = 5.02.
         ("25x62 3.15 kN", 3150.0, 50.0, 40e3, DM_25x62, 4.0, 396.0, False, 5.0),
         # 6205 floating, Fr = 50 N, P0 = Fr: f1 = 5e-4·(50/7800)^0.55 = 3.110e-5, P1 = 50,
-        # M_l = 0.060, M_v = 9.945 -> 10.005 · 41.469e-3 = 0.415 W (AUDIT 0.41).
+        # M_l = 0.060, M_v = 9.945 -> 10.005 · 41.469e-3 = 0.415 W (docs/paper-audit.md 0.41).
         ("6205 floating", 0.0, 50.0, 7800.0, DM_6205, 1.5, 396.0, True, 0.41),
         # 7205 DB pair, 300 N preload, C0 = 2·10 kN (assumed catalogue value):
         # f1 = 1e-3·0.015^0.33 = 2.496e-4, P1 = 415, M_l = 3.99; M_v = 4e-7·1162.2·57066.6
-        # = 26.52 -> 30.52 · 41.469e-3 = 1.265 W (AUDIT 1.27).
+        # = 26.52 -> 30.52 · 41.469e-3 = 1.265 W (docs/paper-audit.md 1.27).
         ("7205 DB", 300.0, 50.0, 20e3, DM_6205, 4.0, 396.0, False, 1.27),
         # 7010 single, 300 N, C0 ≈ 20 kN (assumed), f0 = 2, 360 rpm: M_l = 6.75,
-        # M_v = 2e-7·1090.3·274625 = 59.88 -> 66.63 · 37.6991e-3 = 2.512 W (AUDIT 2.5).
+        # M_v = 2e-7·1090.3·274625 = 59.88 -> 66.63 · 37.6991e-3 = 2.512 W (docs/paper-audit.md 2.5).
         ("7010 single", 300.0, 50.0, 20e3, DM_7010, 2.0, 360.0, False, 2.5),
     ],
 )
 def test_audit_typical_bearings(label, Fa, Fr, C0, dm, f0, n, deep, expected_W):
-    P0 = max(Fa, Fr)  # AUDIT's P0 ≈ Fa (≥ Fr for the floating bearing)
+    P0 = max(Fa, Fr)  # docs/paper-audit.md's P0 ≈ Fa (≥ Fr for the floating bearing)
     if deep:
         f1, P1 = palmgren_f1_deep_groove(P0, C0), palmgren_P1_deep_groove(Fa, Fr)
     else:
@@ -322,7 +322,7 @@ def test_audit_typical_bearings(label, Fa, Fr, C0, dm, f0, n, deep, expected_W):
 
 
 def test_nut_pair_cannot_reach_table1_at_200_cst():
-    # AUDIT: "with ν = 200 mm²/s the required preloads fall by 15–25 %". For the nut pair
+    # docs/paper-audit.md: "with ν = 200 mm²/s the required preloads fall by 15–25 %". For the nut pair
     # the viscous torque alone then exceeds the required 140.9 N·mm:
     # 4e-7·(200·360)^(2/3)·65³ = 4e-7·1730.8·274625 = 190.1 N·mm.
     m_v = bearing_viscous_torque(4.0, 200e-6, 360.0, DM_7010)
@@ -338,7 +338,7 @@ def test_bearing_heat_zero_at_standstill_and_sign():
 
 
 def test_f0_typical_values():
-    # AUDIT §3: f0 = 2 per angular-contact bearing, 4 per pair, 1.5 deep groove (grease);
+    # docs/paper-audit.md §3: f0 = 2 per angular-contact bearing, 4 per pair, 1.5 deep groove (grease);
     # Harris: deep groove with grease 0.7–2; a pair takes twice the single-row f0.
     assert F0_TYPICAL["angular_contact_single"]["grease"] == 2.0
     assert F0_TYPICAL["angular_contact_pair"]["grease"] == 4.0

@@ -1,7 +1,7 @@
 """Tests of feedtherm.physics.convection: dimensionless groups, mixed convection,
 and the re-exports of the natural and forced modules.
 
-Expected values are numbers printed in the sources (correlation constants, AUDIT §4
+Expected values are numbers printed in the sources (correlation constants, docs/paper-audit.md §4
 CHTCs) or hand calculations written out below. Hand calculations of surface-level h use
 Incropera (2007) Table A.4 air at 300 K (nu = 15.89e-6 m²/s, k = 26.3e-3 W/mK,
 alpha = 22.5e-6 m²/s, Pr = 0.707, Pr^(1/3) = 0.89085), so the comparison with the
@@ -58,7 +58,7 @@ def test_reynolds_rotating_hand_calculation():
 def test_h_from_nusselt_length_in_metres():
     # Eq. 24: h = Nu k / L = 22.817 * 0.0263 / 0.032 = 18.753 W/m²K.
     assert cv.h_from_nusselt(22.817, 0.0263, 0.032) == pytest.approx(18.753, rel=1e-4)
-    # Correction (AUDIT Eq. 24): the paper's L in mm (32) would give 1000x less.
+    # Correction (docs/paper-audit.md Eq. 24): the paper's L in mm (32) would give 1000x less.
     assert cv.h_from_nusselt(22.817, 0.0263, 32.0) == pytest.approx(18.753e-3, rel=1e-4)
 
 
@@ -96,7 +96,7 @@ def test_h_mixed_equals_nu_mixed_rebased_to_common_length():
 
 # --------------------------------------------------------------- surface-level helpers
 def test_table_2_worktable_needs_21_m_per_s_with_printed_eq_28():
-    # AUDIT §4: worktable 16.23 W/m²K "needs u ≈ 21 m/s in Eq. 28" (0.332, L = 0.3 m).
+    # docs/paper-audit.md §4: worktable 16.23 W/m²K "needs u ≈ 21 m/s in Eq. 28" (0.332, L = 0.3 m).
     # Hand: Re = (16.23*0.3/(0.0263*0.332*0.89085))^2 = 625.95^2 = 3.918e5;
     # u = 3.918e5 * 15.89e-6 / 0.3 = 20.75 m/s.
     air = air_properties(300.0)
@@ -105,7 +105,7 @@ def test_table_2_worktable_needs_21_m_per_s_with_printed_eq_28():
     assert h == pytest.approx(16.23, rel=RTOL_HAND)
 
 def test_mixed_convection_at_feed_speed_is_natural_dominated():
-    # Replacement for Eq. 29 at 3 mm/s (AUDIT): h_F ≈ 0.39 vs h_N ≈ 3-5, so the blend
+    # Replacement for Eq. 29 at 3 mm/s (docs/paper-audit.md): h_F ≈ 0.39 vs h_N ≈ 3-5, so the blend
     # is within 0.3 % of natural convection: (0.39^3 + 4.8^3)^(1/3) = 4.8021.
     hF = cv.h_flat_plate_forced(0.3, 0.003, 298.15)
     hN = cv.h_natural("vertical_plate", 0.1, 303.15, 293.15)

@@ -1,6 +1,6 @@
 """Tests of feedtherm.physics.forced_convection (Eqs. 27-29).
 
-Expected values are numbers printed in the sources (correlation constants, AUDIT §4
+Expected values are numbers printed in the sources (correlation constants, docs/paper-audit.md §4
 CHTCs) or hand calculations written out below. Hand calculations of surface-level h use
 Incropera (2007) Table A.4 air at 300 K (nu = 15.89e-6 m²/s, k = 26.3e-3 W/mK,
 alpha = 22.5e-6 m²/s, Pr = 0.707, Pr^(1/3) = 0.89085), so the comparison with the
@@ -38,7 +38,7 @@ def test_rotating_cylinder_warns_outside_range(Re, Pr):
 
 
 def test_flat_plate_average_is_twice_the_printed_local_eq_28(no_warnings):
-    # Correction AUDIT Eq. 28: 0.664 * sqrt(1e4) * 0.7^(1/3) = 0.664*100*0.887904 = 58.957
+    # Correction docs/paper-audit.md Eq. 28: 0.664 * sqrt(1e4) * 0.7^(1/3) = 0.664*100*0.887904 = 58.957
     avg = cv.Nu_flat_plate_laminar_average(1e4, 0.7)
     local = cv.Nu_flat_plate_laminar_local(1e4, 0.7)
     assert avg == pytest.approx(58.9569, rel=1e-5)
@@ -60,13 +60,13 @@ def test_plate_normal_to_flow_inside_range(no_warnings):
 
 @pytest.mark.parametrize("Re", [100.0, 2e4])
 def test_plate_normal_to_flow_warns_outside_4e3_1p5e4(Re):
-    # Correction AUDIT Eq. 29: at feed speeds Re ~ 20-170, far below 4e3.
+    # Correction docs/paper-audit.md Eq. 29: at feed speeds Re ~ 20-170, far below 4e3.
     with pytest.warns(CorrelationRangeWarning, match="Eq. 29"):
         cv.Nu_plate_normal_to_flow(Re, 0.707)
 
 # --------------------------------------------------------------- surface-level helpers
 def test_h_rotating_cylinder_screw_shaft_audit_18_8():
-    # AUDIT §4: screw shaft, Eq. 27 at 396 rpm, d = 32 mm -> 18.8 W/m²K.
+    # docs/paper-audit.md §4: screw shaft, Eq. 27 at 396 rpm, d = 32 mm -> 18.8 W/m²K.
     # omega = 2 pi 396/60 = 41.469 rad/s; Re = 41.469 * 0.032^2 / 15.89e-6 = 2672.4;
     # Re^(2/3) = 192.58; Nu = 0.133 * 192.58 * 0.89085 = 22.817;
     # h = 22.817 * 0.0263 / 0.032 = 18.753 W/m²K (CoolProp at 298.15 K gives ~18.97).
@@ -83,7 +83,7 @@ def test_h_rotating_cylinder_diameter_range_audit_17_20():
 
 
 def test_h_rotating_cylinder_nut_audit_20_5():
-    # AUDIT §4: Ø50 rotating nut at 360 rpm -> 20.5 W/m²K.
+    # docs/paper-audit.md §4: Ø50 rotating nut at 360 rpm -> 20.5 W/m²K.
     # omega = 37.699 rad/s; Re = 37.699 * 0.0025 / 15.89e-6 = 5931.3; Re^(2/3) = 327.67;
     # Nu = 0.133 * 327.67 * 0.89085 = 38.823; h = 38.823 * 0.0263 / 0.05 = 20.42 W/m²K.
     h = cv.h_rotating_cylinder(0.05, 360.0, 298.15)
@@ -102,7 +102,7 @@ def test_h_rotating_cylinder_warns_above_re_4p3e5():
 
 
 def test_h_flat_plate_forced_table_at_3_mm_per_s():
-    # AUDIT §4 "table or slider, forced, 3 mm/s: 0.2-0.7". Hand, L = 0.3 m, 300 K:
+    # docs/paper-audit.md §4 "table or slider, forced, 3 mm/s: 0.2-0.7". Hand, L = 0.3 m, 300 K:
     # Re = 0.003*0.3/15.89e-6 = 56.64; sqrt = 7.5259; Nu = 0.664*7.5259*0.89085 = 4.4518;
     # h = 4.4518 * 0.0263 / 0.3 = 0.3903 W/m²K (the printed 0.332 would give 0.195).
     h = cv.h_flat_plate_forced(0.3, 0.003, 300.0)

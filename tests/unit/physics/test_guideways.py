@@ -1,6 +1,6 @@
 """Guideway friction heat (paper Eq. 13, standard form and as printed).
 
-Expected values are paper Table 1 / AUDIT numbers or hand calculations in comments.
+Expected values are paper Table 1 / docs/paper-audit.md numbers or hand calculations in comments.
 Feed of condition I (Table 5): 0.18 m/min = 0.18/60 = 0.003 m/s.
 """
 
@@ -19,13 +19,13 @@ V_I = 0.18 / 60.0  # 0.003 m/s
 
 
 def test_friction_force_audit_defaults():
-    # AUDIT §4: μ = 0.005, moving mass 60 kg (W = 60·9.81 = 588.6 N), 4 carriages × 4 N:
-    # 0.005·588.6 + 4·4 = 2.943 + 16 = 18.943 N (AUDIT §1: "about 15–20 N").
+    # docs/paper-audit.md §4: μ = 0.005, moving mass 60 kg (W = 60·9.81 = 588.6 N), 4 carriages × 4 N:
+    # 0.005·588.6 + 4·4 = 2.943 + 16 = 18.943 N (docs/paper-audit.md §1: "about 15–20 N").
     assert guideway_friction_force(0.005, 588.6, 4.0, 4) == pytest.approx(18.943)
 
 
 def test_heat_audit_defaults_at_condition_I():
-    # 18.943 N · 0.003 m/s = 0.05683 W (AUDIT: "≈0.05 W"), ~7× below Table 1's 0.39 W.
+    # 18.943 N · 0.003 m/s = 0.05683 W (docs/paper-audit.md: "≈0.05 W"), ~7× below Table 1's 0.39 W.
     h = guideway_heat(guideway_friction_force(0.005, 588.6, 4.0, 4), V_I)
     assert h == pytest.approx(0.05683, rel=1e-4)
     assert 0.39 / h == pytest.approx(6.86, rel=1e-2)
@@ -37,7 +37,7 @@ def test_heat_sign_of_speed_ignored_and_arrays():
 
 
 def test_paper_table1_needs_130_N():
-    # Table 1: 0.39 W at 0.003 m/s -> λ f_g F_g = 0.39/0.003 = 130 N (AUDIT §1 row 13).
+    # Table 1: 0.39 W at 0.003 m/s -> λ f_g F_g = 0.39/0.003 = 130 N (docs/paper-audit.md §1 row 13).
     assert 0.39 / V_I == pytest.approx(130.0)
     assert guideway_heat_paper(1.0, 0.005, 26000.0, V_I) == pytest.approx(0.39)  # 0.005·26 kN
 

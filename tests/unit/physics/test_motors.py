@@ -19,20 +19,20 @@ def test_output_power_hand():
 
 
 def test_output_power_rated_servo():
-    # AUDIT §4 motor: 400 W servo, rated 1.27 N·m -> rated speed 400/1.27 = 315 rad/s
+    # docs/paper-audit.md §4 motor: 400 W servo, rated 1.27 N·m -> rated speed 400/1.27 = 315 rad/s
     # = 3008 rpm (a 3000-rpm servo). 1.27 · 2π·3000/60 = 1.27 · 314.159 = 398.98 W.
     assert motor_output_power(1.27, 3000.0) == pytest.approx(398.98, rel=1e-4)
 
 
 @pytest.mark.parametrize(("n_rpm", "table1_W"), [(396.0, 1.87), (360.0, 1.70)])
 def test_paper_form_reproduces_table1(n_rpm, table1_W):
-    # AUDIT §4: M_m = 0.30 N·m = 300 N·mm, δ = 0.85.
+    # docs/paper-audit.md §4: M_m = 0.30 N·m = 300 N·mm, δ = 0.85.
     # Screw motor: 300·396/9550·0.15 = 1.8660 W; nut motor: 300·360/9550·0.15 = 1.6963 W.
     assert motor_loss_paper(0.30, n_rpm, 0.85) == pytest.approx(table1_W, abs=5e-3)
 
 
 def test_table1_implies_equal_Mm_times_1_minus_delta():
-    # AUDIT §1 row 14: 1.87·9550/396 = 45.10 N·mm and 1.70·9550/360 = 45.10 N·mm.
+    # docs/paper-audit.md §1 row 14: 1.87·9550/396 = 45.10 N·mm and 1.70·9550/360 = 45.10 N·mm.
     assert 1.87 * 9550 / 396 == pytest.approx(45.10, abs=0.01)
     assert 1.70 * 9550 / 360 == pytest.approx(45.10, abs=0.01)
     # Heat ratio equals the speed ratio: 1.87/1.70 = 1.1 = 396/360.

@@ -1,6 +1,6 @@
 """Tests of feedtherm.physics.natural_convection (Eq. 25, h_natural).
 
-Expected values are numbers printed in the sources (correlation constants, AUDIT §4
+Expected values are numbers printed in the sources (correlation constants, docs/paper-audit.md §4
 CHTCs) or hand calculations written out below. Hand calculations of surface-level h use
 Incropera (2007) Table A.4 air at 300 K (nu = 15.89e-6 m²/s, k = 26.3e-3 W/mK,
 alpha = 22.5e-6 m²/s, Pr = 0.707, Pr^(1/3) = 0.89085), so the comparison with the

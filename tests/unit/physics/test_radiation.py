@@ -22,14 +22,14 @@ def test_incropera_example_1_2_steam_pipe():
 
 
 def test_audit_h_r_at_20_to_30_C():
-    # AUDIT §1 "missing": h_r ≈ 1.8 (eps 0.3) and 4.9 (eps 0.8) near 20-30 C.
+    # docs/paper-audit.md §1 "missing": h_r ≈ 1.8 (eps 0.3) and 4.9 (eps 0.8) near 20-30 C.
     # Hand, Ts = 30 C, Ta = 20 C: Ts^2 + Ta^2 = 91899.92 + 85936.92 = 177836.84 K^2,
     # Ts + Ta = 596.3 K, sigma * product = 5.670374e-8 * 1.060441e8 = 6.01310 W/m^2K;
     # eps 0.3 -> 1.8039, eps 0.8 -> 4.8105.
     assert h_radiation(0.3, 303.15, 293.15) == pytest.approx(1.8039, rel=1e-4)
     assert h_radiation(0.8, 303.15, 293.15) == pytest.approx(4.8105, rel=1e-4)
     # Both at 300 K (27 C): 4 sigma T^3 = 4 * 5.670374e-8 * 2.7e7 = 6.12400;
-    # eps 0.8 -> 4.8992 (the AUDIT's 4.9), eps 0.3 -> 1.8372.
+    # eps 0.8 -> 4.8992 (the docs/paper-audit.md's 4.9), eps 0.3 -> 1.8372.
     assert h_radiation(0.8, 300.0, 300.0) == pytest.approx(4.8992, rel=1e-4)
     assert h_radiation(0.3, 300.0, 300.0) == pytest.approx(1.8372, rel=1e-4)
 

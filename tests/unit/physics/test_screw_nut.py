@@ -1,6 +1,6 @@
 """Unit tests of feedtherm.physics.screw_nut (sliding trapezoidal-thread model).
 
-Every expected value is a number printed in a source (Shigley Example 8-1, AUDIT §1/§5)
+Every expected value is a number printed in a source (Shigley Example 8-1, docs/paper-audit.md §1/§5)
 or a hand calculation written out step by step below (calculator arithmetic, 8+
 significant digits).  None is the code's own output.
 """
@@ -19,7 +19,7 @@ from feedtherm.physics.validity import CorrelationRangeWarning
 
 HAND = 1e-6  # rel tolerance for hand calculations
 
-# Default Tr32x10(P5) nut of AUDIT §4/§5.
+# Default Tr32x10(P5) nut of docs/paper-audit.md §4/§5.
 D2 = 0.0295  # pitch diameter [m]
 LEAD = 0.010  # lead [m]
 BETA = math.radians(15.0)  # flank half angle [rad]
@@ -29,7 +29,7 @@ F_LOAD = 25.0  # guideway friction as axial load [N]
 
 
 # --------------------------------------------------------------------------------------
-# Sliding model (AUDIT §5, Shigley §8-2)
+# Sliding model (docs/paper-audit.md §5, Shigley §8-2)
 # --------------------------------------------------------------------------------------
 
 PHI = 0.10748580  # atan(10 / (pi * 29.5)) = atan(0.10790166) rad
@@ -38,7 +38,7 @@ RHO = 0.10316011  # atan(0.1 / cos 15°) = atan(0.10352762) rad
 
 def test_helix_angle_tr32x10():
     # pi * d2 = 92.676983 mm; tan(phi) = 10 / 92.676983 = 0.10790166
-    # phi = 0.10748580 rad = 6.1584827 deg  (AUDIT §4: 6.16 deg)
+    # phi = 0.10748580 rad = 6.1584827 deg  (docs/paper-audit.md §4: 6.16 deg)
     phi = sn.helix_angle(LEAD, D2)
     assert phi == pytest.approx(PHI, rel=HAND)
     assert math.degrees(phi) == pytest.approx(6.16, abs=0.005)
@@ -84,7 +84,7 @@ def test_load_friction_torque_tr32_hand_and_shigley_rational_form():
 def test_preload_friction_torque_tr32_audit():
     # tan(phi + rho') = 0.21381779; tan(phi - rho') = tan(0.0043256896) = 0.0043257166
     # difference 0.20949207; F_p r2 = 500 * 0.01475 = 7.375 N·m
-    # M_p = 7.375 * 0.20949207 = 1.5450040 N·m  (AUDIT §5: ~1.55 N·m)
+    # M_p = 7.375 * 0.20949207 = 1.5450040 N·m  (docs/paper-audit.md §5: ~1.55 N·m)
     M = sn.preload_friction_torque(FP, D2, LEAD, MU, BETA)
     assert M == pytest.approx(1.5450040, rel=HAND)
     assert M == pytest.approx(1.55, abs=0.005)
@@ -121,15 +121,15 @@ def test_sliding_screw_torque_audit_default_condition_I():
 
 
 def test_sliding_heat_matches_audit_table_6W_at_36rpm():
-    # Coulomb only (eta = 0): M_T = 0.039056575 + 1.5450040 = 1.5840606 N·m (AUDIT: 1.58)
-    # H = 1.5840606 * 3.7699112 = 5.9717678 W (AUDIT: 6.0 W); preload only: 5.8245280 W
+    # Coulomb only (eta = 0): M_T = 0.039056575 + 1.5450040 = 1.5840606 N·m (docs/paper-audit.md: 1.58)
+    # H = 1.5840606 * 3.7699112 = 5.9717678 W (docs/paper-audit.md: 6.0 W); preload only: 5.8245280 W
     t = sn.sliding_screw_torque(F_LOAD, FP, D2, LEAD, MU, BETA, 0.0, 3e-4, 0.060, 36.0)
     assert t.total == pytest.approx(1.5840606, rel=HAND)
     H = sn.screw_nut_heat(t.total, 396.0, 360.0)
     assert H == pytest.approx(5.9717678, rel=HAND)
     assert H == pytest.approx(6.0, abs=0.05)
     assert sn.screw_nut_heat(t.preload, 396.0, 360.0) == pytest.approx(5.8245280, rel=HAND)
-    # condition III, n_T = 54 rpm: 1.5840606 * 5.6548668 = 8.9576518 W (AUDIT: 9.0 W)
+    # condition III, n_T = 54 rpm: 1.5840606 * 5.6548668 = 8.9576518 W (docs/paper-audit.md: 9.0 W)
     assert sn.screw_nut_heat(t.total, 2214.0, 2160.0) == pytest.approx(8.9576518, rel=HAND)
 
 
@@ -138,11 +138,11 @@ def test_sliding_heat_matches_audit_table_6W_at_36rpm():
     [
         # mu 0.08: rho' = 0.082633497, tan(phi+rho') = 0.19244355, tan(phi-rho') = 0.024857420
         # M = 7.375*0.16758613 + 0.36875*0.084541893 = 1.2359477 + 0.031174823 = 1.2671225
-        # H = 1.2671225 * 3.7699112 = 4.7769394 W (AUDIT: 4.8)
+        # H = 1.2671225 * 3.7699112 = 4.7769394 W (docs/paper-audit.md: 4.8)
         (0.08, 4.7769394),
         # mu 0.15: rho' = 0.15406088, tan(..+) = 0.26767836, tan(..-) = -0.046608785
         # M = 7.375*0.31428714 + 0.36875*0.15977670 = 2.3178677 + 0.058917658 = 2.3767853
-        # H = 2.3767853 * 3.7699112 = 8.9602696 W (AUDIT: 9.0)
+        # H = 2.3767853 * 3.7699112 = 8.9602696 W (docs/paper-audit.md: 9.0)
         (0.15, 8.9602696),
     ],
 )

@@ -1,7 +1,7 @@
 """Unit tests of feedtherm.physics.screw_nut_rolling (the paper's Eqs. 1-12, corrected).
 
 Every expected value is a number printed in a source (Hamrock & Dowson, Heathcote,
-AUDIT §1/§5) or a hand calculation written out step by step below (calculator
+docs/paper-audit.md §1/§5) or a hand calculation written out step by step below (calculator
 arithmetic, 8+ significant digits).  None is the code's own output.
 """
 
@@ -16,7 +16,7 @@ from feedtherm.physics.validity import CorrelationRangeWarning
 
 HAND = 1e-6  # rel tolerance for hand calculations
 
-# Default Tr32x10(P5) nut of AUDIT §4/§5.
+# Default Tr32x10(P5) nut of docs/paper-audit.md §4/§5.
 D2 = 0.0295  # pitch diameter [m]
 BETA = math.radians(15.0)  # flank half angle [rad]
 
@@ -63,7 +63,7 @@ def test_heathcote_bracket_audit_value():
     # X = 0.347: X^3 = 0.041781923, X^5 = 0.0050309196
     #   X^3/3 - X^5/5 = 0.013927308 - 0.0010061839 = 0.012921124
     #   int_{-0.347}^{0.347} = 2 * 0.012921124 = 0.025842248
-    # bracket = 0.26666667 - 2 * 0.025842248 = 0.21498217   (AUDIT §1: "0.2149")
+    # bracket = 0.26666667 - 2 * 0.025842248 = 0.21498217   (docs/paper-audit.md §1: "0.2149")
     b = sn.heathcote_bracket(-0.347, 0.347)
     assert b == pytest.approx(0.21498217, rel=HAND)
     assert b == pytest.approx(0.2149, rel=1e-3)
@@ -121,7 +121,7 @@ def test_eq3_printed_prefactor_is_7p5_times_too_small():
 
 
 def test_rolling_analogy_is_three_orders_below_coulomb_sliding():
-    # AUDIT §5: Q = 100 N, a = 1 mm, R = 15 mm, 12 flanks, mu = 0.1, X = +-2cos80:
+    # docs/paper-audit.md §5: Q = 100 N, a = 1 mm, R = 15 mm, 12 flanks, mu = 0.1, X = +-2cos80:
     # M_dj = 2.5e-4 * 0.21485653 = 5.3714133e-5; M_d = 12 * 5.3714133e-5 * cos 15
     #      = 6.4456959e-4 * 0.96592583 = 6.2260641e-4 N·m  (~0.6 N·mm)
     # Coulomb: mu * Q * r2 * 12 = 0.1 * 100 * 0.01475 * 12 = 1.77 N·m (~1.8 N·m)
@@ -129,7 +129,7 @@ def test_rolling_analogy_is_three_orders_below_coulomb_sliding():
     Mdj = sn.differential_sliding_torque_contact(0.1, 100.0, 1e-3, 0.015, -c, c)
     Md = sn.differential_sliding_torque([Mdj] * 12, BETA)
     assert Md == pytest.approx(6.2260641e-4, rel=HAND)
-    assert 1.77 / Md == pytest.approx(2843, rel=1e-3)  # AUDIT: "~3000x"
+    assert 1.77 / Md == pytest.approx(2843, rel=1e-3)  # docs/paper-audit.md: "~3000x"
 
 
 def test_differential_sliding_torque_sums_with_cos_alpha():

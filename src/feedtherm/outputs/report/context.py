@@ -12,21 +12,21 @@ from .html import (Cell, Raw, bullets, code, definition_table, esc, heading, num
 TOP_SENSITIVITIES = 15  # in the bar chart
 TABLE_ROWS = 30  # in the open table; the rest folded below it
 
-# From AUDIT.md (§2, §4, §6): the paper's tables disagree with each other.
+# From docs/paper-audit.md (§2, §4, §6): the paper's tables disagree with each other.
 PAPER_FINDINGS = (
     "Table 2 cannot be derived from Eqs. 27–29 at the stated speeds: Eq. 27 gives about 19 W/(m²·K) on the screw "
     "at 396 rpm, Table 2 prints 56.3, which needs about 2100 rpm (condition III's speed) or a 0.86 m screw; "
-    "the worktable's 16.2 and the nut housing's 31.3 W/(m²·K) are as far out (AUDIT §4).",
+    "the worktable's 16.2 and the nut housing's 31.3 W/(m²·K) are as far out (docs/paper-audit.md §4).",
     "Table 1 supplies far too little heat for the measured T3–T5: the nut, screw and table group would need "
     "26–75 W of screw–nut friction heat with ordinary coefficients, while the motor heats of Table 1 allow at "
-    "most about 1 W (AUDIT §6).",
+    "most about 1 W (docs/paper-audit.md §6).",
     "Table 5 row I is inconsistent: n_s − n_n = 36 rpm as in condition II, which with the 10 mm lead of rows "
-    "II–V is 0.36 m/min, not the 0.18 m/min printed (that needs a 5 mm lead) (AUDIT §2).",
+    "II–V is 0.36 m/min, not the 0.18 m/min printed (that needs a 5 mm lead) (docs/paper-audit.md §2).",
     "Table 7 condition V is an outlier: about +12 µm off in every fit of D against the bearing and screw "
     "temperatures. The paper's \"29 µm at a similar temperature field\" (III against V) is impossible in "
-    "linear thermoelasticity, where the elongation follows from the temperature field alone (AUDIT §4).",
+    "linear thermoelasticity, where the elongation follows from the temperature field alone (docs/paper-audit.md §4).",
     "The stated equilibrium times at 15 and 25 °C ambient (70 and 110 min) contradict the paper's own "
-    "assumption 3, under which the ambient cannot change the equilibrium time (AUDIT §6; section 5 above).",
+    "assumption 3, under which the ambient cannot change the equilibrium time (docs/paper-audit.md §6; section 5 above).",
 )
 
 
@@ -83,7 +83,7 @@ def inconsistencies_section(validation: Validation) -> str:
     found = validation.inconsistencies
     body = heading("Found in this validation (feedtherm check and the data)")
     body += bullets(found) if found else paragraph("None reported.")
-    body += heading("Known from the review of the paper (AUDIT.md)") + bullets(PAPER_FINDINGS)
+    body += heading("Known from the review of the paper (docs/paper-audit.md)") + bullets(PAPER_FINDINGS)
     return section("inconsistencies", "Inconsistencies in the paper's data", body)
 
 

@@ -17,7 +17,7 @@ EQUILIBRIUM_PHYSICS = (
     "start, and the ambient temperature has disappeared: it shifts every temperature by the same amount and "
     "leaves every rise, and so the equilibrium time, unchanged. Conditions II, IV and V run at the same "
     "speeds and differ only in ambient, so they must reach equilibrium at the same time; the paper's 70 min "
-    "at 15 °C against 110 min at 25 °C cannot come from such a model (AUDIT §6). The only ambient effect left "
+    "at 15 °C against 110 min at 25 °C cannot come from such a model (docs/paper-audit.md §6). The only ambient effect left "
     "in physics mode comes through the temperature at which the coefficients are frozen: the air's properties "
     "change the convection coefficients by a few per cent over 10 K, and the linearised radiation coefficient "
     "(∝ T³) by about 10 %, far too little to move the equilibrium time by 40 min. A warmer room does not make "
