@@ -68,8 +68,6 @@ def cmd_check(args: argparse.Namespace) -> int:
     return 0
 
 
-#: Models `feedtherm run --model` offers.
-RUN_MODELS = ("fast", "fem")
 #: FE mesh densities `--mesh` offers.
 MESHES = ("coarse", "medium", "fine")
 #: A run shows a progress bar only once it has lasted this long [s]: short runs stay quiet.
@@ -78,55 +76,30 @@ PROGRESS_DELAY_S = 1.0
 
 def cmd_run(args: argparse.Namespace) -> int:
     from .outputs.run_files import check_output_dir, default_out_dir, summary_line, write_run
+    from .plan import plan_run
 
     loaded = _load(args.system)
-    _check_run_inputs(loaded, args)
-    out_dir = Path(args.out) if args.out else default_out_dir(args.system, _run_label(args), args.mode)
+    plan = plan_run(loaded, condition=args.condition, cycle=args.cycle, mode=args.mode, model=args.model,
+                    duration=args.duration, single_drive=args.single_drive, sample_interval=args.sample_interval,
+                    motion=args.motion, mesh=args.mesh, solver=args.solver)
+    out_dir = Path(args.out) if args.out else default_out_dir(args.system, plan.label, args.mode)
     check_output_dir(out_dir)
     # Imported only now: every input error above is reported without loading the model.
-    from .simulate import simulate
+    from .simulate import execute
 
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
-        solution = simulate(loaded, condition=args.condition, cycle=args.cycle, mode=args.mode, model=args.model,
-                            duration=args.duration, single_drive=args.single_drive,
-                            sample_interval=args.sample_interval, progress=progress, motion=args.motion,
-                            mesh=args.mesh, solver=args.solver)
+        solution = execute(plan, progress)
     write_run(solution, out_dir, sample_interval=args.sample_interval)
     print(summary_line(solution, out_dir))
     return 0
 
 
-def _check_run_inputs(loaded, args: argparse.Namespace) -> None:
-    """What argparse cannot check: the condition or cycle, and the mode, against the description."""
-    if args.condition is not None:
-        _condition(loaded, args.condition)
-    else:
-        _cycle(loaded, args.cycle, args.duration)
-    _require_paper_table(loaded, args.mode)
+def cmd_models(args: argparse.Namespace) -> int:
+    from .models.registry import available_models
 
-
-def _cycle(loaded, name_or_path: str, duration: float | None) -> str:
-    """A duty cycle declared in the description, or a CSV file that reads cleanly."""
-    from .system.duty_cycle import read_duty_cycle_csv
-    from .system.schema import DEFAULT_DURATION_S
-
-    cycles = loaded.system.duty_cycles
-    if name_or_path in cycles:
-        return name_or_path
-    if not Path(name_or_path).is_file():
-        declared = ", ".join(cycles) or "none"
-        raise FeedthermError(f"--cycle: {name_or_path!r} is neither a duty cycle of {loaded.origin} "
-                             f"(declared: {declared}) nor an existing CSV file")
-    # Without --duration, simulate ends a CSV cycle where a condition ends by default (3 h);
-    # checking against the same end catches a row past it now rather than after loading the model.
-    end = duration if duration is not None else DEFAULT_DURATION_S
-    read_duty_cycle_csv(name_or_path, end)
-    return name_or_path
-
-
-def _run_label(args: argparse.Namespace) -> str:
-    """The condition name, the duty cycle's name, or a CSV file's stem."""
-    return args.condition if args.condition is not None else Path(args.cycle).stem
+    for entry in available_models().values():
+        print(f"{entry.name:<10} {entry.summary}" + ("  [--mesh]" if entry.uses_mesh else ""))
+    return 0
 
 
 def _require_paper_table(loaded, mode: str) -> None:
@@ -213,8 +186,11 @@ class _LazyProgress:
 def cmd_validate(args: argparse.Namespace) -> int:
     from .outputs.run_files import check_output_dir, default_out_dir
 
+    from .models.registry import model_entry
+
     loaded = _load(args.system)
     _require_paper_table(loaded, args.mode)
+    model_entry(args.model)  # an unknown model fails before any run
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "validation", args.mode)
     check_output_dir(out_dir)
     from .analysis.validation import measurements_of, validate
@@ -296,8 +272,9 @@ def build_parser() -> argparse.ArgumentParser:
     operation.add_argument("--condition", help="condition name, e.g. I")
     operation.add_argument("--cycle", help="a duty cycle declared in the description, or a CSV file "
                                            "(time_s,screw_rpm,nut_rpm,ambient_C)")
-    run.add_argument("--model", choices=RUN_MODELS, default="fast",
-                     help="fast: thermal network (seconds); fem: 3D finite elements (minutes)")
+    run.add_argument("--model", default="fast",
+                     help="a model of `feedtherm models`: fast (thermal network, seconds), fem (3D finite "
+                          "elements, minutes), ... (default fast)")
     run.add_argument("--mesh", choices=MESHES, default="coarse", help="FE mesh density (with --model fem)")
     _mode_argument(run)
     run.add_argument("--duration", type=_positive_seconds, metavar="S",
@@ -336,12 +313,15 @@ def build_parser() -> argparse.ArgumentParser:
 
     validate = sub.add_parser("validate", help="run every measured condition and compare with the measurements")
     _system_argument(validate)
-    validate.add_argument("--model", choices=RUN_MODELS, default="fast")
+    validate.add_argument("--model", default="fast", help="a model of `feedtherm models` (default fast)")
     validate.add_argument("--mesh", choices=MESHES, default="coarse", help="FE mesh density (with --model fem)")
     _mode_argument(validate)
     _measured_argument(validate)
     _out_argument(validate, "out/<system>_validation_<mode>")
     validate.set_defaults(func=cmd_validate)
+
+    models = sub.add_parser("models", help="list the models --model accepts")
+    models.set_defaults(func=cmd_models)
 
     calibrate = sub.add_parser("calibrate", help="fit declared parameters to measured conditions; predict the others")
     _system_argument(calibrate)

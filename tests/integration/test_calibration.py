@@ -17,11 +17,6 @@ from feedtherm.system.load import load_system
 SENSORS = ["T1", "T2", "T3", "T4", "T5"]
 
 
-@pytest.fixture(scope="module")
-def paper():
-    return load_system("paper")
-
-
 def synthetic_measurements(loaded, path, conditions, seed=7):
     """Measurements made by the model itself, with noise of 0.1 K and 0.5 µm."""
     rng = np.random.default_rng(seed)

@@ -3,16 +3,15 @@
 import numpy as np
 import pytest
 
-from feedtherm.models.fast.assemble import SolverTamper
+from dataclasses import replace
+
+from feedtherm.models.fast.discretization import FastDiscretization
+from feedtherm.models.interface import AmbientCoupling
+from feedtherm.models.registry import ModelEntry, register_model, unregister_model
 from feedtherm.simulate import simulate
 from feedtherm.system.load import load_system
 
 SENSORS = ["T1", "T2", "T3", "T4", "T5"]
-
-
-@pytest.fixture(scope="module")
-def paper():
-    return load_system("paper")
 
 
 @pytest.fixture(scope="module")
@@ -25,11 +24,36 @@ def test_energy_balance_of_condition_i(run_i):
     assert run_i.energy.heat_in > 0 and run_i.energy.heat_lost > 0 and run_i.energy.heat_stored > 0
 
 
-@pytest.mark.parametrize("tamper", [SolverTamper(drop_sources=("front_bearing",)),
-                                    SolverTamper(area_scale={"screw_shaft": 0.5}),
-                                    SolverTamper(area_scale={"base_top": 0.5})])
-def test_energy_check_trips_when_the_solver_alone_is_wrong(paper, tamper):
-    run = simulate(paper, condition="I", duration=3600.0, tamper=tamper)
+class TamperedFast(FastDiscretization):
+    """The fast model with a deliberate error in what the solver gets, injected from the test.
+
+    ``drop`` removes a source from the heat vector; ``area_scale`` scales a surface's links in
+    the step matrix only.  The energy account (heat in from the boundary conditions, heat lost
+    from the ambient load) must notice either.
+    """
+
+    drop: tuple[str, ...] = ()
+    area_scale: dict[str, float] = {}
+
+    def heat_vector(self, bc, k):
+        return super().heat_vector(replace(bc, heats={n: h for n, h in bc.heats.items() if n not in self.drop}), k)
+
+    def ambient_coupling(self, bc, k):
+        exact = self.ambient_links(bc, k)
+        scaled = bc.surfaces | {n: replace(t, convection=t.convection * f, radiation=t.radiation * f) for n, t in bc.surfaces.items()
+                                if (f := self.area_scale.get(n)) is not None}
+        return AmbientCoupling(self.ambient_links(replace(bc, surfaces=scaled), k), exact, float(exact.sum()))
+
+
+@pytest.mark.parametrize("drop, area_scale", [(("front_bearing",), {}), ((), {"screw_shaft": 0.5}),
+                                              ((), {"base_top": 0.5})])
+def test_energy_check_trips_when_the_solver_alone_is_wrong(paper, drop, area_scale):
+    tampered = type("Tampered", (TamperedFast,), {"drop": drop, "area_scale": area_scale})
+    register_model(ModelEntry("tampered-fast", "the fast model with a solver error (test)", tampered))
+    try:
+        run = simulate(paper, condition="I", duration=3600.0, model="tampered-fast")
+    finally:
+        unregister_model("tampered-fast")
     assert abs(run.energy.relative_error) > 1e-3
 
 
@@ -126,13 +150,12 @@ def test_cycle_averaged_motion_agrees_with_the_resolved_motion(paper, run_i):
 
 
 def test_temperature_dependent_chtcs_are_refused_not_ignored(paper, tmp_path):
-    from importlib import resources
-
+    from feedtherm.benches import bench
     from feedtherm.errors import ModelError
     from feedtherm.system.load import validate_data
     import tomllib
 
-    text = resources.files("feedtherm.system").joinpath("data").joinpath("paper_bench.toml").read_text()
+    text = bench("paper").description.read_text(encoding="utf-8")
     data = tomllib.loads(text)
     data["temperatures"]["temperature_dependent_chtc"] = True
     with pytest.raises(ModelError, match="temperature_dependent_chtc"):

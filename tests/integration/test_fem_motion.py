@@ -3,12 +3,6 @@
 import pytest
 
 from feedtherm.simulate import simulate
-from feedtherm.system.load import load_system
-
-
-@pytest.fixture(scope="module")
-def paper():
-    return load_system("paper")
 
 
 def test_resolved_motion_stays_at_the_cycle_averaged_steady_state(paper):

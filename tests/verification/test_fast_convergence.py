@@ -13,14 +13,8 @@ import pytest
 
 from feedtherm.models.options import FastOptions
 from feedtherm.simulate import simulate
-from feedtherm.system.load import load_system
 
 SENSORS = ["T1", "T2", "T3", "T4", "T5"]
-
-
-@pytest.fixture(scope="module")
-def paper():
-    return load_system("paper")
 
 
 def series(run):

@@ -1,17 +1,15 @@
 """Time integration shared by the models (implicit Euler), with the moving group reciprocating.
 
-Each step solves ``(C/dt + G(k) + diag(g_amb(k))) T⁺ = C/dt T + q(k) + g_amb(k) T_amb``
-with ``k`` the moving group's grid position at the end of the step.  While the table moves,
+Each step solves ``(C/dt + G(k) + A(k)) T⁺ = C/dt T + q(k) + a(k) T_amb`` (the operators of
+:class:`~feedtherm.models.interface.ThermalModel`) with ``k`` the moving group's grid position at the end of the step.  While the table moves,
 a step advances the group by a whole number of grid positions, so each position's matrix can
 be factorised once and reused (direct solver, a symmetric fill-reducing ordering); large FE
 meshes use Jacobi-preconditioned conjugate gradients instead, started from the linear
 extrapolation of the last two states, which is close enough that a step takes tens of
-iterations.  The energy account is kept apart from the solver's matrices: heat in from
-the boundary conditions, heat lost from the surface coefficients and areas
-(``ambient_links(..., for_solver=False)``), heat stored from the capacities.
-
-The model is any object with the interface documented in
-:mod:`feedtherm.models.fast.discretization`.
+iterations.  Dense operators (a projected model) are solved with a dense LU.  The energy
+account is kept apart from the solver's matrices: heat in from the boundary conditions (not
+the model's heat vector), heat lost from the ambient coupling, heat stored from the
+capacities.
 """
 
 from __future__ import annotations
@@ -22,10 +20,12 @@ from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
+import scipy.linalg
 from scipy.sparse.linalg import cg, splu
 
 from ..boundary import BoundaryConditions
 from ..errors import ModelError
+from .interface import AmbientCoupling, Operator, ThermalModel, cycle_weights, weighted_sum
 from .options import ModelOptions
 
 #: Above this many unknowns the "auto" solver uses conjugate gradients, not cached LU.
@@ -93,6 +93,28 @@ def factorize(A: sp.spmatrix):
     return splu(A.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
 
 
+class _DenseLU:
+    def __init__(self, A: np.ndarray):
+        self._factors = scipy.linalg.lu_factor(A)
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        return scipy.linalg.lu_solve(self._factors, rhs)
+
+
+def operator_sum(*operators: Operator) -> Operator:
+    """Sum of operators given as vectors (diagonals), sparse or dense matrices."""
+    n = next(len(op) if np.ndim(op) == 1 else op.shape[0] for op in operators)
+    if any(isinstance(op, np.ndarray) and op.ndim == 2 for op in operators):
+        total = np.zeros((n, n))
+        for op in operators:
+            if np.ndim(op) == 1:
+                total[np.diag_indices(n)] += op
+            else:
+                total += op.toarray() if sp.issparse(op) else op
+        return total
+    return sum((sp.diags(op) if np.ndim(op) == 1 else op) for op in operators).tocsr()
+
+
 def jacobi(A: sp.spmatrix) -> sp.linalg.LinearOperator:
     """The Jacobi (diagonal) preconditioner of ``A``.
 
@@ -104,45 +126,49 @@ def jacobi(A: sp.spmatrix) -> sp.linalg.LinearOperator:
     return sp.linalg.LinearOperator(A.shape, matvec=lambda v: inverse_diagonal * v)
 
 
+@dataclass(frozen=True)
+class Loads:
+    """The operators at one position (or their cycle average)."""
+
+    conductance: Operator
+    ambient: AmbientCoupling
+    heat: np.ndarray
+
+
 class Integrator:
-    def __init__(self, model, options: ModelOptions):
+    def __init__(self, model: ThermalModel, options: ModelOptions):
         self.model = model
         self.options = options
         self._lu = {}  # (segment, position, dt) → LU factors (direct solver)
         self._cg = {}  # (segment, position, dt) → (matrix, preconditioner) (conjugate gradients)
         self._loads = {}
         solver = options.solver
-        self.direct = solver == "direct" or (solver == "auto" and model.n_nodes <= DIRECT_SOLVER_LIMIT)
+        self.dense = isinstance(model.conductance(0), np.ndarray)
+        self.direct = self.dense or solver == "direct" or (solver == "auto" and model.n_nodes <= DIRECT_SOLVER_LIMIT)
 
     @property
     def solver_name(self) -> str:
+        if self.dense:
+            return "dense LU"
         return "direct (LU per position)" if self.direct else "cg (Jacobi-preconditioned conjugate gradients)"
 
+    def _factorize(self, A: Operator):
+        return _DenseLU(A) if isinstance(A, np.ndarray) else factorize(A)
+
     # -------------------------------------------------------------- cached pieces
-    def weights(self) -> np.ndarray:
-        """Time share of each grid position under steady reciprocation (ends count half)."""
-        K = len(self.model.positions) - 1
-        w = np.ones(K + 1)
-        w[0] = w[-1] = 0.5
-        return w / w.sum()
-
-    def loads(self, seg_id: int, bc: BoundaryConditions, k: int | None):
-        """(conductance matrix, ambient links, heat vector, loss coefficients) at position k.
-
-        ``k = None`` gives the cycle average over all positions.
-        """
+    def loads(self, seg_id: int, bc: BoundaryConditions, k: int | None) -> Loads:
+        """The operators at position k; ``k = None`` gives the cycle average over all positions."""
         key = (seg_id, k)
         if key not in self._loads:
             if k is None:
-                w = self.weights()
+                w = cycle_weights(len(self.model.positions))
                 parts = [self.loads(seg_id, bc, j) for j in range(len(w))]
-                G = sum(wj * p[0] for wj, p in zip(w, parts))
-                vectors = [sum(wj * p[i] for wj, p in zip(w, parts)) for i in (1, 2, 3)]
-                self._loads[key] = (G.tocsr(), *vectors)
+                self._loads[key] = Loads(weighted_sum(w, [p.conductance for p in parts]),
+                                         AmbientCoupling.averaged(w, [p.ambient for p in parts]),
+                                         weighted_sum(w, [p.heat for p in parts]))
             else:
                 m = self.model
-                self._loads[key] = (m.conductance(k), m.ambient_links(bc, k), m.heat_vector(bc, k),
-                                    m.ambient_links(bc, k, for_solver=False))
+                self._loads[key] = Loads(m.conductance(k), m.ambient_coupling(bc, k), m.heat_vector(bc, k))
         return self._loads[key]
 
     def solve(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float, rhs: np.ndarray,
@@ -150,7 +176,7 @@ class Integrator:
         key = (seg_id, k, round(dt, 12))
         if self.direct:
             if key not in self._lu:
-                self._lu[key] = factorize(self._step_matrix(seg_id, bc, k, dt))
+                self._lu[key] = self._factorize(self._step_matrix(seg_id, bc, k, dt))
             return self._lu[key].solve(rhs)
         if key not in self._cg:
             A = self._step_matrix(seg_id, bc, k, dt).tocsr()
@@ -162,17 +188,18 @@ class Integrator:
                              "use --solver direct")
         return solution
 
-    def _step_matrix(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float) -> sp.spmatrix:
-        G, g_amb, _, _ = self.loads(seg_id, bc, k)
-        return G + sp.diags(self.model.capacity / dt + g_amb)
+    def _step_matrix(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float) -> Operator:
+        loads = self.loads(seg_id, bc, k)
+        return operator_sum(loads.conductance, self.model.capacity / dt, loads.ambient.matrix)
 
     def steady(self, seg_id: int, bc: BoundaryConditions, k: int | None) -> np.ndarray:
-        G, g_amb, q, _ = self.loads(seg_id, bc, k)
-        A = (G + sp.diags(g_amb)).tocsc()
-        rhs = q + g_amb * bc.point.ambient
+        """The steady state of segment ``seg_id`` at position k (None: the cycle average)."""
+        loads = self.loads(seg_id, bc, k)
+        A = operator_sum(loads.conductance, loads.ambient.matrix)
+        rhs = loads.heat + loads.ambient.load * bc.point.ambient
         if self.direct:
-            return factorize(A).solve(rhs)
-        solution, info = cg(A.tocsr(), rhs, x0=np.full(len(rhs), bc.point.ambient), rtol=CG_RTOL, maxiter=50000,
+            return self._factorize(A).solve(rhs)
+        solution, info = cg(A, rhs, x0=self.model.uniform_state(bc.point.ambient), rtol=CG_RTOL, maxiter=50000,
                             M=jacobi(A))
         if info != 0:
             raise ModelError(f"--solver cg: conjugate gradients did not converge in {info} iterations of the steady "
@@ -193,6 +220,7 @@ class Integrator:
         next_snapshot = 0.0
         averaged = self.options.motion == "averaged"
         C = m.capacity
+        capacity_times = (lambda v: C * v) if np.ndim(C) == 1 else (lambda v: C @ v)
         last_report = -1.0
         T_old, dt_old = None, None  # the previous state, for the solver's starting guess
         for seg_id, seg in enumerate(segments):
@@ -205,13 +233,15 @@ class Integrator:
                 if moving:
                     path.advance(cells_per_step * dt / dt_nominal)
                 k = None if (averaged and moving) else path.k
-                _, g_amb, q, loss = self.loads(seg_id, seg.bc, k)
+                loads = self.loads(seg_id, seg.bc, k)
+                ambient = seg.bc.point.ambient
                 guess = T if T_old is None else T + (T - T_old) * (dt / dt_old)
-                T_new = self.solve(seg_id, seg.bc, k, dt, C / dt * T + q + g_amb * seg.bc.point.ambient, guess)
+                rhs = capacity_times(T) / dt + loads.heat + loads.ambient.load * ambient
+                T_new = self.solve(seg_id, seg.bc, k, dt, rhs, guess)
                 t_new = t + dt
                 # energy account: heat in from the boundary conditions, losses from the surfaces
                 trace.heat_in += seg.bc.total_heat * dt
-                trace.heat_lost += float(loss @ (T_new - seg.bc.point.ambient)) * dt
+                trace.heat_lost += loads.ambient.heat_lost(T_new, ambient) * dt
                 # the moving sensors sit where the group is; averaged motion smears it over the stroke
                 k_probe = len(m.positions) // 2 if (averaged and moving) else path.k
                 while next_sample is not None and next_sample <= t_new + 1e-9:

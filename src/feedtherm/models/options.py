@@ -24,7 +24,3 @@ class ModelOptions:
     averaged_step: float = 10.0  # [s] time step of the cycle-averaged motion
     solver: Literal["auto", "direct", "cg"] = "auto"  # cached LU per position, or conjugate gradients
     snapshot_interval: float = 600.0  # [s] full-field snapshots kept for field output (FE)
-
-
-#: The fast model's options (kept under its historical name).
-FastOptions = ModelOptions

@@ -22,18 +22,6 @@ from .contacts import JointContact, fused_links, side, surface_samples
 from .layout import AxialBody, Layout, contact_ranges
 
 
-@dataclass(frozen=True)
-class SolverTamper:
-    """Deliberate errors injected into the solver only, to prove the energy check works.
-
-    Never used outside tests: ``drop_sources`` removes heat sources from the solver's heat
-    vector, ``area_scale`` multiplies surfaces' convective areas in the solver.
-    """
-
-    drop_sources: tuple[str, ...] = ()
-    area_scale: dict[str, float] = field(default_factory=dict)
-
-
 @dataclass
 class Edges:
     """Conductances between node pairs, and from nodes to the ambient."""
@@ -60,10 +48,9 @@ def laplacian(n: int, edges: Edges) -> sp.csr_matrix:
 class Network:
     """Builds the position-dependent parts of the fast model's equations."""
 
-    def __init__(self, layout: Layout, tamper: SolverTamper | None = None):
+    def __init__(self, layout: Layout):
         self.layout = layout
         self.system = layout.system
-        self.tamper = tamper or SolverTamper()
         self._check_joints()
         self.sides = {name: side(cells, layout.cell_size) for name, cells in layout.cells.items()}
         conductivity = {name: self._material(name).conductivity for name in self.system.parts}
@@ -144,13 +131,11 @@ class Network:
                 edges.add(*contact.links(k))
         return laplacian(self.layout.n_nodes, edges)
 
-    def ambient_links(self, bc: BoundaryConditions, k: int, *, for_solver: bool = True) -> np.ndarray:
+    def ambient_links(self, bc: BoundaryConditions, k: int) -> np.ndarray:
         """Conductance [W/K] of every node to the ambient air (convection + radiation)."""
         g = np.zeros(self.layout.n_nodes)
-        for name, area_by_node in self.surface_areas(bc, k).items():
-            scale = self.tamper.area_scale.get(name, 1.0) if for_solver else 1.0
-            nodes, areas = area_by_node
-            np.add.at(g, nodes, bc.surfaces[name].total * areas * scale)
+        for name, (nodes, areas) in self.surface_areas(bc, k).items():
+            np.add.at(g, nodes, bc.surfaces[name].total * areas)
         return g
 
     def surface_areas(self, bc: BoundaryConditions, k: int) -> dict[str, tuple[np.ndarray, np.ndarray]]:
@@ -231,38 +216,27 @@ class Network:
                 covered += body.overlap(x0, x1)
         return np.minimum(covered, body.lengths)
 
-    def heat_vector(self, bc: BoundaryConditions, k: int, *, for_solver: bool = True) -> np.ndarray:
-        """Heat [W] into every node with the moving group at position ``k``.
+    def heat_distribution(self, part: str, partner: str | None, k: int) -> np.ndarray:
+        """Fractions (summing to 1) over the nodes of heat into ``part`` at position ``k``.
 
-        A source's share into a part goes in by volume, unless another part receiving the
-        same source is joined to it: then it enters over that joint's contact (the
-        screw–nut friction into the screw under the nut and into the nut's bore).
+        Heat of the part itself goes in by volume; heat that arises at the contact with
+        ``partner`` (the screw–nut friction) enters where that contact is: the screw under
+        the nut, the nut's bore.
         """
         q = np.zeros(self.layout.n_nodes)
-        offset = self.layout.positions[k]
-        for name, heat in bc.heats.items():
-            if for_solver and name in self.tamper.drop_sources:
-                continue
-            for part, share in heat.into.items():
-                power = heat.power * share
-                partner = next((p for p in heat.into if p != part and self._joined(p, part)), None)
-                if part in self.layout.cells:
-                    if partner is not None:
-                        nodes, weights = self._contact(part, partner).share(part, k)
-                        np.add.at(q, nodes, power * weights)
-                    else:
-                        cells = self.layout.cells[part]
-                        volumes = cells.volumes
-                        q[cells.nodes] += power * volumes / volumes.sum()
-                    continue
-                body = self.layout.bodies[part]
-                if partner is not None:  # heat that arises at a contact enters where the contact is
-                    part_offset = offset if self.system.parts[partner].moving else 0.0
-                    q[body.nodes[:, -1]] += power * self.contact_weights(partner, body, part_offset)
-                else:  # heat of the body itself: by volume
-                    volumes = np.outer(body.lengths, body.ring_areas()).ravel()
-                    q[body.nodes.ravel()] += power * volumes / volumes.sum()
+        if part in self.layout.cells:
+            if partner is not None:
+                nodes, weights = self._contact(part, partner).share(part, k)
+                np.add.at(q, nodes, weights)
+            else:
+                cells = self.layout.cells[part]
+                q[cells.nodes] += cells.volumes / cells.volumes.sum()
+            return q
+        body = self.layout.bodies[part]
+        if partner is not None:
+            offset = self.layout.positions[k] if self.system.parts[partner].moving else 0.0
+            q[body.nodes[:, -1]] += self.contact_weights(partner, body, offset)
+        else:
+            volumes = np.outer(body.lengths, body.ring_areas()).ravel()
+            q[body.nodes.ravel()] += volumes / volumes.sum()
         return q
-
-    def _joined(self, a: str, b: str) -> bool:
-        return any(set(j.between) == {a, b} for j in self.system.joints)

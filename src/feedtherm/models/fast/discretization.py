@@ -1,28 +1,24 @@
-"""The fast model seen through the interface the shared integrator uses.
-
-Any model offers: ``n_nodes``, ``capacity``, ``positions``, ``dx``, ``conductance(k)``,
-``ambient_links(bc, k, for_solver)``, ``heat_vector(bc, k)``, ``probe_names``,
-``probe(T, k)``, ``screw_edges``, ``screw_centres``, ``screw_mean(states)``,
-``part_means(states)`` and ``stats``.
-"""
+"""The fast model (a thermal network) as a :class:`~feedtherm.models.interface.ThermalModel`."""
 
 from __future__ import annotations
 
 import numpy as np
 import scipy.sparse as sp
 
+from ...constants import AMBIENT_SENSOR, ELONGATION_PROBE
 from ...system.schema import FeedSystem
+from ..interface import HeatInput, ThermalModel, elongation_row
 from ..options import ModelOptions
-from .assemble import Network, SolverTamper
+from .assemble import Network
 from .layout import build_layout
 
 
-class FastDiscretization:
-    def __init__(self, system: FeedSystem, options: ModelOptions, tamper: SolverTamper | None = None):
+class FastDiscretization(ThermalModel):
+    def __init__(self, system: FeedSystem, options: ModelOptions):
         self.system = system
         self.layout = build_layout(system, axial_cells=options.axial_cells, radial_rings=options.radial_rings,
                                    min_positions=options.steps_per_stroke, cell_size=options.cell_size)
-        self.network = Network(self.layout, tamper)
+        self.network = Network(self.layout)
         self.n_nodes = self.layout.n_nodes
         self.capacity = self.layout.capacity
         self.positions = self.layout.positions
@@ -36,11 +32,11 @@ class FastDiscretization:
             self._sliding[k] = (self.network.fixed + self.network.sliding(k)).tocsr()
         return self._sliding[k]
 
-    def ambient_links(self, bc, k: int, for_solver: bool = True) -> np.ndarray:
-        return self.network.ambient_links(bc, k, for_solver=for_solver)
+    def ambient_links(self, bc, k: int) -> np.ndarray:
+        return self.network.ambient_links(bc, k)
 
-    def heat_vector(self, bc, k: int) -> np.ndarray:
-        return self.network.heat_vector(bc, k)
+    def heat_distribution(self, heat: HeatInput, k: int) -> np.ndarray:
+        return self.network.heat_distribution(heat.part, heat.over_contact_with, k)
 
     # -------------------------------------------------------------- probes
     def _probes(self) -> None:
@@ -48,7 +44,7 @@ class FastDiscretization:
         rows = []  # each sensor reads a weighted mean of nodes
         names = []
         for name, sensor in system.sensors.items():
-            if name == "T6":
+            if name == AMBIENT_SENSOR:
                 continue
             if sensor.part in layout.cells:  # between the centres of the cells around it
                 nodes, weights = layout.cells[sensor.part].interpolation(sensor.position)
@@ -61,17 +57,14 @@ class FastDiscretization:
             row = np.zeros(layout.n_nodes)
             np.add.at(row, nodes, weights)
             rows.append(row)
-        self.probe_names = [*names, "D"]
+        self.probe_names = [*names, ELONGATION_PROBE]
         screw = layout.screw
         self.screw_edges = screw.edges
         self.screw_centres = screw.centres
         self._ring_share = screw.ring_areas() / screw.ring_areas().sum()
         part = system.parts[system.kinematics.screw]
         self._alpha = system.materials[part.material].expansion
-        e = system.elongation
-        lo, hi = min(e.fixed_at, e.read_at), max(e.fixed_at, e.read_at)
-        sign = 1.0 if e.read_at >= e.fixed_at else -1.0
-        self._d_weights = sign * screw.overlap(lo, hi)  # D = alpha sum_i overlap_i (T_i - T_ref)
+        self._d_weights = elongation_row(screw.edges, system.elongation.fixed_at, system.elongation.read_at)
         self._t_ref = system.temperatures.reference
         # one dense matrix reads every sensor and D (a probe is taken at every time step)
         d_row = np.zeros(layout.n_nodes)

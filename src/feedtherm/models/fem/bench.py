@@ -2,18 +2,12 @@
 
 :class:`FemDiscretization` meshes every part of a system with gmsh (:mod:`.geometry`),
 couples the parts' separate meshes at their joints with non-conforming interface
-conductances (:mod:`.coupling`), and offers the same duck-typed interface as the fast
-model's network, position by position of the moving group:
+conductances (:mod:`.coupling`), and is a :class:`~feedtherm.models.interface.ThermalModel`,
+position by position of the moving group: ``capacity`` is lumped [J/K], ``ambient_links`` is
+``∫ h N dA`` over each declared surface's exposed facets [W/K] per node, the sensors are read
+by interpolation in their tetrahedron, and the screw's section means by volume.
 
-``n_nodes``, ``capacity`` (lumped, [J/K]), ``positions``/``dx`` (the moving group's offsets
-``-stroke/2 + dx·k``, ``k = 0…K``), ``conductance(k)`` (conduction in every part plus every
-joint, sliding ones at position k), ``ambient_links(bc, k)`` (``∫ h N dA`` over each declared
-surface's exposed facets, [W/K] per node), ``heat_vector(bc, k)`` ([W] per node),
-``probe_names``/``probe(T, k)`` (sensors [K], then ``D`` [m]), ``screw_edges``/
-``screw_centres``/``screw_mean`` (section means along the screw), ``part_means`` and
-``stats``.
-
-Heat placement follows the fast model's ``Network.heat_vector``: a share of a source into
+Heat placement (:func:`~feedtherm.models.interface.heat_inputs`): a share of a source into
 a part goes in by volume, unless another part receiving the same source is joined to it;
 then it enters over that joint's contact (the screw–nut friction half into the nut's bore,
 half into the screw under the nut at position k; the guideway friction into the carriages'
@@ -31,9 +25,12 @@ import numpy as np
 import scipy.sparse as sp
 
 from ...boundary import BoundaryConditions
+from ...constants import AMBIENT_SENSOR, ELONGATION_PROBE
 from ...errors import ModelError
 from ...system.geometry import bounds
 from ...system.schema import FeedSystem
+from ..fields import FieldMesh
+from ..interface import HeatInput, ThermalModel, elongation_row
 from .coupling import CONTACT_TOLERANCE, Contact, ContactQuadrature, interface_matrix, side_load, touching
 from .faces import curvature_sag, surface_facets
 from .facets import RULE, NearestFacets, boundary_triangles
@@ -41,9 +38,7 @@ from .geometry import mesh_system
 from .heat import cell_basis, conduction_matrix
 from .readout import point_matrix, slab_matrix, tet_volumes
 
-__all__ = ["FemDiscretization", "AMBIENT_SENSOR", "cycle_weights", "steady_cycle_averaged"]
-
-AMBIENT_SENSOR = "T6"
+__all__ = ["FemDiscretization"]
 
 
 class _Joint:
@@ -64,15 +59,13 @@ class _Joint:
         return self.a, self.b
 
 
-class FemDiscretization:
+class FemDiscretization(ThermalModel):
     """FE model of ``system`` at mesh ``density`` (``"coarse"``, ``"medium"``, ``"fine"``).
 
     Parameters
     ----------
     system : FeedSystem
     density : str
-    radial_rings : ignored
-        Accepted for the fast model's signature; the mesh resolves the section.
     axial_cells : int
         At least this many screw bins for the section means (and the grid of positions, as
         in the fast model).
@@ -82,9 +75,6 @@ class FemDiscretization:
         Lumped (default, M-matrix) or consistent interface matrices, see :mod:`.coupling`.
     use_cache : bool
         Read and write the mesh cache.
-    tamper : optional
-        A ``SolverTamper`` (``drop_sources``, ``area_scale``), applied only where
-        ``for_solver=True``, to prove an energy check works.
     conductivity_factor : dict, optional
         Part name → factor on its conductivity. A diagnostic: a factor of 1000 makes a part
         nearly isothermal, as the fast model's lumped parts are.
@@ -94,13 +84,12 @@ class FemDiscretization:
     ``part_names``, ``moving_part`` (one flag per part).
     """
 
-    def __init__(self, system: FeedSystem, density: str = "coarse", *, radial_rings=None, axial_cells: int = 100,
-                 min_positions: int = 20, lumped_contact: bool = True, use_cache: bool = True, tamper=None,
+    def __init__(self, system: FeedSystem, density: str = "coarse", *, axial_cells: int = 100,
+                 min_positions: int = 20, lumped_contact: bool = True, use_cache: bool = True,
                  conductivity_factor: dict[str, float] | None = None):
         started = time.perf_counter()
         self.system = system
         self.density = density
-        self.tamper = tamper
         self.lumped_contact = lumped_contact
         self.conductivity_factor = dict(conductivity_factor or {})
         self.mesh = mesh = mesh_system(system, density, use_cache=use_cache)
@@ -128,7 +117,7 @@ class FemDiscretization:
         self._heat_shares: dict[tuple, np.ndarray] = {}
         self._surface_areas: dict[tuple[str, int], tuple[np.ndarray, np.ndarray]] = {}
         self._coverage: dict[tuple, np.ndarray] = {}
-        self.stats = self._stats(time.perf_counter() - started)
+        self._stats = self._summary(time.perf_counter() - started)
 
     # ------------------------------------------------------------------ set-up
     def _setup_positions(self, axial_cells: int, min_positions: int) -> None:
@@ -212,16 +201,12 @@ class FemDiscretization:
                 rows.append(point_matrix(mesh.points, tets, [np.array(sensor.position)], self.n_nodes))
             except ValueError as exc:
                 raise ModelError(f"sensors.{name}.position: {exc} ({sensor.part})") from None
-        self.probe_names = [*names, "D"]
+        self.probe_names = [*names, ELONGATION_PROBE]
         self._probe = sp.vstack(rows).tocsr() if rows else sp.csr_matrix((0, self.n_nodes))
         screw = system.kinematics.screw
         self._screw_bins = slab_matrix(mesh.points, mesh.tets[:, mesh.part_tets(screw)], self.screw_edges, self.n_nodes)
-        e = system.elongation
-        lo, hi = min(e.fixed_at, e.read_at), max(e.fixed_at, e.read_at)
-        sign = 1.0 if e.read_at >= e.fixed_at else -1.0
-        overlap = np.clip(np.minimum(self.screw_edges[1:], hi) - np.maximum(self.screw_edges[:-1], lo), 0.0, None)
         self._alpha = system.materials[system.parts[screw].material].expansion
-        self._d_weights = sign * overlap
+        self._d_weights = elongation_row(self.screw_edges, system.elongation.fixed_at, system.elongation.read_at)
         self._t_ref = system.temperatures.reference
         self._part_weights = {}
         for name in mesh.parts:
@@ -294,7 +279,7 @@ class FemDiscretization:
             self._coverage[key] = touching(x, s["normals"], self._nearest[other], j.contact.tol)
         return self._coverage[key]
 
-    def ambient_links(self, bc: BoundaryConditions, k: int, for_solver: bool = True) -> np.ndarray:
+    def ambient_links(self, bc: BoundaryConditions, k: int) -> np.ndarray:
         """Conductance [W/K] of every node to the ambient: ``h·∫N dA`` over exposed facets."""
         g = np.zeros(self.n_nodes)
         for name, transfer in bc.surfaces.items():
@@ -303,21 +288,12 @@ class FemDiscretization:
             declared = self.system.surfaces[name].area
             if declared is not None:  # the description's area is authoritative: h·A matches
                 h *= declared / areas.sum()
-            if for_solver and self.tamper is not None:
-                h *= self.tamper.area_scale.get(name, 1.0)
             g[nodes] += h * areas
         return g
 
-    def heat_vector(self, bc: BoundaryConditions, k: int, for_solver: bool = True) -> np.ndarray:
-        """Heat [W] into every node, moving group at position k."""
-        q = np.zeros(self.n_nodes)
-        for name, heat in bc.heats.items():
-            if for_solver and self.tamper is not None and name in self.tamper.drop_sources:
-                continue
-            for part, share in heat.into.items():
-                partner = next((p for p in heat.into if p != part and self._joined(p, part) is not None), None)
-                q += heat.power * share * self._heat_share(part, partner, k)
-        return q
+    def heat_distribution(self, heat: HeatInput, k: int) -> np.ndarray:
+        """Fractions over the nodes of a heat input at position k: by volume, or over its contact."""
+        return self._heat_share(heat.part, heat.over_contact_with, k)
 
     def _joined(self, a: str, b: str) -> _Joint | None:
         return next((j for j in self.joints if {j.a, j.b} == {a, b}), None)
@@ -364,7 +340,17 @@ class FemDiscretization:
         states = np.asarray(states)
         return {name: states[..., nodes] @ w for name, (nodes, w) in self._part_weights.items()}
 
-    def _stats(self, seconds: float) -> dict:
+    def field_mesh(self) -> FieldMesh:
+        """The vertices (every part at rest, the moving group mid-stroke) and tetrahedra."""
+        return FieldMesh(points=np.ascontiguousarray(self.points.T), tets=np.ascontiguousarray(self.tets.T),
+                         part_id=np.asarray(self.part_id), part_names=tuple(self.part_names),
+                         moving_part=tuple(bool(m) for m in self.moving_part))
+
+    @property
+    def stats(self) -> dict:
+        return self._stats
+
+    def _summary(self, seconds: float) -> dict:
         mesh = self.mesh
         return {
             "density": self.density,
@@ -380,25 +366,3 @@ class FemDiscretization:
             "positions": len(self.positions),
             "screw_bins": len(self.screw_centres),
         }
-
-
-def cycle_weights(n_positions: int) -> np.ndarray:
-    """Time share of each grid position under steady reciprocation (the ends count half)."""
-    w = np.ones(n_positions)
-    w[0] = w[-1] = 0.5
-    return w / w.sum()
-
-
-def steady_cycle_averaged(model, bc: BoundaryConditions) -> np.ndarray:
-    """Steady state of the cycle-averaged operator [K] (a direct solve).
-
-    Solves ``(Σ w_k G(k) + diag Σ w_k g(k)) T = Σ w_k q(k) + Σ w_k g(k) T_amb`` with the
-    weights of :func:`cycle_weights`, as the shared integrator's averaged motion does.
-    """
-    from ..integrator import factorize
-
-    w = cycle_weights(len(model.positions))
-    G = sum(wk * model.conductance(k) for k, wk in enumerate(w))
-    g = sum(wk * model.ambient_links(bc, k) for k, wk in enumerate(w))
-    q = sum(wk * model.heat_vector(bc, k) for k, wk in enumerate(w))
-    return factorize(G + sp.diags(g)).solve(q + g * bc.point.ambient)

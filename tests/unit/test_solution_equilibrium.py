@@ -1,6 +1,6 @@
 import numpy as np
 
-from feedtherm.analysis.equilibrium import equilibrium_time
+from feedtherm.solution.equilibrium import equilibrium_time
 
 
 def test_first_order_rise_reaches_equilibrium_after_95_percent_and_a_quiet_window():

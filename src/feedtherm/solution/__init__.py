@@ -11,8 +11,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-KELVIN_OFFSET = 273.15
-SENSOR_NAMES_AMBIENT = "T6"
+from ..constants import AMBIENT_SENSOR as SENSOR_NAMES_AMBIENT  # noqa: F401  TODO remove
+from ..constants import ELONGATION_PROBE, KELVIN_OFFSET
+from .fields import FieldSeries
+
 ENERGY_FLOOR_J = 1.0  # [J] smallest energy scale of the balance
 
 
@@ -74,8 +76,8 @@ class Solution:
     energy : EnergyBalance
     info : dict
         Model, mode, condition, time step, unknowns, wall time, provenance (JSON-able).
-    snapshots, mesh
-        FE runs only: full temperature fields every ``snapshot_interval`` and their mesh.
+    fields : FieldSeries or None
+        Full temperature fields every ``snapshot_interval`` on the model's mesh (FE runs).
     """
 
     times: np.ndarray
@@ -94,9 +96,7 @@ class Solution:
     equilibrium_time: float | None
     energy: EnergyBalance
     info: dict = field(default_factory=dict)
-    # FE runs: full fields for ParaView output, (time [s], nodal temperatures [K], group offset [m])
-    snapshots: list = field(default_factory=list)
-    mesh: object = None  # the FE discretisation (points, tets, part ids) the snapshots live on
+    fields: FieldSeries | None = None
 
     @property
     def sensor_names(self) -> list[str]:
@@ -117,6 +117,6 @@ class Solution:
     def summary_values(self, which: str = "final") -> dict[str, float]:
         """``final`` or ``steady`` values in °C and µm, keyed T1…, D_um."""
         values = self.final if which == "final" else self.steady
-        out = {name: value - KELVIN_OFFSET for name, value in values.items() if name != "D"}
-        out["D_um"] = values["D"] * 1e6
+        out = {name: value - KELVIN_OFFSET for name, value in values.items() if name != ELONGATION_PROBE}
+        out["D_um"] = values[ELONGATION_PROBE] * 1e6
         return out

@@ -1,0 +1,15 @@
+"""Constants shared across the layers above physics: names and unit factors.
+
+Physics functions keep their own constants (``physics/`` imports nothing of ours).
+"""
+
+import math
+
+#: The sensor that reads the ambient air; every model reports it from the boundary conditions.
+AMBIENT_SENSOR = "T6"
+#: Name of the screw's elongation among a model's probes.
+ELONGATION_PROBE = "D"
+#: 0 °C in kelvin.
+KELVIN_OFFSET = 273.15
+#: rpm per rad/s, 60/(2π).
+RPM_PER_RAD_S = 60.0 / (2.0 * math.pi)

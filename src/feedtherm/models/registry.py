@@ -1,0 +1,105 @@
+"""Models by name: the ones feedtherm ships and any another package registers.
+
+A model is a factory ``(system, options) -> ThermalModel``.  Built-in models are listed
+here; another package adds one through the entry-point group ``feedtherm.models`` (the
+entry point names a :class:`ModelEntry`), or a program calls :func:`register_model`.
+``feedtherm models`` lists the registry.
+"""
+
+from __future__ import annotations
+
+import difflib
+from dataclasses import dataclass
+from importlib import import_module, metadata
+from typing import Callable
+
+from ..errors import FeedthermError
+from ..system.schema import FeedSystem
+from .interface import ThermalModel
+from .options import ModelOptions
+
+ENTRY_POINT_GROUP = "feedtherm.models"
+
+Factory = Callable[[FeedSystem, ModelOptions], ThermalModel]
+
+
+@dataclass(frozen=True)
+class ModelEntry:
+    """A named model: what it is, and how to build it (``factory`` as ``"module:function"`` loads lazily)."""
+
+    name: str
+    summary: str
+    factory: Factory | str
+    uses_mesh: bool = False  # does it take ``--mesh``?
+
+    def build(self, system: FeedSystem, options: ModelOptions) -> ThermalModel:
+        factory = self.factory
+        if isinstance(factory, str):  # heavy libraries (gmsh, scikit-fem) load only when used
+            module, _, attribute = factory.partition(":")
+            factory = getattr(import_module(module), attribute)
+        model = factory(system, options)
+        if not isinstance(model, ThermalModel):
+            raise FeedthermError(f"model {self.name!r}: its factory returned {type(model).__name__}, not a ThermalModel")
+        return model
+
+
+def _fast(system: FeedSystem, options: ModelOptions) -> ThermalModel:
+    from .fast.discretization import FastDiscretization
+
+    return FastDiscretization(system, options)
+
+
+def _fem(system: FeedSystem, options: ModelOptions) -> ThermalModel:
+    from .fem.bench import FemDiscretization
+
+    return FemDiscretization(system, options.mesh, axial_cells=options.axial_cells,
+                             min_positions=options.steps_per_stroke)
+
+
+_BUILT_IN = (
+    ModelEntry("fast", "thermal network: the screw in axial cells × rings, the other parts in sub-volumes "
+                       "(docs/fast-model.md)", _fast),
+    ModelEntry("fem", "3D finite elements (gmsh + scikit-fem), every part meshed, joints as interface "
+                      "conductances (docs/fem-model.md)", _fem, uses_mesh=True),
+)
+_registered: dict[str, ModelEntry] = {}
+
+
+def register_model(entry: ModelEntry) -> None:
+    """Add (or replace) a model under ``entry.name``."""
+    _registered[entry.name] = entry
+
+
+def unregister_model(name: str) -> None:
+    _registered.pop(name, None)
+
+
+def available_models() -> dict[str, ModelEntry]:
+    """Every model by name: built-in, then entry points, then registered at run time."""
+    models = {entry.name: entry for entry in _BUILT_IN}
+    for point in metadata.entry_points(group=ENTRY_POINT_GROUP):
+        try:
+            entry = point.load()
+        except Exception as exc:  # a broken plug-in must not break the built-in models
+            raise FeedthermError(f"entry point {point.name!r} ({point.value}) in {ENTRY_POINT_GROUP} "
+                                 f"cannot be loaded: {exc}") from None
+        if not isinstance(entry, ModelEntry):
+            raise FeedthermError(f"entry point {point.name!r} in {ENTRY_POINT_GROUP} is not a ModelEntry")
+        models[entry.name] = entry
+    models.update(_registered)
+    return models
+
+
+def model_entry(name: str) -> ModelEntry:
+    """The model called ``name``; an unknown name is one line with the closest ones."""
+    models = available_models()
+    if name not in models:
+        close = difflib.get_close_matches(name, models, n=1)
+        hint = f"; did you mean {close[0]!r}?" if close else ""
+        raise FeedthermError(f"--model: no model {name!r}; models: {', '.join(models)}{hint}")
+    return models[name]
+
+
+def build_model(name: str, system: FeedSystem, options: ModelOptions) -> ThermalModel:
+    """Discretise ``system`` with the model called ``name``."""
+    return model_entry(name).build(system, options)

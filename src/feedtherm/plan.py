@@ -1,0 +1,130 @@
+"""The first step of a run: a cheap, validated plan.
+
+:func:`plan_run` checks every argument against the description, reads a duty-cycle CSV
+once, and turns the condition or cycle into segments of constant operating point with their
+boundary conditions.  The CLI plans before it loads a model, so bad input is reported at
+once; :func:`feedtherm.simulate.execute` integrates a plan and packs its Solution.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+from .boundary import MODES, boundary_conditions_at
+from .boundary.operating import OperatingPoint
+from .constants import RPM_PER_RAD_S
+from .errors import FeedthermError, ModelError
+from .models.integrator import Segment
+from .models.options import ModelOptions
+from .models.registry import ModelEntry, model_entry
+from .system.duty_cycle import read_duty_cycle_csv
+from .system.load import LoadedSystem
+from .system.schema import DEFAULT_DURATION_S, DutySegment
+
+MESHES = ("coarse", "medium", "fine")
+SOLVERS = ("auto", "direct", "cg")
+MOTIONS = ("resolved", "averaged")
+STARTS = ("initial", "steady")
+
+
+@dataclass(frozen=True)
+class RunPlan:
+    """What a run will do, every input checked: the segments and their boundary conditions."""
+
+    loaded: LoadedSystem
+    label: str  # the condition, the duty cycle's name or the CSV file's stem
+    mode: str
+    model: ModelEntry
+    options: ModelOptions
+    segments: list[Segment]
+    single_drive: bool
+    sample_interval: float
+    start: str
+
+    @property
+    def end(self) -> float:
+        return self.segments[-1].t1
+
+
+def plan_run(loaded: LoadedSystem, *, condition: str | None = None, cycle: str | None = None,
+             mode: str = "physics", model: str = "fast", duration: float | None = None,
+             single_drive: bool = False, sample_interval: float = 10.0, motion: str | None = None,
+             mesh: str | None = None, solver: str | None = None, start: str = "initial",
+             options: ModelOptions | None = None) -> RunPlan:
+    """Check a run's arguments and build its segments (see :func:`feedtherm.simulate.simulate`)."""
+    entry = _check_arguments(loaded, mode, model, duration, sample_interval, motion, mesh, solver, start)
+    label, segments, end = _profile(loaded, condition, cycle, duration)
+    opts = options or ModelOptions()
+    opts = replace(opts, **{name: value for name, value in (("motion", motion), ("mesh", mesh), ("solver", solver))
+                            if value is not None})
+    return RunPlan(loaded, label, mode, entry, opts, _segments(loaded, segments, end, mode, single_drive),
+                   single_drive, sample_interval, start)
+
+
+def _check_arguments(loaded, mode, model, duration, sample_interval, motion, mesh, solver, start) -> ModelEntry:
+    system = loaded.system
+    if mode not in MODES:
+        raise FeedthermError(f"--mode: must be one of {', '.join(MODES)}, got {mode!r}")
+    entry = model_entry(model)
+    if mode == "paper" and system.paper is None:
+        raise FeedthermError(f"--mode paper: {loaded.origin} has no [paper] table of printed values")
+    if duration is not None and not duration > 0:
+        raise FeedthermError(f"--duration: must be positive, got {duration!r} s")
+    if motion not in (None, *MOTIONS):
+        raise FeedthermError(f"--motion: must be resolved or averaged, got {motion!r}")
+    if mesh not in (None, *MESHES):
+        raise FeedthermError(f"--mesh: must be one of {', '.join(MESHES)}, got {mesh!r}")
+    if solver not in (None, *SOLVERS):
+        raise FeedthermError(f"--solver: must be one of {', '.join(SOLVERS)}, got {solver!r}")
+    if not sample_interval > 0:
+        raise FeedthermError(f"--sample-interval: must be positive, got {sample_interval!r} s")
+    if start not in STARTS:
+        raise FeedthermError(f"start must be 'initial' or 'steady', got {start!r}")
+    if system.temperatures.temperature_dependent_chtc:
+        raise ModelError("temperatures.temperature_dependent_chtc = true: the models take CHTCs frozen "
+                         "at convection_delta_t (the paper's assumption 3); set it to false")
+    return entry
+
+
+def _profile(loaded: LoadedSystem, condition: str | None, cycle: str | None,
+             duration: float | None) -> tuple[str, list[DutySegment], float]:
+    """The run's label, its duty segments (SI) and its end [s]."""
+    system = loaded.system
+    if (condition is None) == (cycle is None):
+        raise FeedthermError("give exactly one of --condition and --cycle")
+    if condition is not None:
+        if condition not in system.conditions:
+            raise FeedthermError(f"--condition: no condition {condition!r} in {loaded.origin}; "
+                                 f"conditions: {', '.join(system.conditions)}")
+        c = system.conditions[condition]
+        segment = DutySegment.model_construct(start=0.0, screw_speed=c.screw_speed, nut_speed=c.nut_speed,
+                                              ambient=c.ambient)
+        return condition, [segment], duration if duration is not None else c.duration
+    if cycle in system.duty_cycles:
+        profile = system.duty_cycles[cycle]
+        end = duration if duration is not None else profile.duration
+        return cycle, [s for s in profile.segments if s.start < end], end
+    if not Path(cycle).is_file():
+        names = ", ".join(system.duty_cycles) or "none"
+        raise FeedthermError(f"--cycle: {cycle!r} is neither a duty cycle of {loaded.origin} (declared: {names}) "
+                             "nor an existing CSV file")
+    end = duration if duration is not None else DEFAULT_DURATION_S
+    return Path(cycle).stem, read_duty_cycle_csv(cycle, end).segments, end
+
+
+def _segments(loaded: LoadedSystem, duty: list[DutySegment], end: float, mode: str,
+              single_drive: bool) -> list[Segment]:
+    system = loaded.system
+    cache: dict[OperatingPoint, object] = {}
+    out = []
+    starts = [s.start for s in duty] + [end]
+    for seg, t1 in zip(duty, starts[1:]):
+        point = OperatingPoint(seg.screw_speed * RPM_PER_RAD_S, seg.nut_speed * RPM_PER_RAD_S, seg.ambient,
+                               system.kinematics.lead)
+        if single_drive:
+            point = replace(point, screw_rpm=point.relative_rpm, nut_rpm=0.0)
+        if point not in cache:
+            cache[point] = boundary_conditions_at(system, point, mode)
+        out.append(Segment(seg.start, t1, cache[point]))
+    return out

@@ -1,0 +1,107 @@
+"""A model plugs in through the registry: a toy lumped model with dense operators.
+
+The whole machine as one body: capacity C = Σ ρ c V over the parts, one link h·A to the
+ambient summed over the surfaces, all the heat Q into it.  Its exact answer is
+
+    T(t) = T_amb + (Q / hA) · (1 − exp(−t / τ)),   τ = C / hA,
+
+and D = α (T − T_ref) (read_at − fixed_at).  The model's operators are 1 × 1 dense
+matrices, so the run goes through the integrator's dense path; ``simulate``, the Solution,
+the energy balance and the CLI's model list take it like any built-in model.
+"""
+
+import numpy as np
+import pytest
+
+from feedtherm.boundary import boundary_conditions
+from feedtherm.cli import main
+from feedtherm.constants import AMBIENT_SENSOR, ELONGATION_PROBE
+from feedtherm.models.interface import AmbientCoupling, ThermalModel
+from feedtherm.models.registry import ModelEntry, register_model, unregister_model
+from feedtherm.simulate import simulate
+from feedtherm.system.geometry import part_volume
+
+
+class LumpedBody(ThermalModel):
+    """The machine as one isothermal body (a toy: the interface's smallest model)."""
+
+    def __init__(self, system, options):
+        self.system = system
+        self.n_nodes = 1
+        self.capacity = np.array([[sum(system.materials[p.material].density * system.materials[p.material].specific_heat
+                                       * part_volume(p) for p in system.parts.values())]])
+        stroke = system.kinematics.stroke
+        self.positions = np.array([-stroke / 2, stroke / 2])
+        self.dx = stroke
+        self.probe_names = [n for n in system.sensors if n != AMBIENT_SENSOR] + [ELONGATION_PROBE]
+        e = system.elongation
+        self.screw_edges = np.array([min(e.fixed_at, e.read_at), max(e.fixed_at, e.read_at)])
+        self.screw_centres = self.screw_edges.mean(keepdims=True)
+        self.alpha = system.materials[system.parts[system.kinematics.screw].material].expansion
+
+    def conductance(self, k):
+        return np.zeros((1, 1))
+
+    def ambient_links(self, bc, k):
+        return np.array([sum(t.total * t.area for t in bc.surfaces.values())])
+
+    def ambient_coupling(self, bc, k):
+        hA = self.ambient_links(bc, k)
+        return AmbientCoupling(np.diag(hA), hA, float(hA.sum()))
+
+    def heat_distribution(self, heat, k):
+        return np.ones(1)
+
+    def probe(self, state, k):
+        e = self.system.elongation
+        d = self.alpha * (state[0] - self.system.temperatures.reference) * (e.read_at - e.fixed_at)
+        return np.array([state[0]] * (len(self.probe_names) - 1) + [d])
+
+    def screw_mean(self, states):
+        return np.asarray(states)[..., :1]
+
+    def part_means(self, states):
+        return {name: np.asarray(states)[..., 0] for name in self.system.parts}
+
+    @property
+    def stats(self):
+        return {"unknowns": 1}
+
+
+@pytest.fixture
+def lumped():
+    register_model(ModelEntry("lumped", "one isothermal body (test)", LumpedBody))
+    yield "lumped"
+    unregister_model("lumped")
+
+
+def test_a_registered_model_runs_through_simulate_with_its_exact_answer(paper, lumped):
+    run = simulate(paper, condition="I", model=lumped, duration=7200.0, motion="averaged")
+    model = LumpedBody(paper.system, None)
+    bc = boundary_conditions(paper.system, "I")
+    hA = model.ambient_links(bc, 0)[0]
+    C = model.capacity[0, 0]
+    rise = bc.total_heat / hA
+    tau = C / hA
+    exact = bc.point.ambient + rise * (1 - np.exp(-run.times / tau))
+    # implicit Euler with 10 s steps against τ of hours: within 0.5 % of the rise
+    assert np.max(np.abs(run.sensors["T1"] - exact)) < 5e-3 * rise
+    assert run.steady["T1"] == pytest.approx(bc.point.ambient + rise, rel=1e-12)
+    e = paper.system.elongation
+    assert run.steady["D"] == pytest.approx(model.alpha * (run.steady["T1"] - paper.system.temperatures.reference)
+                                            * (e.read_at - e.fixed_at), rel=1e-12)
+    assert abs(run.energy.relative_error) < 1e-9
+    assert run.info["model"] == "lumped" and run.info["solver"] == "dense LU"
+
+
+def test_the_cli_lists_a_registered_model(lumped, capsys):
+    assert main(["models"]) == 0
+    listed = capsys.readouterr().out
+    assert "fast" in listed and "fem" in listed and "lumped" in listed
+
+
+def test_an_unknown_model_is_one_line_with_the_closest_name(paper, capsys, tmp_path):
+    assert main(["run", "--condition", "I", "--model", "fsat", "--out", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "no model 'fsat'" in err[0] and "did you mean 'fast'" in err[0]
+    assert not (tmp_path / "x").exists()
