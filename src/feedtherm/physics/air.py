@@ -142,7 +142,7 @@ def air_properties(T, p=P_ATM):
     returns a value there.
 
     *Expansion coefficient.*  β is the ideal-gas value 1/T, as in the paper's Eq. 26
-    (docs/paper-audit.md: β = 1/T_f in 1/K).  For air at 1 atm and 200-500 K the real-gas value
+    (docs/paper-audit.md §1, Eq. 26: β = 1/T_f in 1/K).  For air at 1 atm and 200-500 K the real-gas value
     :math:`-\rho^{-1}(\partial\rho/\partial T)_p` from CoolProp is larger by only
     0.04-0.9 %.
 

@@ -31,7 +31,7 @@ from feedtherm.physics.validity import check_range
 
 #: Palmgren's f₀ by bearing type and lubrication, [-]: Harris & Kotzalas 2006 (f₀ table
 #: after Palmgren 1959); pairs take 2× the single-row value (SKF rule). Deep groove with
-#: grease: Harris gives 0.7–2 (light to heavy series); 1.5 is docs/paper-audit.md §3's value. AUDIT
+#: grease: Harris gives 0.7–2 (light to heavy series); 1.5 is docs/paper-audit.md §3's value, which
 #: uses 2 per angular-contact bearing, 4 per pair. Typical values, not product data.
 F0_TYPICAL: dict[str, dict[str, float]] = {
     "deep_groove": {"grease": 1.5, "oil_mist": 1.0, "oil_bath": 2.0},

@@ -226,7 +226,7 @@ def test_bearing_torque_dataclass():
 )
 def test_required_torques_from_table1(heat_W, n_rpm, torque_Nmm):
     # docs/paper-audit.md §3: M = H / ω. 4.95/41.4690 = 0.11937; 5.31/37.6991 = 0.14085;
-    # 4.36/41.4690 = 0.10514 N·m. (docs/paper-audit.md prints 105.2 for the rear: that uses the
+    # 4.36/41.4690 = 0.10514 N·m. (docs/paper-audit.md §3: the review's 105.2 for the rear uses the
     # paper's rounded 1.047e-4, 4.36/(1.047e-4·396) = 105.16; exact 2π/60 gives 105.14.)
     assert bearing_heat(torque_Nmm * 1e-3, n_rpm) == pytest.approx(heat_W, rel=1e-3)
 
@@ -262,7 +262,8 @@ def test_nut_pair_at_nut_speed_reproduces_table1():
     # M_v = 4e-7·(36000)^(2/3)·65³ = 4e-7·1090.3·274625 = 119.77 N·mm (docs/paper-audit.md 120).
     # At the nut speed 360 rpm: 141.08·37.6991e-3 = 5.319 W (Table 1: 5.31).
     # II (1080): M_v = 4e-7·2269.5·274625 = 249.3; (21.31 + 249.3)·113.097e-3 = 30.6 W.
-    # III (2160): M_v = 4e-7·3603.0·274625 = 395.8; 417.1·226.195e-3 = 94.3 W (docs/paper-audit.md 94.2).
+    # III (2160): M_v = 4e-7·3603.0·274625 = 395.8; 417.1·226.195e-3 = 94.3 W
+    # (docs/paper-audit.md §3; the review: 94.2).
     P1 = palmgren_P1_angular_contact(840.0, 50.0)
     t = bearing_friction_torque(2.8e-4, P1, DM_7010, 4.0, NU_100, 360.0)
     assert t.load == pytest.approx(0.021, abs=1e-3)
