@@ -10,7 +10,7 @@ import math
 from dataclasses import dataclass, field
 
 from ..physics import bearings, guideways, motors, screw_nut
-from ..physics.mechanics import frictional_power, screw_drive_torque
+from ..physics.mechanics import heat_friction, torque_screw_drive
 from ..system.schema import (
     BearingSource,
     FeedSystem,
@@ -49,13 +49,13 @@ def source_heats(system: FeedSystem, point: OperatingPoint) -> dict[str, SourceH
     axial_force = 0.0
     for name, src in sources.items():
         if isinstance(src, GuidewaySource):
-            force = guideways.guideway_friction_force(
+            force = guideways.friction_force_guideway(
                 src.friction_coefficient, src.moving_mass * GRAVITY + src.external_load,
                 src.seal_drag_per_carriage, src.carriages,
             )
             axial_force += force
             heats[name] = SourceHeat(
-                name, guideways.guideway_heat(force, point.table_speed), dict(src.into),
+                name, guideways.heat_guideway(force, point.table_speed), dict(src.into),
                 0.0, {"friction_force_N": force, "table_speed_m_per_s": point.table_speed},
             )
     for name, src in sources.items():
@@ -75,17 +75,17 @@ def source_heats(system: FeedSystem, point: OperatingPoint) -> dict[str, SourceH
 
 def _sliding_screw(name, src: SlidingScrewSource, point, axial_force, shaft_torque) -> SourceHeat:
     force = axial_force + src.external_axial_load
-    torque = screw_nut.sliding_screw_torque(
+    torque = screw_nut.torque_screw_nut_sliding(
         force, src.preload, src.pitch_diameter, point.lead, src.friction_coefficient,
         src.flank_half_angle, src.grease_viscosity, src.grease_gap, src.engaged_length,
         point.relative_rpm,
     )
     # The screw also pushes the table: the ideal torque F*lead/(2 pi) is work, not heat.
-    drive = torque.total + screw_drive_torque(force, point.lead)
+    drive = torque.total + torque_screw_drive(force, point.lead)
     direction = _sign(point.relative_rpm)
     shaft_torque["screw"] += drive * direction
     shaft_torque["nut"] -= drive * direction  # friction drags the nut along with the screw
-    power = screw_nut.screw_nut_heat(torque.total, point.screw_rpm, point.nut_rpm)
+    power = screw_nut.heat_screw_nut(torque.total, point.screw_rpm, point.nut_rpm)
     return SourceHeat(name, power, dict(src.into), point.relative_rpm, {
         "axial_load_N": force, "load_torque_Nm": torque.load, "preload_torque_Nm": torque.preload,
         "grease_torque_Nm": torque.grease, "friction_torque_Nm": torque.total,
@@ -96,15 +96,15 @@ def _bearing(name, src: BearingSource, point, shaft_torque) -> SourceHeat:
     n = point.shaft_rpm(src.shaft)
     p0 = src.equivalent_static_load or max(src.axial_load, src.radial_load)
     if src.bearing_type == "angular_contact":
-        f1 = bearings.palmgren_f1_angular_contact(p0, src.static_load_rating)
-        p1 = bearings.palmgren_P1_angular_contact(src.axial_load, src.radial_load)
+        f1 = bearings.f1_angular_contact_Palmgren(p0, src.static_load_rating)
+        p1 = bearings.P1_angular_contact_Palmgren(src.axial_load, src.radial_load)
     else:
         z = src.f1_exponent_factor if src.f1_exponent_factor is not None else 5e-4
-        f1 = bearings.palmgren_f1_deep_groove(p0, src.static_load_rating, z=z)
-        p1 = bearings.palmgren_P1_deep_groove(src.axial_load, src.radial_load)
-    torque = bearings.bearing_friction_torque(f1, p1, src.mean_diameter, src.f0, src.lubricant_viscosity, n)
+        f1 = bearings.f1_deep_groove_Palmgren(p0, src.static_load_rating, z=z)
+        p1 = bearings.P1_deep_groove_Palmgren(src.axial_load, src.radial_load)
+    torque = bearings.torque_bearing_Palmgren(f1, p1, src.mean_diameter, src.f0, src.lubricant_viscosity, n)
     shaft_torque[src.shaft] += torque.total * _sign(n)
-    return SourceHeat(name, bearings.bearing_heat(torque.total, n), dict(src.into), n, {
+    return SourceHeat(name, bearings.heat_bearing(torque.total, n), dict(src.into), n, {
         "f1": f1, "P1_N": p1, "load_torque_Nm": torque.load, "viscous_torque_Nm": torque.viscous,
         "friction_torque_Nm": torque.total,
     })
@@ -113,12 +113,12 @@ def _bearing(name, src: BearingSource, point, shaft_torque) -> SourceHeat:
 def _torque(name, src: TorqueSource, point, axial_force, shaft_torque) -> SourceHeat:
     n = point.shaft_rpm(src.shaft)
     if src.shaft == "relative":  # a screw-nut drag torque: the screw also pushes the table
-        drive = src.torque + screw_drive_torque(axial_force, point.lead)
+        drive = src.torque + torque_screw_drive(axial_force, point.lead)
         shaft_torque["screw"] += drive * _sign(n)
         shaft_torque["nut"] -= drive * _sign(n)
     else:
         shaft_torque[src.shaft] += src.torque * _sign(n)
-    return SourceHeat(name, frictional_power(src.torque, n), dict(src.into), n, {"friction_torque_Nm": src.torque})
+    return SourceHeat(name, heat_friction(src.torque, n), dict(src.into), n, {"friction_torque_Nm": src.torque})
 
 
 def _motor(name, src: MotorSource, point, load_torque) -> SourceHeat:
@@ -126,7 +126,7 @@ def _motor(name, src: MotorSource, point, load_torque) -> SourceHeat:
     torque = load_torque + src.extra_torque * _sign(n)
     output = torque * n * 2.0 * math.pi / 60.0  # > 0 driving, < 0 braking (generating)
     if output >= 0.0:
-        loss = motors.motor_loss(torque, n, src.efficiency)
+        loss = motors.heat_motor(torque, n, src.efficiency)
     else:
-        loss = motors.generator_loss(torque, n, src.efficiency)
+        loss = motors.heat_motor_braking(torque, n, src.efficiency)
     return SourceHeat(name, loss, dict(src.into), n, {"torque_Nm": torque, "shaft_power_W": output})

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..physics.mechanics import table_speed
+from ..physics.mechanics import speed_table
 from ..system.schema import Condition, FeedSystem
 
 _RAD_PER_S_TO_RPM = 60.0 / (2.0 * math.pi)
@@ -28,7 +28,7 @@ class OperatingPoint:
     @property
     def table_speed(self) -> float:
         """Signed table speed, [m/s]."""
-        return table_speed(self.screw_rpm, self.nut_rpm, self.lead)
+        return speed_table(self.screw_rpm, self.nut_rpm, self.lead)
 
     def shaft_rpm(self, shaft: str) -> float:
         """Speed of ``"screw"``, ``"nut"`` or ``"relative"``, [rpm]."""

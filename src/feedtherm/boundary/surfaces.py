@@ -54,11 +54,11 @@ def convective_coefficient(surface: Surface, point: OperatingPoint, t_surface: f
         return convection.h_mixed(forced, natural), f"rotating at {conv.shaft} speed (Eq. 27) + natural"
     speed = abs(point.table_speed)
     if isinstance(conv, MovingPlateConvection):
-        forced = convection.h_flat_plate_forced(conv.length, speed, t_film) if speed > 0 else 0.0
+        forced = convection.h_flat_plate_laminar_average(conv.length, speed, t_film) if speed > 0 else 0.0
         natural = convection.h_natural(conv.orientation, conv.natural_length, t_surface, ambient)
         return convection.h_mixed(forced, natural), "moving plate (Eq. 28, average) + natural"
     if isinstance(conv, MovingFaceConvection):
-        forced = convection.h_face_normal_to_motion(conv.length, speed, t_film) if speed > 0 else 0.0
+        forced = convection.h_plate_normal_to_flow(conv.length, speed, t_film) if speed > 0 else 0.0
         natural = convection.h_natural("vertical_plate", conv.natural_length, t_surface, ambient)
         return convection.h_mixed(forced, natural), "face normal to motion (Eq. 29) + natural"
     raise TypeError(f"unknown convection kind {conv!r}")  # the schema admits no other

@@ -1,7 +1,6 @@
 """Array helpers shared by several physics modules (private).
 
-Each function here replaces private copies that several modules carried word for word;
-the modules import it under their old private name (``_out``, ``_finite``).
+The modules import them under short private names (``_out``, ``_finite``).
 """
 
 from __future__ import annotations

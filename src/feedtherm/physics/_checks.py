@@ -1,6 +1,6 @@
-"""Argument checks shared by the two halves of a split physics model (private).
+"""Argument checks shared by the physics modules of one model (private).
 
-Two families, each keeping the exact messages and semantics it had before the split:
+Two families, each with its own messages and semantics:
 
 - screw–nut (:mod:`~feedtherm.physics.screw_nut_rolling` and
   :mod:`~feedtherm.physics.screw_nut`): :func:`positive`, :func:`nonnegative` (no
@@ -10,7 +10,7 @@ Two families, each keeping the exact messages and semantics it had before the sp
   :mod:`~feedtherm.physics.forced_convection`, :mod:`~feedtherm.physics.convection`):
   :func:`finite_array`, :func:`absolute_temperature` and :func:`check_range_nonzero`.
 
-The modules import them under their old private names (``_positive``, ``_arr`` …).
+The modules import them under short private names (``_positive``, ``_arr`` …).
 """
 
 from __future__ import annotations

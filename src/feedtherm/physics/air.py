@@ -4,7 +4,7 @@ All convection correlations of the paper (§3.2, Eqs. 24-29) need the properties
 at the *qualitative temperature* ε, which the paper leaves undefined in Eq. 25; the
 review (docs/paper-audit.md §1, Eq. 25) identifies it as the film temperature
 :math:`T_f = (T_s + T_\\infty)/2`, the textbook choice (Incropera et al. 2007, §7.1 and
-§9.6).  :func:`film_temperature` computes it and :func:`air_properties` returns the
+§9.6).  :func:`film_temperature` computes it and :func:`properties_air` returns the
 properties there.
 
 CoolProp is a declared dependency; there is deliberately no fallback table.
@@ -24,7 +24,7 @@ from feedtherm.physics.validity import check_range
 #: Standard atmosphere, [Pa].
 P_ATM = 101325.0
 
-#: Validity range of :func:`air_properties` in this package, [K].  CoolProp's equation of
+#: Validity range of :func:`properties_air` in this package, [K].  CoolProp's equation of
 #: state covers a much wider range; 200-500 K is the range in which the ideal-gas
 #: expansion coefficient and the single-phase, dry-air assumptions are checked here.
 T_MIN, T_MAX = 200.0, 500.0
@@ -104,7 +104,7 @@ def film_temperature(T_surface, T_ambient):
     return float(mean) if mean.ndim == 0 else mean
 
 
-def air_properties(T, p=P_ATM):
+def properties_air(T, p=P_ATM):
     r"""Properties of dry air at temperature ``T`` and pressure ``p``.
 
     Density, specific heat, viscosity and conductivity come from CoolProp's pseudo-pure
@@ -166,7 +166,7 @@ def air_properties(T, p=P_ATM):
     """
     T = _positive_finite("T", T)
     p = _positive_finite("p", p)
-    check_range("air_properties (CoolProp Air)", "T [K]", T, T_MIN, T_MAX)
+    check_range("properties_air (CoolProp Air)", "T [K]", T, T_MIN, T_MAX)
     rho, cp, mu, k = _coolprop_state(round(T, _T_DECIMALS), p)
     return AirProperties(
         temperature=T,

@@ -6,6 +6,10 @@ N·mm/mm/mm²/s forms are converted inside. Corrections (docs/paper-audit.md §1
 20); deep-groove z = 4e-4..6e-4, not 9e-4 (Eq. 19); d_m³ in Eq. 21; 160e-7·f₀·d_m³ in
 Eq. 22.
 
+Functions of Palmgren's empirical model end in ``_Palmgren``: the SKF model (rolling,
+sliding, seal and drag moments, SKF catalogue since 2004) is the other one in use for the
+same bearings.
+
 References
 ----------
 .. [1] Paper, §3.1, Eqs. 15–22.
@@ -26,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from feedtherm.physics._arrays import scalar_or_array as _out
-from feedtherm.physics.mechanics import frictional_power
+from feedtherm.physics.mechanics import heat_friction
 from feedtherm.physics.validity import check_range
 
 #: Palmgren's f₀ by bearing type and lubrication, [-]: Harris & Kotzalas 2006 (f₀ table
@@ -60,7 +64,7 @@ class BearingTorque:
     total: float
 
 
-def palmgren_f1_angular_contact(P0, C0):
+def f1_angular_contact_Palmgren(P0, C0):
     r"""Palmgren load coefficient f₁ for angular-contact ball bearings (Eq. 17).
 
     .. math:: f_1 = 0.001\,(P_0/C_0)^{0.33}
@@ -86,10 +90,10 @@ def palmgren_f1_angular_contact(P0, C0):
     ----------
     .. [1] Paper Eq. 17; Harris & Kotzalas 2006 (table of z, y); Palmgren 1959.
     """
-    return _f1(P0, C0, 1e-3, 0.33, "palmgren_f1_angular_contact (Eq. 17)")
+    return _f1(P0, C0, 1e-3, 0.33, "f1_angular_contact_Palmgren (Eq. 17)")
 
 
-def palmgren_f1_deep_groove(P0, C0, z=5e-4):
+def f1_deep_groove_Palmgren(P0, C0, z=5e-4):
     r"""Palmgren load coefficient f₁ for deep-groove ball bearings (Eq. 19 corrected).
 
     .. math:: f_1 = z\,(P_0/C_0)^{0.55}, \qquad z = 4\times10^{-4} \ldots 6\times10^{-4}
@@ -121,11 +125,11 @@ def palmgren_f1_deep_groove(P0, C0, z=5e-4):
        y); Palmgren 1959.
     """
     z = _check(z, "z", "[-]", strict=True)
-    check_range("palmgren_f1_deep_groove (Eq. 19)", "z", z, *Z_DEEP_GROOVE_RANGE)
-    return _f1(P0, C0, z, 0.55, "palmgren_f1_deep_groove (Eq. 19)")
+    check_range("f1_deep_groove_Palmgren (Eq. 19)", "z", z, *Z_DEEP_GROOVE_RANGE)
+    return _f1(P0, C0, z, 0.55, "f1_deep_groove_Palmgren (Eq. 19)")
 
 
-def palmgren_P1_angular_contact(Fa, Fr):
+def P1_angular_contact_Palmgren(Fa, Fr):
     r"""Friction-equivalent load P₁, paired/double-row angular contact (Eq. 18).
 
     .. math:: P_1 = \max(1.4F_a - 0.1F_r,\; F_r)
@@ -155,7 +159,7 @@ def palmgren_P1_angular_contact(Fa, Fr):
     return _out(np.maximum(1.4 * Fa - 0.1 * Fr, Fr))
 
 
-def palmgren_P1_deep_groove(Fa, Fr):
+def P1_deep_groove_Palmgren(Fa, Fr):
     r"""Friction-equivalent load P₁ of a deep-groove ball bearing (Eq. 20).
 
     .. math:: P_1 = \max(3F_a - 0.1F_r,\; F_r)
@@ -182,7 +186,7 @@ def palmgren_P1_deep_groove(Fa, Fr):
     return _out(np.maximum(3.0 * Fa - 0.1 * Fr, Fr))
 
 
-def bearing_load_torque(f1, P1, dm):
+def torque_bearing_load_Palmgren(f1, P1, dm):
     r"""Load-dependent friction torque (Eq. 16, SI).
 
     .. math:: M_l = f_1 P_1 d_m
@@ -208,7 +212,7 @@ def bearing_load_torque(f1, P1, dm):
     return _out(_check(f1, "f1", "[-]") * _check(P1, "P1", "[N]") * _dm(dm))
 
 
-def bearing_viscous_torque(f0, nu, n_rpm, dm):
+def torque_bearing_viscous_Palmgren(f0, nu, n_rpm, dm):
     r"""Viscous (lubricant) friction torque after Palmgren (Eqs. 21–22 corrected).
 
     With ν in mm²/s, n in rpm, d_m in mm and M_v in N·mm:
@@ -262,7 +266,7 @@ def bearing_viscous_torque(f0, nu, n_rpm, dm):
     return _out(np.where(nu_n >= VISCOUS_REGIME_LIMIT, high, low) * 1e-3)
 
 
-def bearing_friction_torque(f1, P1, dm, f0, nu, n_rpm):
+def torque_bearing_Palmgren(f1, P1, dm, f0, nu, n_rpm):
     r"""Total Palmgren friction torque of a bearing: load plus viscous part.
 
     .. math:: M = f_1 P_1 d_m + M_v(f_0, \nu, n, d_m)
@@ -270,9 +274,9 @@ def bearing_friction_torque(f1, P1, dm, f0, nu, n_rpm):
     Parameters
     ----------
     f1, P1, dm
-        As in :func:`bearing_load_torque`: [-], [N], [m].
+        As in :func:`torque_bearing_load_Palmgren`: [-], [N], [m].
     f0, nu, n_rpm
-        As in :func:`bearing_viscous_torque`: [-], [m²/s], [rpm].
+        As in :func:`torque_bearing_viscous_Palmgren`: [-], [m²/s], [rpm].
 
     Returns
     -------
@@ -283,12 +287,12 @@ def bearing_friction_torque(f1, P1, dm, f0, nu, n_rpm):
     ----------
     .. [1] Paper Eqs. 16–22 (corrected); Harris & Kotzalas 2006; Palmgren 1959.
     """
-    load = bearing_load_torque(f1, P1, dm)
-    viscous = bearing_viscous_torque(f0, nu, n_rpm, dm)
+    load = torque_bearing_load_Palmgren(f1, P1, dm)
+    viscous = torque_bearing_viscous_Palmgren(f0, nu, n_rpm, dm)
     return BearingTorque(load=load, viscous=viscous, total=_out(np.add(load, viscous)))
 
 
-def bearing_heat(torque, n_rpm):
+def heat_bearing(torque, n_rpm):
     r"""Heat generated in a bearing by its friction torque (Eq. 15, SI).
 
     .. math:: H = |M| \, \frac{2\pi |n|}{60}
@@ -316,7 +320,7 @@ def bearing_heat(torque, n_rpm):
     """
     if isinstance(torque, BearingTorque):
         torque = torque.total
-    return frictional_power(torque, n_rpm)
+    return heat_friction(torque, n_rpm)
 
 
 # --------------------------------------------------------------------------- helpers

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 
-def contact_conductance(tcr: float, area: float) -> float:
+def conductance_contact(tcr: float, area: float) -> float:
     r"""Conductance of a joint with a thermal contact resistance per unit area.
 
     .. math:: G = \frac{A}{R''_c}

@@ -39,8 +39,8 @@ from feedtherm.physics.forced_convection import (
     Nu_flat_plate_laminar_local,
     Nu_plate_normal_to_flow,
     Nu_rotating_cylinder,
-    h_face_normal_to_motion,
-    h_flat_plate_forced,
+    h_flat_plate_laminar_average,
+    h_plate_normal_to_flow,
     h_rotating_cylinder,
 )
 from feedtherm.physics.natural_convection import (
@@ -48,7 +48,7 @@ from feedtherm.physics.natural_convection import (
     Nu_natural_horizontal_cylinder_Morgan,
     Nu_natural_horizontal_plate_down,
     Nu_natural_horizontal_plate_up,
-    Nu_natural_vertical_plate,
+    Nu_natural_vertical_plate_McAdams,
     h_natural,
 )
 
@@ -63,7 +63,7 @@ __all__ = [
     # natural convection, Eq. 25 (feedtherm.physics.natural_convection)
     "NATURAL_ORIENTATIONS",
     "Nu_natural_horizontal_cylinder_Morgan",
-    "Nu_natural_vertical_plate",
+    "Nu_natural_vertical_plate_McAdams",
     "Nu_natural_horizontal_plate_up",
     "Nu_natural_horizontal_plate_down",
     "h_natural",
@@ -73,8 +73,8 @@ __all__ = [
     "Nu_flat_plate_laminar_local",
     "Nu_plate_normal_to_flow",
     "h_rotating_cylinder",
-    "h_flat_plate_forced",
-    "h_face_normal_to_motion",
+    "h_flat_plate_laminar_average",
+    "h_plate_normal_to_flow",
     # mixed convection (this module)
     "Nu_mixed",
     "h_mixed",

@@ -22,9 +22,10 @@ from feedtherm.physics._arrays import scalar_or_array as _out
 from feedtherm.physics._checks import absolute_temperature as _temperature
 from feedtherm.physics._checks import check_range_nonzero as _check_nonzero
 from feedtherm.physics._checks import finite_array as _arr
-from feedtherm.physics.air import air_properties
+from feedtherm.physics.air import properties_air
 from feedtherm.physics.dimensionless import h_from_nusselt, reynolds, reynolds_rotating
 from feedtherm.physics.validity import check_range
+
 
 def Nu_rotating_cylinder(Re, Pr):
     r"""Cylinder rotating in still air (paper Eq. 27).
@@ -190,13 +191,13 @@ def h_rotating_cylinder(d, n_rpm, T_film):
     ----------
     .. [1] Paper, Eqs. 24 and 27; docs/paper-audit.md §1, Eq. 27.
     """
-    air = air_properties(_temperature("T_film", T_film))
+    air = properties_air(_temperature("T_film", T_film))
     d = float(_arr(d, "d", positive=True))
     Re = reynolds_rotating(2.0 * math.pi * float(n_rpm) / 60.0, d, air.kinematic_viscosity)
     return h_from_nusselt(Nu_rotating_cylinder(Re, air.prandtl), air.conductivity, d)
 
 
-def h_flat_plate_forced(L, u, T_film):
+def h_flat_plate_laminar_average(L, u, T_film):
     r"""Plate-average film coefficient of a face moving parallel to itself (Eq. 28 corrected).
 
     .. math:: h = \frac{k}{L} \, 0.664 \, Re_L^{1/2} Pr^{1/3}, \quad Re_L = |u| L/\nu
@@ -223,13 +224,13 @@ def h_flat_plate_forced(L, u, T_film):
     ----------
     .. [1] Paper, Eqs. 24 and 28; docs/paper-audit.md §1, Eq. 28.
     """
-    air = air_properties(_temperature("T_film", T_film))
+    air = properties_air(_temperature("T_film", T_film))
     L = float(_arr(L, "L", positive=True))
     Re = reynolds(u, L, air.kinematic_viscosity)
     return h_from_nusselt(Nu_flat_plate_laminar_average(Re, air.prandtl), air.conductivity, L)
 
 
-def h_face_normal_to_motion(L, u, T_film):
+def h_plate_normal_to_flow(L, u, T_film):
     r"""Film coefficient of a face normal to its direction of motion (Eq. 29 form).
 
     .. math:: h = \frac{k}{L} \, 0.228 \, Re_L^{0.731} Pr^{1/3}, \quad Re_L = |u| L/\nu
@@ -257,7 +258,7 @@ def h_face_normal_to_motion(L, u, T_film):
     ----------
     .. [1] Paper, Eqs. 24 and 29; docs/paper-audit.md §1, Eq. 29.
     """
-    air = air_properties(_temperature("T_film", T_film))
+    air = properties_air(_temperature("T_film", T_film))
     L = float(_arr(L, "L", positive=True))
     Re = reynolds(u, L, air.kinematic_viscosity)
     return h_from_nusselt(Nu_plate_normal_to_flow(Re, air.prandtl), air.conductivity, L)

@@ -5,7 +5,7 @@ A motor delivering the shaft power :math:`P_{out} = M\omega` at efficiency η dr
 :math:`P_{in} - P_{out} = P_{out}(1/\eta - 1)`.  The paper's Eq. 14 writes
 :math:`P_{out}(1 - \delta)`, which is the loss for a given *input* power; it
 underestimates the loss for a given output by the factor η.  Reproducing the paper's
-Table 1 needs the printed form, kept as :func:`motor_loss_paper`.
+Table 1 needs the printed form, kept as :func:`heat_motor_paper`.
 
 References
 ----------
@@ -26,7 +26,7 @@ from feedtherm.physics.mechanics import angular_speed
 PAPER_POWER_CONSTANT = 9550.0
 
 
-def motor_output_power(torque, n_rpm):
+def power_motor_output(torque, n_rpm):
     r"""Mechanical output power of a motor shaft.
 
     .. math:: P_{out} = |M| \, \frac{2\pi |n|}{60}
@@ -52,7 +52,7 @@ def motor_output_power(torque, n_rpm):
     return _out(power)
 
 
-def motor_loss(torque, n_rpm, efficiency):
+def heat_motor(torque, n_rpm, efficiency):
     r"""Heat loss of a motor delivering a given output torque (Eq. 14 corrected).
 
     .. math:: H_m = P_{out}\left(\frac{1}{\eta} - 1\right),
@@ -75,7 +75,7 @@ def motor_loss(torque, n_rpm, efficiency):
     Notes
     -----
     Motoring operation; magnitudes of torque and speed are used.  For the same η the
-    loss is 1/η times the paper's printed form :func:`motor_loss_paper`.  The paper
+    loss is 1/η times the paper's printed form :func:`heat_motor_paper`.  The paper
     never defines M_m; state it explicitly (docs/paper-audit.md §1 row 14).
 
     References
@@ -84,10 +84,10 @@ def motor_loss(torque, n_rpm, efficiency):
     .. [2] docs/paper-audit.md §1 row 14.
     """
     eta = _efficiency(efficiency)
-    return _out(motor_output_power(torque, n_rpm) * (1.0 / eta - 1.0))
+    return _out(power_motor_output(torque, n_rpm) * (1.0 / eta - 1.0))
 
 
-def generator_loss(torque, n_rpm, efficiency):
+def heat_motor_braking(torque, n_rpm, efficiency):
     r"""Heat loss of a motor that is braking: the shaft drives it (regeneration).
 
     .. math:: H_m = P_{in}\,(1 - \eta), \qquad P_{in} = |M| \frac{2\pi |n|}{60}
@@ -119,10 +119,10 @@ def generator_loss(torque, n_rpm, efficiency):
        balance of a machine in generator operation).
     """
     eta = _efficiency(efficiency)
-    return _out(motor_output_power(torque, n_rpm) * (1.0 - eta))
+    return _out(power_motor_output(torque, n_rpm) * (1.0 - eta))
 
 
-def motor_loss_paper(torque, n_rpm, efficiency):
+def heat_motor_paper(torque, n_rpm, efficiency):
     r"""Motor heat as printed in the paper (Eq. 14), kept to reproduce Table 1.
 
     .. math:: H_m = \frac{M_m n_m}{9550}(1 - \delta), \qquad M_m \text{ in N·mm}
@@ -144,7 +144,7 @@ def motor_loss_paper(torque, n_rpm, efficiency):
     Notes
     -----
     **Paper-reproduction variant; physically the loss of a given output is
-    P_out(1/η − 1), see** :func:`motor_loss`.  With M_m = 0.30 N·m and δ = 0.85 it
+    P_out(1/η − 1), see** :func:`heat_motor`.  With M_m = 0.30 N·m and δ = 0.85 it
     reproduces Table 1: 1.87 W at 396 rpm and 1.70 W at 360 rpm (docs/paper-audit.md §4). The
     printed constant 9550 is used as printed (exact 9549.3; difference 0.007 %).
 

@@ -22,7 +22,7 @@ from feedtherm.physics._arrays import scalar_or_array as _out
 from feedtherm.physics._checks import absolute_temperature as _temperature
 from feedtherm.physics._checks import check_range_nonzero as _check_nonzero
 from feedtherm.physics._checks import finite_array as _arr
-from feedtherm.physics.air import air_properties, film_temperature
+from feedtherm.physics.air import film_temperature, properties_air
 from feedtherm.physics.dimensionless import grashof, h_from_nusselt, rayleigh
 
 #: Orientation keywords accepted by :func:`h_natural`.
@@ -65,7 +65,8 @@ def Nu_natural_horizontal_cylinder_Morgan(Ra):
     -----
     Valid 1e-10 ≤ Ra_D ≤ 1e12 (warns outside). Ra = 0 returns the lowest regime's
     limit 0 without warning. A boundary value belongs to the upper regime; adjacent
-    regimes differ there by < 1 %.
+    regimes differ there by < 1 %. The name carries the source because Incropera §9.6.3
+    gives a second correlation for the same case (Churchill & Chu, Eq. 9.34).
 
     References
     ----------
@@ -78,7 +79,7 @@ def Nu_natural_horizontal_cylinder_Morgan(Ra):
     return _out(_power_law(Ra, _MORGAN))
 
 
-def Nu_natural_vertical_plate(Ra):
+def Nu_natural_vertical_plate_McAdams(Ra):
     r"""Isothermal vertical plate, McAdams constants (Eq. 25 with C, n).
 
     .. math::
@@ -100,7 +101,9 @@ def Nu_natural_vertical_plate(Ra):
     -----
     Valid 1e4-1e9 (laminar) and 1e9-1e13 (turbulent); warns outside [1e4, 1e13]
     (0.59 Ra^¼ is still used below 1e4). Ra = 0 returns 0 without warning. The two
-    regimes step by 4.7 % at 1e9 (104.9 vs 100.0).
+    regimes step by 4.7 % at 1e9 (104.9 vs 100.0). The name carries the source because
+    Incropera §9.6.1 gives a second correlation for the same case (Churchill & Chu,
+    Eqs. 9.26-9.27).
 
     References
     ----------
@@ -109,7 +112,7 @@ def Nu_natural_vertical_plate(Ra):
        *Heat Transmission*, 3rd ed., 1954).
     """
     Ra = _arr(Ra, "Ra")
-    _check_nonzero("Nu_natural_vertical_plate", "Ra_L", Ra, 1e4, 1e13)
+    _check_nonzero("Nu_natural_vertical_plate_McAdams", "Ra_L", Ra, 1e4, 1e13)
     return _out(_power_law(Ra, ((1e9, 0.59, 0.25), (math.inf, 0.10, 1.0 / 3.0))))
 
 
@@ -177,7 +180,7 @@ def Nu_natural_horizontal_plate_down(Ra):
 
 _NATURAL_NU = {
     "horizontal_cylinder": Nu_natural_horizontal_cylinder_Morgan,
-    "vertical_plate": Nu_natural_vertical_plate,
+    "vertical_plate": Nu_natural_vertical_plate_McAdams,
     "horizontal_plate_up": Nu_natural_horizontal_plate_up,
     "horizontal_plate_down": Nu_natural_horizontal_plate_down,
 }
@@ -223,7 +226,7 @@ def h_natural(orientation, L, T_surface, T_ambient):
     The vertical plate and the cylinder are symmetric in the sign of ΔT. For
     T_s = T_∞, Ra = 0 and every correlation gives its limit Nu = 0, so h = 0 (no
     division by zero, no warning; the flux is zero anyway). Range warnings come from
-    the Nusselt functions and from :func:`~feedtherm.physics.air.air_properties`.
+    the Nusselt functions and from :func:`~feedtherm.physics.air.properties_air`.
 
     References
     ----------
@@ -236,7 +239,7 @@ def h_natural(orientation, L, T_surface, T_ambient):
     L = float(_arr(L, "L", positive=True))
     if Ts < Ta:
         orientation = _SWAP.get(orientation, orientation)
-    air = air_properties(film_temperature(Ts, Ta))
+    air = properties_air(film_temperature(Ts, Ta))
     Ra = rayleigh(grashof(L, Ts, Ta, air.kinematic_viscosity, air.expansion_coefficient),
                   air.prandtl)
     return h_from_nusselt(_NATURAL_NU[orientation](Ra), air.conductivity, L)

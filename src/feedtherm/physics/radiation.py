@@ -37,7 +37,7 @@ def h_radiation(emissivity, T_surface, T_ambient):
     .. math:: h_r = \varepsilon \sigma (T_s^2 + T_{sur}^2)(T_s + T_{sur})
 
     so that :math:`q'' = h_r (T_s - T_{sur})` reproduces
-    :func:`radiative_heat_flux` exactly.
+    :func:`heat_flux_radiation` exactly.
 
     Parameters
     ----------
@@ -74,7 +74,7 @@ def h_radiation(emissivity, T_surface, T_ambient):
     return _out(eps * SIGMA * (Ts**2 + Ta**2) * (Ts + Ta))
 
 
-def radiative_heat_flux(emissivity, T_surface, T_ambient):
+def heat_flux_radiation(emissivity, T_surface, T_ambient):
     r"""Net radiative heat flux from a small grey surface to large surroundings.
 
     .. math:: q''_{rad} = \varepsilon \sigma (T_s^4 - T_{sur}^4)

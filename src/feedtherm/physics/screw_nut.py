@@ -19,7 +19,7 @@ from feedtherm.physics._arrays import scalar_or_array as _out
 from feedtherm.physics._checks import coulomb_mu as _mu
 from feedtherm.physics._checks import nonnegative as _nonnegative
 from feedtherm.physics._checks import positive as _positive
-from feedtherm.physics.mechanics import angular_speed, frictional_power
+from feedtherm.physics.mechanics import angular_speed, heat_friction
 from feedtherm.physics.validity import check_range
 
 _MAX_FLANK = float(np.nextafter(math.pi / 4.0, 0.0))  # 45°, exclusive
@@ -51,7 +51,7 @@ def helix_angle(lead, d2):
     return _out(np.arctan(_positive("lead", lead) / (math.pi * _positive("d2", d2))))
 
 
-def thread_friction_angle(mu, flank_half_angle):
+def friction_angle_thread(mu, flank_half_angle):
     r"""Virtual friction angle of an inclined-flank thread.
 
     .. math:: \rho' = \arctan\frac{\mu}{\cos\beta}
@@ -76,14 +76,14 @@ def thread_friction_angle(mu, flank_half_angle):
     ----------
     .. [1] Shigley's *Mechanical Engineering Design*, §8-2, Eq. (8-5); docs/paper-audit.md §5.
     """
-    mu = _mu("thread_friction_angle (power screw)", mu)
+    mu = _mu("friction_angle_thread (power screw)", mu)
     beta = np.asarray(flank_half_angle, dtype=float)
-    check_range("thread_friction_angle (power screw)", "flank_half_angle", beta, 0.0,
+    check_range("friction_angle_thread (power screw)", "flank_half_angle", beta, 0.0,
                 _MAX_FLANK)
     return _out(np.arctan(mu / np.cos(beta)))
 
 
-def load_friction_torque(F_axial, d2, lead, mu, flank_half_angle):
+def torque_thread_load(F_axial, d2, lead, mu, flank_half_angle):
     r"""Dissipated part of the thread torque under an axial load.
 
     .. math:: M_F = |F|\,\frac{d_2}{2}\left[\tan(\varphi+\rho') - \tan\varphi\right]
@@ -114,12 +114,12 @@ def load_friction_torque(F_axial, d2, lead, mu, flank_half_angle):
     ----------
     .. [1] Shigley's *Mechanical Engineering Design*, §8-2, Eq. (8-1), (8-5); docs/paper-audit.md §5.
     """
-    phi, rho = helix_angle(lead, d2), thread_friction_angle(mu, flank_half_angle)
+    phi, rho = helix_angle(lead, d2), friction_angle_thread(mu, flank_half_angle)
     F = np.abs(np.asarray(F_axial, dtype=float))
     return _out(F * np.asarray(d2, float) / 2.0 * (np.tan(phi + rho) - np.tan(phi)))
 
 
-def preload_friction_torque(F_preload, d2, lead, mu, flank_half_angle):
+def torque_thread_preload(F_preload, d2, lead, mu, flank_half_angle):
     r"""Friction torque of a split nut whose halves are preloaded against each other.
 
     .. math:: M_p = F_p\,\frac{d_2}{2}\left[\tan(\varphi+\rho') - \tan(\varphi-\rho')\right]
@@ -144,7 +144,7 @@ def preload_friction_torque(F_preload, d2, lead, mu, flank_half_angle):
     -----
     One half "raises" F_p (T_R = F_p r₂ tan(φ+ρ′)), the other "lowers" it (T_L =
     F_p r₂ tan(ρ′−φ)); M_p = T_R + T_L. With an external load on one (rigid) half,
-    M_T = M_p + :func:`load_friction_torque` exactly. Tr32×10, μ 0.1, 500 N: 1.545 N·m.
+    M_T = M_p + :func:`torque_thread_load` exactly. Tr32×10, μ 0.1, 500 N: 1.545 N·m.
 
     References
     ----------
@@ -152,11 +152,11 @@ def preload_friction_torque(F_preload, d2, lead, mu, flank_half_angle):
        docs/paper-audit.md §5.
     """
     F_p = _nonnegative("F_preload", F_preload)
-    phi, rho = helix_angle(lead, d2), thread_friction_angle(mu, flank_half_angle)
+    phi, rho = helix_angle(lead, d2), friction_angle_thread(mu, flank_half_angle)
     return _out(F_p * np.asarray(d2, float) / 2.0 * (np.tan(phi + rho) - np.tan(phi - rho)))
 
 
-def grease_shear_torque(eta, omega, r2, area, gap):
+def torque_grease_shear(eta, omega, r2, area, gap):
     r"""Couette (Petroff) shear torque of the grease film between screw and nut.
 
     .. math:: M_\eta = \eta\,|\omega|\,r_2^2\,A/h
@@ -190,7 +190,7 @@ def grease_shear_torque(eta, omega, r2, area, gap):
     return _out(eta * np.abs(np.asarray(omega, dtype=float)) * r2**2 * area / gap)
 
 
-def flank_normal_load(F_axial, n_flanks, flank_half_angle, helix_angle):
+def normal_load_flank(F_axial, n_flanks, flank_half_angle, helix_angle):
     r"""Normal load per engaged flank, equal sharing.
 
     .. math:: Q_j = \frac{|F|}{\sigma\cos\beta\cos\varphi}
@@ -232,7 +232,7 @@ class SlidingScrewTorque:
     total: float
 
 
-def sliding_screw_torque(F_axial, F_preload, d2, lead, mu, flank_half_angle, eta, gap,
+def torque_screw_nut_sliding(F_axial, F_preload, d2, lead, mu, flank_half_angle, eta, gap,
                          engaged_length, n_rel_rpm) -> SlidingScrewTorque:
     r"""Friction torque of a (split, preloaded) trapezoidal screw–nut pair.
 
@@ -271,15 +271,15 @@ def sliding_screw_torque(F_axial, F_preload, d2, lead, mu, flank_half_angle, eta
     ----------
     .. [1] Shigley's *Mechanical Engineering Design*, §8-2; Petroff (1883); docs/paper-audit.md §5.
     """
-    M_load = load_friction_torque(F_axial, d2, lead, mu, flank_half_angle)
-    M_pre = preload_friction_torque(F_preload, d2, lead, mu, flank_half_angle)
+    M_load = torque_thread_load(F_axial, d2, lead, mu, flank_half_angle)
+    M_pre = torque_thread_preload(F_preload, d2, lead, mu, flank_half_angle)
     area = math.pi * _positive("d2", d2) * _positive("engaged_length", engaged_length)
     r2 = np.asarray(d2, dtype=float) / 2.0
-    M_grease = grease_shear_torque(eta, angular_speed(n_rel_rpm), r2, area, gap)
+    M_grease = torque_grease_shear(eta, angular_speed(n_rel_rpm), r2, area, gap)
     return SlidingScrewTorque(M_load, M_pre, M_grease, _out(M_load + M_pre + M_grease))
 
 
-def screw_nut_heat(torque, n_screw_rpm, n_nut_rpm):
+def heat_screw_nut(torque, n_screw_rpm, n_nut_rpm):
     r"""Heat of the screw–nut pair at the relative speed (paper Eq. 23).
 
     .. math:: H_T = |M_T|\,2\pi|n_s - n_n|/60
@@ -306,4 +306,4 @@ def screw_nut_heat(torque, n_screw_rpm, n_nut_rpm):
     .. [1] Paper, Eq. 23 (docs/paper-audit.md §1, §2).
     """
     n_rel = np.asarray(n_screw_rpm, dtype=float) - np.asarray(n_nut_rpm, dtype=float)
-    return frictional_power(torque, n_rel)
+    return heat_friction(torque, n_rel)

@@ -5,6 +5,10 @@ printed errors corrected (docs/paper-audit.md §1).  Tr flanks are conformal hel
 R), so the sliding model of :mod:`feedtherm.physics.screw_nut` is the model for the real
 nut; the rolling terms here come out ~10³× too small.  Kept to reproduce and audit the
 paper.  SI units throughout.
+
+Names end in the source where two conventions or approximations exist for the same
+quantity: E* (``effective_modulus_Hertz``) vs. E′ = 2E* (``..._Hamrock_Dowson``); the
+exact Hertz semi-axis vs. Hamrock & Brewe's fitted ellipticity.
 """
 
 from __future__ import annotations
@@ -21,7 +25,7 @@ from feedtherm.physics.validity import check_range
 KAPPA_SPHERE = 3.0 / 16.0
 
 
-def effective_modulus(E1, nu1, E2, nu2):
+def effective_modulus_Hertz(E1, nu1, E2, nu2):
     r"""Hertz reduced modulus E* of screw and nut (paper Eq. 10, correct as printed).
 
     .. math:: E^* = \left[(1-\nu_1^2)/E_1 + (1-\nu_2^2)/E_2\right]^{-1}
@@ -38,7 +42,7 @@ def effective_modulus(E1, nu1, E2, nu2):
 
     Notes
     -----
-    Use E* in Hertz's formulae (:func:`hertz_semi_minor_axis`); Eq. 9 needs E′ = 2E*.
+    Use E* in Hertz's formulae (:func:`semi_minor_axis_Hertz`); Eq. 9 needs E′ = 2E*.
     ν outside [−1, 0.5] warns.
 
     References
@@ -46,11 +50,11 @@ def effective_modulus(E1, nu1, E2, nu2):
     .. [1] Paper, Eq. 10. Johnson, *Contact Mechanics* (1985), Eq. (4.22).
     """
     _positive("E1", E1), _positive("E2", E2)
-    check_range("effective_modulus (Eq. 10)", "nu", [nu1, nu2], -1.0, 0.5)
+    check_range("effective_modulus_Hertz (Eq. 10)", "nu", [nu1, nu2], -1.0, 0.5)
     return _out(1.0 / ((1.0 - np.square(nu1)) / E1 + (1.0 - np.square(nu2)) / E2))
 
 
-def hamrock_modulus(E1, nu1, E2, nu2):
+def effective_modulus_Hamrock_Dowson(E1, nu1, E2, nu2):
     r"""Hamrock–Dowson effective modulus E′ = 2E*, as needed by Eq. 9.
 
     .. math:: E' = 2\left[(1-\nu_1^2)/E_1 + (1-\nu_2^2)/E_2\right]^{-1}
@@ -74,10 +78,10 @@ def hamrock_modulus(E1, nu1, E2, nu2):
     ----------
     .. [1] Paper, Eqs. 9–10 (docs/paper-audit.md §1). Hamrock & Dowson, *Ball Bearing Lubrication* (1981).
     """
-    return _out(2.0 * effective_modulus(E1, nu1, E2, nu2))
+    return _out(2.0 * effective_modulus_Hertz(E1, nu1, E2, nu2))
 
 
-def heathcote_bracket(X1, X2):
+def bracket_differential_sliding(X1, X2):
     r"""Bracket of Eq. 3, the signed integral of (X² − X⁴) over the contact, closed form.
 
     .. math:: \int_{-1}^{1}(X^2-X^4)dX - 2\int_{X_1}^{X_2}(X^2-X^4)dX
@@ -111,7 +115,7 @@ def heathcote_bracket(X1, X2):
     return _out(4.0 / 15.0 - 2.0 * (primitive(X2) - primitive(X1)))
 
 
-def differential_sliding_torque_contact(mu, Q, a, R, X1, X2):
+def torque_differential_sliding_contact(mu, Q, a, R, X1, X2):
     r"""Differential-sliding torque of one rolling contact (paper Eq. 3, corrected).
 
     .. math:: M_{dj} = \frac{3}{4}\mu Q_j\frac{a^2}{2R}\left[\int_{-1}^{1}(X^2-X^4)dX
@@ -126,7 +130,7 @@ def differential_sliding_torque_contact(mu, Q, a, R, X1, X2):
     a, R : float or array_like
         Semi-major axis of the contact ellipse and effective ball radius, [m].
     X1, X2 : float or array_like
-        Pure-rolling lines, [-] (:func:`heathcote_bracket`).
+        Pure-rolling lines, [-] (:func:`bracket_differential_sliding`).
 
     Returns
     -------
@@ -144,12 +148,12 @@ def differential_sliding_torque_contact(mu, Q, a, R, X1, X2):
     .. [1] Paper, Eq. 3 (docs/paper-audit.md §1). Heathcote (1921); Johnson, *Contact Mechanics* (1985)
        §8; Harris & Kotzalas, *Rolling Bearing Analysis* 5th ed.
     """
-    mu = _mu("differential_sliding_torque_contact (Eq. 3)", mu)
+    mu = _mu("torque_differential_sliding_contact (Eq. 3)", mu)
     Q, a, R = _nonnegative("Q", Q), _positive("a", a), _positive("R", R)
-    return _out(0.75 * mu * Q * a**2 / (2.0 * R) * heathcote_bracket(X1, X2))
+    return _out(0.75 * mu * Q * a**2 / (2.0 * R) * bracket_differential_sliding(X1, X2))
 
 
-def differential_sliding_torque(contact_torques, contact_angle):
+def torque_differential_sliding(contact_torques, contact_angle):
     r"""Differential-sliding torque of all engaged contacts (paper Eq. 5).
 
     .. math:: M_d = \sum_{j=1}^{\sigma} M_{dj}\cos\alpha
@@ -178,7 +182,7 @@ def differential_sliding_torque(contact_torques, contact_angle):
     return float(np.sum(torques * np.cos(np.asarray(contact_angle, dtype=float))))
 
 
-def hertz_semi_minor_axis(gamma, Q, E_star, sum_rho):
+def semi_minor_axis_Hertz(gamma, Q, E_star, sum_rho):
     r"""Hertz semi-minor axis of an elliptical contact.
 
     .. math:: b = \gamma\left[\frac{3Q}{2E^*\sum\rho}\right]^{1/3}
@@ -190,7 +194,7 @@ def hertz_semi_minor_axis(gamma, Q, E_star, sum_rho):
     Q : float or array_like
         Normal load, [N].
     E_star : float or array_like
-        Reduced modulus E* (:func:`effective_modulus`), [Pa].
+        Reduced modulus E* (:func:`effective_modulus_Hertz`), [Pa].
     sum_rho : float or array_like
         Curvature sum Σρ, [1/m].
 
@@ -214,7 +218,7 @@ def hertz_semi_minor_axis(gamma, Q, E_star, sum_rho):
     return _out(gamma * np.cbrt(3.0 * Q / (2.0 * E_star * sum_rho)))
 
 
-def hysteresis_torque_contact(alpha_h, Q, b, R, r_m, kappa=KAPPA_SPHERE):
+def torque_hysteresis_contact(alpha_h, Q, b, R, r_m, kappa=KAPPA_SPHERE):
     r"""Elastic-hysteresis torque of one rolling contact (paper Eqs. 6–8, corrected).
 
     .. math:: M_{fj} = \kappa\,\alpha_h\,Q_j\,\frac{b}{R}\,r_m
@@ -244,19 +248,19 @@ def hysteresis_torque_contact(alpha_h, Q, b, R, r_m, kappa=KAPPA_SPHERE):
     paper's 3/32 (also in some bearing texts) goes with a loss factor α′ = 2α_h on another
     reference energy: pass ``kappa=3/32`` only with such an α′.  As printed, Eq. 6
     multiplies by B = 2R where R must divide, Eq. 7 yields a force, Eq. 8 has E for 1/E*.
-    Combined with :func:`hertz_semi_minor_axis`: M ∝ γ(3/(2E*Σρ))^(1/3) Q^(4/3) r_m/R.
+    Combined with :func:`semi_minor_axis_Hertz`: M ∝ γ(3/(2E*Σρ))^(1/3) Q^(4/3) r_m/R.
 
     References
     ----------
     .. [1] Paper, Eqs. 6–8 (docs/paper-audit.md §1). Johnson, *Contact Mechanics* (1985) §9.2; Tabor
        (1955).
     """
-    check_range("hysteresis_torque_contact (Eqs. 6-8)", "alpha_h", alpha_h, 0.0, 1.0)
+    check_range("torque_hysteresis_contact (Eqs. 6-8)", "alpha_h", alpha_h, 0.0, 1.0)
     Q, b, R = _nonnegative("Q", Q), _positive("b", b), _positive("R", R)
     return _out(kappa * np.asarray(alpha_h, float) * Q * b / R * _positive("r_m", r_m))
 
 
-def ellipticity(Ry, Rx):
+def ellipticity_Hamrock_Brewe(Ry, Rx):
     r"""Contact ellipticity k = a/b from the radius ratio (Hamrock–Brewe fit).
 
     .. math:: k \approx 1.0339\,(R_y/R_x)^{0.636}
@@ -280,11 +284,11 @@ def ellipticity(Ry, Rx):
     .. [1] Paper, Eq. 9. Hamrock & Brewe, *J. Lubr. Technol.* 105 (1983) 171–177.
     """
     ratio = _positive("Ry", Ry) / _positive("Rx", Rx)
-    check_range("ellipticity (Hamrock-Brewe)", "Ry/Rx", ratio, 1.0, 100.0)
+    check_range("ellipticity_Hamrock_Brewe", "Ry/Rx", ratio, 1.0, 100.0)
     return _out(1.0339 * ratio**0.636)
 
 
-def ehl_dimensionless_groups(eta0, alpha_p, u, Q, E_prime, Rx):
+def dimensionless_groups_ehl(eta0, alpha_p, u, Q, E_prime, Rx):
     r"""Hamrock–Dowson speed, material and load parameters.
 
     .. math:: U = \frac{\eta_0 u}{E'R_x},\quad G = \alpha_p E',\quad W = \frac{Q}{E'R_x^2}
@@ -309,7 +313,7 @@ def ehl_dimensionless_groups(eta0, alpha_p, u, Q, E_prime, Rx):
 
     Notes
     -----
-    Definitions require E′ (:func:`hamrock_modulus`), not the paper's E*.
+    Definitions require E′ (:func:`effective_modulus_Hamrock_Dowson`), not the paper's E*.
 
     References
     ----------
@@ -322,7 +326,7 @@ def ehl_dimensionless_groups(eta0, alpha_p, u, Q, E_prime, Rx):
     return _out(U), _out(alpha_p * E_prime), _out(Q / (E_prime * Rx**2))
 
 
-def ehl_rolling_resistance(E_prime, Rx, k, G, U, W, f_t=1.0):
+def rolling_resistance_ehl(E_prime, Rx, k, G, U, W, f_t=1.0):
     r"""EHL rolling-resistance force of one rolling contact (paper Eq. 9).
 
     .. math:: F_l = 2.86\,E'R_x^2\,k^{0.348}G^{0.022}U^{0.66}W^{0.47}f_t
@@ -332,9 +336,9 @@ def ehl_rolling_resistance(E_prime, Rx, k, G, U, W, f_t=1.0):
     E_prime, Rx : float or array_like
         E′ = 2E* [Pa] and effective radius along the rolling direction [m].
     k : float or array_like
-        Ellipticity (:func:`ellipticity`), [-].
+        Ellipticity (:func:`ellipticity_Hamrock_Brewe`), [-].
     G, U, W : float or array_like
-        Dimensionless groups (:func:`ehl_dimensionless_groups`), [-].
+        Dimensionless groups (:func:`dimensionless_groups_ehl`), [-].
     f_t : float or array_like, optional
         Thermal reduction factor, [-]; 1 = isothermal.
 
@@ -358,7 +362,7 @@ def ehl_rolling_resistance(E_prime, Rx, k, G, U, W, f_t=1.0):
     return _out(F * np.asarray(f_t, dtype=float))
 
 
-def viscous_torque_contact(F_l, d2):
+def torque_viscous_contact(F_l, d2):
     r"""Lubrication torque of one contact (paper Eq. 11, corrected lever arm).
 
     .. math:: M_{lj} = F_{lj}\,d_2/2
@@ -387,7 +391,7 @@ def viscous_torque_contact(F_l, d2):
     return _out(np.asarray(F_l, dtype=float) * _positive("d2", d2) / 2.0)
 
 
-def paper_friction_torque(M_d, M_f, M_l):
+def torque_screw_nut_rolling(M_d, M_f, M_l):
     r"""Total torque of the three-part model (paper Eq. 1, corrected).
 
     .. math:: M_T = M_d + M_f + M_l

@@ -11,7 +11,7 @@ import math
 import re
 from dataclasses import dataclass
 
-from ..physics.mechanics import table_speed
+from ..physics.mechanics import speed_table
 from .geometry import contains, gap, screw_axis, surface_area
 from .schema import FeedSystem
 
@@ -47,7 +47,7 @@ def _feed_speeds(system: FeedSystem) -> list[Finding]:
         if cond.feed_speed is None:
             continue
         n_s, n_n = cond.screw_speed * _RAD_PER_S_TO_RPM, cond.nut_speed * _RAD_PER_S_TO_RPM
-        implied = abs(table_speed(n_s, n_n, lead))
+        implied = abs(speed_table(n_s, n_n, lead))
         stated = abs(cond.feed_speed)
         if not math.isclose(implied, stated, rel_tol=FEED_SPEED_TOLERANCE):
             lead_implied = stated / abs((n_s - n_n) / 60.0) if n_s != n_n else math.inf

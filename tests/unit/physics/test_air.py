@@ -6,7 +6,7 @@ import warnings
 
 import pytest
 
-from feedtherm.physics.air import AirProperties, air_properties, film_temperature
+from feedtherm.physics.air import AirProperties, film_temperature, properties_air
 from feedtherm.physics.validity import CorrelationRangeWarning
 
 # Incropera, DeWitt, Bergman, Lavine, Fundamentals of Heat and Mass Transfer, 6th ed.
@@ -30,7 +30,7 @@ RTOL_TABLE = 0.02
 @pytest.mark.parametrize("T", sorted(TABLE_A4))
 @pytest.mark.parametrize("field", sorted(TABLE_A4[300.0]))
 def test_matches_incropera_table_A4_at_1_atm(T, field):
-    assert getattr(air_properties(T), field) == pytest.approx(TABLE_A4[T][field], rel=RTOL_TABLE)
+    assert getattr(properties_air(T), field) == pytest.approx(TABLE_A4[T][field], rel=RTOL_TABLE)
 
 
 @pytest.mark.parametrize("T", sorted(TABLE_A4))
@@ -38,7 +38,7 @@ def test_table_density_is_for_one_bar(T):
     # Ideal gas at 1e5 Pa: rho = p M / (R T) = 1e5 * 0.0289586 / (8.314462618 * 300)
     # = 1.16096 kg/m^3 at 300 K, i.e. the table's 1.1614; at 101325 Pa it is 1.1763.
     # So at p = 1e5 Pa CoolProp should match the table density within 0.2 %.
-    assert air_properties(T, p=1e5).density == pytest.approx(TABLE_A4[T]["density"], rel=2e-3)
+    assert properties_air(T, p=1e5).density == pytest.approx(TABLE_A4[T]["density"], rel=2e-3)
 
 
 def test_density_close_to_ideal_gas_at_1_atm():
@@ -46,11 +46,11 @@ def test_density_close_to_ideal_gas_at_1_atm():
     # 300 K has a compressibility factor within 0.1 % of 1.
     rho_ideal = 101325.0 * 0.0289586 / (8.314462618 * 300.0)
     assert rho_ideal == pytest.approx(1.17635, rel=1e-5)
-    assert air_properties(300.0).density == pytest.approx(rho_ideal, rel=1e-3)
+    assert properties_air(300.0).density == pytest.approx(rho_ideal, rel=1e-3)
 
 
 def test_derived_properties_are_consistent():
-    a = air_properties(310.0)
+    a = properties_air(310.0)
     assert a.kinematic_viscosity == pytest.approx(a.dynamic_viscosity / a.density, rel=1e-12)
     assert a.prandtl == pytest.approx(
         a.specific_heat * a.dynamic_viscosity / a.conductivity, rel=1e-12)
@@ -61,20 +61,20 @@ def test_derived_properties_are_consistent():
 
 def test_expansion_coefficient_is_ideal_gas_inverse_temperature():
     # docs/paper-audit.md Eq. 26: beta = 1/T_f in 1/K, e.g. 1/298.15 = 3.35402e-3 1/K.
-    a = air_properties(298.15)
+    a = properties_air(298.15)
     assert a.expansion_coefficient == pytest.approx(3.35402e-3, rel=1e-5)
     assert a.temperature == 298.15
 
 
 def test_properties_rise_with_temperature():
-    cold, warm = air_properties(280.0), air_properties(340.0)
+    cold, warm = properties_air(280.0), properties_air(340.0)
     assert warm.conductivity > cold.conductivity
     assert warm.kinematic_viscosity > cold.kinematic_viscosity
     assert warm.density < cold.density
 
 
 def test_result_is_frozen_dataclass():
-    a = air_properties(300.0)
+    a = properties_air(300.0)
     assert isinstance(a, AirProperties)
     with pytest.raises(dataclasses.FrozenInstanceError):
         a.density = 1.0
@@ -83,26 +83,26 @@ def test_result_is_frozen_dataclass():
 def test_no_warning_inside_range():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        air_properties(200.0)
-        air_properties(500.0)
+        properties_air(200.0)
+        properties_air(500.0)
 
 
 @pytest.mark.parametrize("T", [150.0, 600.0])
 def test_warns_outside_200_500_K(T):
-    with pytest.warns(CorrelationRangeWarning, match="air_properties"):
-        a = air_properties(T)
+    with pytest.warns(CorrelationRangeWarning, match="properties_air"):
+        a = properties_air(T)
     assert math.isfinite(a.density)
 
 
 @pytest.mark.parametrize("T", [0.0, -20.0, float("nan"), float("inf")])
 def test_rejects_non_absolute_temperature(T):
     with pytest.raises(ValueError):
-        air_properties(T)
+        properties_air(T)
 
 
 def test_rejects_non_positive_pressure():
     with pytest.raises(ValueError):
-        air_properties(300.0, p=0.0)
+        properties_air(300.0, p=0.0)
 
 
 def test_film_temperature():

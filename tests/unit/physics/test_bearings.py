@@ -18,14 +18,14 @@ import pytest
 from feedtherm.physics.bearings import (
     F0_TYPICAL,
     BearingTorque,
-    bearing_friction_torque,
-    bearing_heat,
-    bearing_load_torque,
-    bearing_viscous_torque,
-    palmgren_f1_angular_contact,
-    palmgren_f1_deep_groove,
-    palmgren_P1_angular_contact,
-    palmgren_P1_deep_groove,
+    P1_angular_contact_Palmgren,
+    P1_deep_groove_Palmgren,
+    f1_angular_contact_Palmgren,
+    f1_deep_groove_Palmgren,
+    heat_bearing,
+    torque_bearing_load_Palmgren,
+    torque_bearing_Palmgren,
+    torque_bearing_viscous_Palmgren,
 )
 
 NU_100 = 100e-6  # 100 mm²/s in m²/s
@@ -46,7 +46,7 @@ def _no_warnings(func, *args, **kwargs):
 def test_f1_angular_contact_front_pair_audit():
     # docs/paper-audit.md §3 back-out, front 25x62 pair: P0 ≈ Fa = 3100 N, C0 = 40 kN -> f1 = 4.3e-4.
     # P0/C0 = 0.0775; ln 0.0775 = -2.5575; ×0.33 = -0.8440; e^-0.8440 = 0.4300.
-    assert _no_warnings(palmgren_f1_angular_contact, 3100.0, 40e3) == pytest.approx(
+    assert _no_warnings(f1_angular_contact_Palmgren, 3100.0, 40e3) == pytest.approx(
         4.300e-4, rel=1e-3
     )
 
@@ -54,47 +54,47 @@ def test_f1_angular_contact_front_pair_audit():
 def test_f1_angular_contact_rear_pair_audit():
     # docs/paper-audit.md §3: rear pair Fa = 2.7 kN -> f1 = 4.1e-4.
     # 2700/40000 = 0.0675; ln = -2.6956; ×0.33 = -0.8895; e^ = 0.4108.
-    assert palmgren_f1_angular_contact(2700.0, 40e3) == pytest.approx(4.108e-4, rel=1e-3)
+    assert f1_angular_contact_Palmgren(2700.0, 40e3) == pytest.approx(4.108e-4, rel=1e-3)
 
 
 def test_f1_deep_groove_default_z_hand():
     # P0/C0 = 0.25: 0.25^0.55 = e^(0.55 ln 0.25) = e^(-0.76246) = 0.46652; × 5e-4.
-    assert palmgren_f1_deep_groove(1950.0, 7800.0) == pytest.approx(2.3326e-4, rel=1e-4)
+    assert f1_deep_groove_Palmgren(1950.0, 7800.0) == pytest.approx(2.3326e-4, rel=1e-4)
 
 
 def test_f1_deep_groove_correction_vs_printed_eq19():
     # Printed Eq. 19: 9e-4 (P0/C0)^0.55. Corrected default: 5e-4 (same exponent).
     # 6205 (C0 = 7.8 kN) at P0 = 2500 N: (2500/7800)^0.55 = 0.32051^0.55 = 0.53483.
     printed = 9e-4 * (2500.0 / 7800.0) ** 0.55  # = 4.813e-4
-    corrected = palmgren_f1_deep_groove(2500.0, 7800.0)
+    corrected = f1_deep_groove_Palmgren(2500.0, 7800.0)
     assert corrected == pytest.approx(2.674e-4, rel=1e-3)
     assert printed / corrected == pytest.approx(1.8, rel=1e-12)  # 9/5
 
 
 def test_f1_deep_groove_printed_coefficient_is_outside_tabulated_range():
     with pytest.warns(UserWarning, match="z = 0.0009"):
-        palmgren_f1_deep_groove(2500.0, 7800.0, z=9e-4)
+        f1_deep_groove_Palmgren(2500.0, 7800.0, z=9e-4)
     for z in (4e-4, 6e-4):  # ends of Harris's range: no warning
-        _no_warnings(palmgren_f1_deep_groove, 2500.0, 7800.0, z=z)
+        _no_warnings(f1_deep_groove_Palmgren, 2500.0, 7800.0, z=z)
 
 
 def test_f1_ratio_outside_0_1_warns():
     with pytest.warns(UserWarning, match="P0/C0 = 1.5"):
-        palmgren_f1_angular_contact(60e3, 40e3)
+        f1_angular_contact_Palmgren(60e3, 40e3)
     with pytest.warns(UserWarning, match="P0/C0 = 0 "):
-        assert palmgren_f1_angular_contact(0.0, 40e3) == 0.0
-    _no_warnings(palmgren_f1_angular_contact, 40e3, 40e3)  # P0/C0 = 1 is inside
+        assert f1_angular_contact_Palmgren(0.0, 40e3) == 0.0
+    _no_warnings(f1_angular_contact_Palmgren, 40e3, 40e3)  # P0/C0 = 1 is inside
 
 
 @pytest.mark.parametrize(("P0", "C0"), [(100.0, 0.0), (100.0, -5.0), (-1.0, 40e3)])
 def test_f1_rejects_bad_loads(P0, C0):
     with pytest.raises(ValueError, match="P0|C0"):
-        palmgren_f1_angular_contact(P0, C0)
+        f1_angular_contact_Palmgren(P0, C0)
 
 
 def test_f1_deep_groove_rejects_nonpositive_z():
     with pytest.raises(ValueError, match="z"):
-        palmgren_f1_deep_groove(100.0, 7800.0, z=0.0)
+        f1_deep_groove_Palmgren(100.0, 7800.0, z=0.0)
 
 
 # ----------------------------------------------------------------------- P1 (Eqs. 18, 20)
@@ -102,7 +102,7 @@ def test_f1_deep_groove_rejects_nonpositive_z():
 
 def test_P1_angular_contact_front_pair():
     # 1.4·3100 − 0.1·50 = 4340 − 5 = 4335 N (> Fr).
-    assert palmgren_P1_angular_contact(3100.0, 50.0) == pytest.approx(4335.0)
+    assert P1_angular_contact_Palmgren(3100.0, 50.0) == pytest.approx(4335.0)
 
 
 @pytest.mark.parametrize(
@@ -114,24 +114,24 @@ def test_P1_angular_contact_front_pair():
 )
 def test_P1_angular_contact_rule_P1_at_least_Fr(Fa, Fr, printed, expected):
     assert 1.4 * Fa - 0.1 * Fr == pytest.approx(printed)  # Eq. 18 as printed
-    assert palmgren_P1_angular_contact(Fa, Fr) == pytest.approx(expected)
+    assert P1_angular_contact_Palmgren(Fa, Fr) == pytest.approx(expected)
 
 
 def test_P1_deep_groove_loaded_and_floating():
     # docs/paper-audit.md 6205 row: 3·2500 − 0.1·50 = 7495 N.
-    assert palmgren_P1_deep_groove(2500.0, 50.0) == pytest.approx(7495.0)
+    assert P1_deep_groove_Palmgren(2500.0, 50.0) == pytest.approx(7495.0)
     # Floating rear bearing, Fa = 0, Fr = 50 N: printed Eq. 20 gives −5 N; rule gives Fr.
-    assert palmgren_P1_deep_groove(0.0, 50.0) == pytest.approx(50.0)
+    assert P1_deep_groove_Palmgren(0.0, 50.0) == pytest.approx(50.0)
 
 
 def test_P1_vectorised_and_rejects_negative_load():
     np.testing.assert_allclose(
-        palmgren_P1_deep_groove([0.0, 2500.0], [50.0, 50.0]), [50.0, 7495.0]
+        P1_deep_groove_Palmgren([0.0, 2500.0], [50.0, 50.0]), [50.0, 7495.0]
     )
     with pytest.raises(ValueError, match="Fa"):
-        palmgren_P1_deep_groove(-1.0, 50.0)
+        P1_deep_groove_Palmgren(-1.0, 50.0)
     with pytest.raises(ValueError, match="Fr"):
-        palmgren_P1_angular_contact(1.0, float("nan"))
+        P1_angular_contact_Palmgren(1.0, float("nan"))
 
 
 # ----------------------------------------------------------------------- M_l (Eq. 16)
@@ -140,19 +140,19 @@ def test_P1_vectorised_and_rejects_negative_load():
 def test_load_torque_front_pair_audit():
     # docs/paper-audit.md: M_l = 81 N·mm. f1 = 4.300e-4, P1 = 4335 N, dm = 43.5 mm:
     # 4.300e-4 · 4335 · 43.5 = 81.09 N·mm = 0.08109 N·m.
-    assert bearing_load_torque(4.300e-4, 4335.0, DM_25x62) == pytest.approx(0.08109, rel=1e-3)
+    assert torque_bearing_load_Palmgren(4.300e-4, 4335.0, DM_25x62) == pytest.approx(0.08109, rel=1e-3)
 
 
 def test_load_torque_6205_given_audit_f1():
     # docs/paper-audit.md 6205 row: f1 = 3.3e-4, P1 = 7495 N, dm = 38.5 mm -> 3.3e-4·7495·38.5 = 95.2 N·mm.
-    assert bearing_load_torque(3.3e-4, 7495.0, DM_6205) == pytest.approx(0.0952, rel=1e-3)
+    assert torque_bearing_load_Palmgren(3.3e-4, 7495.0, DM_6205) == pytest.approx(0.0952, rel=1e-3)
 
 
 @pytest.mark.parametrize("dm", [0.0, -0.01, 43.5])
 def test_load_torque_rejects_bad_dm(dm):
     # 43.5 is a mean diameter in mm passed as metres.
     with pytest.raises(ValueError, match="dm"):
-        bearing_load_torque(4e-4, 4335.0, dm)
+        torque_bearing_load_Palmgren(4e-4, 4335.0, dm)
 
 
 # ----------------------------------------------------------------------- M_v (Eqs. 21–22)
@@ -161,7 +161,7 @@ def test_load_torque_rejects_bad_dm(dm):
 def test_viscous_torque_front_pair_audit():
     # docs/paper-audit.md: M_v = 38 N·mm. ν n = 100·396 = 39600; 39600^(2/3) = e^(2/3·10.5865) = 1162.2;
     # dm³ = 43.5³ = 82312.9; 1e-7 · 4 · 1162.2 · 82312.9 = 38.26 N·mm.
-    assert bearing_viscous_torque(4.0, NU_100, 396.0, DM_25x62) == pytest.approx(
+    assert torque_bearing_viscous_Palmgren(4.0, NU_100, 396.0, DM_25x62) == pytest.approx(
         0.03826, rel=1e-3
     )
 
@@ -170,14 +170,14 @@ def test_viscous_torque_eq21_printed_lacks_cube():
     # Printed Eq. 21 (dm, not dm³): 1e-7·4·1162.2·43.5 = 0.0202 N·mm (docs/paper-audit.md: "0.02").
     printed_Nmm = 1e-7 * 4.0 * (100.0 * 396.0) ** (2.0 / 3.0) * 43.5
     assert printed_Nmm == pytest.approx(0.0202, rel=2e-3)
-    corrected_Nmm = bearing_viscous_torque(4.0, NU_100, 396.0, DM_25x62) * 1e3
+    corrected_Nmm = torque_bearing_viscous_Palmgren(4.0, NU_100, 396.0, DM_25x62) * 1e3
     assert corrected_Nmm / printed_Nmm == pytest.approx(43.5**2)  # the missing dm²
 
 
 def test_viscous_torque_low_regime_and_printed_eq22():
     # ν = 10 mm²/s, n = 100 rpm: ν n = 1000 < 2000 -> 160e-7 f0 dm³.
     # 6205, f0 = 2: 160e-7 · 2 · 38.5³ = 160e-7 · 2 · 57066.6 = 1.8261 N·mm.
-    m_v = bearing_viscous_torque(2.0, 10e-6, 100.0, DM_6205)
+    m_v = torque_bearing_viscous_Palmgren(2.0, 10e-6, 100.0, DM_6205)
     assert m_v == pytest.approx(1.8261e-3, rel=1e-4)
     printed_Nmm = 160.0 * 2.0 * 38.5**3  # Eq. 22 as printed: 1.83e7 N·mm (18 kN·m)
     assert printed_Nmm / (m_v * 1e3) == pytest.approx(1e7)
@@ -186,34 +186,34 @@ def test_viscous_torque_low_regime_and_printed_eq22():
 def test_viscous_torque_regime_boundary():
     # ν n = 2000 exactly (ν = 20 mm²/s, n = 100 rpm) belongs to Eq. 21:
     # 2000^(2/3) = 158.74, so M_v = 1e-7 · 1 · 158.74 · 1e6 (dm = 100 mm) = 15.874 N·mm.
-    at = bearing_viscous_torque(1.0, 20e-6, 100.0, 0.1)
+    at = torque_bearing_viscous_Palmgren(1.0, 20e-6, 100.0, 0.1)
     assert at == pytest.approx(15.874e-3, rel=1e-4)
     # Just below: 160e-7 · 1e6 = 16.0 N·mm. The branches differ by only 0.8 %.
-    below = bearing_viscous_torque(1.0, 20e-6, 99.99, 0.1)
+    below = torque_bearing_viscous_Palmgren(1.0, 20e-6, 99.99, 0.1)
     assert below == pytest.approx(16.0e-3, rel=1e-12)
 
 
 def test_viscous_torque_speed_sign_and_array():
     # Direction does not matter; arrays evaluate element-wise (front pair at I and III):
     # III: 100·2214 = 221400; ^(2/3) = 3662.6; 4e-7·3662.6·82312.9 = 120.59 N·mm.
-    m = bearing_viscous_torque(4.0, NU_100, np.array([-396.0, 2214.0]), DM_25x62)
+    m = torque_bearing_viscous_Palmgren(4.0, NU_100, np.array([-396.0, 2214.0]), DM_25x62)
     np.testing.assert_allclose(m, [0.03826, 0.12059], rtol=1e-3)
 
 
 def test_viscous_torque_rejects_unit_slips():
     with pytest.raises(ValueError, match="m²/s"):
-        bearing_viscous_torque(4.0, 100.0, 396.0, DM_25x62)  # 100 mm²/s passed as m²/s
+        torque_bearing_viscous_Palmgren(4.0, 100.0, 396.0, DM_25x62)  # 100 mm²/s passed as m²/s
     with pytest.raises(ValueError, match="nu"):
-        bearing_viscous_torque(4.0, -1e-4, 396.0, DM_25x62)
+        torque_bearing_viscous_Palmgren(4.0, -1e-4, 396.0, DM_25x62)
     with pytest.raises(ValueError, match="f0"):
-        bearing_viscous_torque(-1.0, NU_100, 396.0, DM_25x62)
+        torque_bearing_viscous_Palmgren(-1.0, NU_100, 396.0, DM_25x62)
 
 
 # ----------------------------------------------------------------------- totals and heat
 
 
 def test_bearing_torque_dataclass():
-    t = bearing_friction_torque(4.300e-4, 4335.0, DM_25x62, 4.0, NU_100, 396.0)
+    t = torque_bearing_Palmgren(4.300e-4, 4335.0, DM_25x62, 4.0, NU_100, 396.0)
     assert isinstance(t, BearingTorque)
     assert t.total == pytest.approx(t.load + t.viscous)
     with pytest.raises(dataclasses.FrozenInstanceError):
@@ -228,7 +228,7 @@ def test_required_torques_from_table1(heat_W, n_rpm, torque_Nmm):
     # docs/paper-audit.md §3: M = H / ω. 4.95/41.4690 = 0.11937; 5.31/37.6991 = 0.14085;
     # 4.36/41.4690 = 0.10514 N·m. (docs/paper-audit.md §3: the review's 105.2 for the rear uses the
     # paper's rounded 1.047e-4, 4.36/(1.047e-4·396) = 105.16; exact 2π/60 gives 105.14.)
-    assert bearing_heat(torque_Nmm * 1e-3, n_rpm) == pytest.approx(heat_W, rel=1e-3)
+    assert heat_bearing(torque_Nmm * 1e-3, n_rpm) == pytest.approx(heat_W, rel=1e-3)
 
 
 def test_front_pair_reproduces_table1_and_speed_scaling():
@@ -236,24 +236,24 @@ def test_front_pair_reproduces_table1_and_speed_scaling():
     # -> H(I) = 0.11934 · 41.469 = 4.949 W (Table 1: 4.95).
     # II: M_v = 4e-7·(111600)^(2/3)·82312.9 = 4e-7·2319.4·82312.9 = 76.37;
     #     (81.09 + 76.37)·116.867e-3 = 18.40 W.  III: (81.09 + 120.59)·231.850e-3 = 46.76 W.
-    f1 = palmgren_f1_angular_contact(3100.0, 40e3)
-    P1 = palmgren_P1_angular_contact(3100.0, 50.0)
-    t = bearing_friction_torque(f1, P1, DM_25x62, 4.0, NU_100, 396.0)
+    f1 = f1_angular_contact_Palmgren(3100.0, 40e3)
+    P1 = P1_angular_contact_Palmgren(3100.0, 50.0)
+    t = torque_bearing_Palmgren(f1, P1, DM_25x62, 4.0, NU_100, 396.0)
     assert t.load == pytest.approx(0.081, abs=1e-3)  # docs/paper-audit.md 81 N·mm
     assert t.viscous == pytest.approx(0.038, abs=1e-3)  # docs/paper-audit.md 38 N·mm
-    assert bearing_heat(t, 396.0) == pytest.approx(4.95, rel=2e-3)
+    assert heat_bearing(t, 396.0) == pytest.approx(4.95, rel=2e-3)
     for n, expected in ((1116.0, 18.4), (2214.0, 46.7)):  # docs/paper-audit.md: 18.4 / 46.7 W
-        tn = bearing_friction_torque(f1, P1, DM_25x62, 4.0, NU_100, n)
-        assert bearing_heat(tn.total, n) == pytest.approx(expected, rel=2e-3)
+        tn = torque_bearing_Palmgren(f1, P1, DM_25x62, 4.0, NU_100, n)
+        assert heat_bearing(tn.total, n) == pytest.approx(expected, rel=2e-3)
 
 
 def test_rear_pair_reproduces_table1():
     # Fa = 2.7 kN: f1 = 4.108e-4, P1 = 3775 N, M_l = 4.108e-4·3775·43.5 = 67.46 N·mm;
     # H = (67.46 + 38.25)·41.469e-3 = 4.384 W (Table 1: 4.36; docs/paper-audit.md: 4.4).
-    f1 = palmgren_f1_angular_contact(2700.0, 40e3)
-    t = bearing_friction_torque(f1, palmgren_P1_angular_contact(2700.0, 50.0), DM_25x62,
+    f1 = f1_angular_contact_Palmgren(2700.0, 40e3)
+    t = torque_bearing_Palmgren(f1, P1_angular_contact_Palmgren(2700.0, 50.0), DM_25x62,
                                 4.0, NU_100, 396.0)
-    assert bearing_heat(t, 396.0) == pytest.approx(4.36, rel=1e-2)
+    assert heat_bearing(t, 396.0) == pytest.approx(4.36, rel=1e-2)
 
 
 def test_nut_pair_at_nut_speed_reproduces_table1():
@@ -264,14 +264,14 @@ def test_nut_pair_at_nut_speed_reproduces_table1():
     # II (1080): M_v = 4e-7·2269.5·274625 = 249.3; (21.31 + 249.3)·113.097e-3 = 30.6 W.
     # III (2160): M_v = 4e-7·3603.0·274625 = 395.8; 417.1·226.195e-3 = 94.3 W
     # (docs/paper-audit.md §3; the review: 94.2).
-    P1 = palmgren_P1_angular_contact(840.0, 50.0)
-    t = bearing_friction_torque(2.8e-4, P1, DM_7010, 4.0, NU_100, 360.0)
+    P1 = P1_angular_contact_Palmgren(840.0, 50.0)
+    t = torque_bearing_Palmgren(2.8e-4, P1, DM_7010, 4.0, NU_100, 360.0)
     assert t.load == pytest.approx(0.021, abs=1e-3)
     assert t.viscous == pytest.approx(0.120, abs=1e-3)
-    assert bearing_heat(t, 360.0) == pytest.approx(5.31, rel=3e-3)
+    assert heat_bearing(t, 360.0) == pytest.approx(5.31, rel=3e-3)
     for n, expected in ((1080.0, 30.6), (2160.0, 94.2)):
-        tn = bearing_friction_torque(2.8e-4, P1, DM_7010, 4.0, NU_100, n)
-        assert bearing_heat(tn, n) == pytest.approx(expected, rel=2e-3)
+        tn = torque_bearing_Palmgren(2.8e-4, P1, DM_7010, 4.0, NU_100, n)
+        assert heat_bearing(tn, n) == pytest.approx(expected, rel=2e-3)
 
 
 def test_rear_6205_audit_row_uses_printed_z():
@@ -280,14 +280,14 @@ def test_rear_6205_audit_row_uses_printed_z():
     # H(I) = (95.22 + 9.95)·41.469e-3 = 4.361 W; II: M_v = 1.5e-7·2319.4·57066.6 = 19.85,
     # 115.07·116.867e-3 = 13.45 W; III: M_v = 31.35, 126.57·231.850e-3 = 29.35 W.
     for n, expected in ((396.0, 4.36), (1116.0, 13.45), (2214.0, 29.35)):
-        t = bearing_friction_torque(3.3e-4, 7495.0, DM_6205, 1.5, NU_100, n)
-        assert bearing_heat(t, n) == pytest.approx(expected, rel=2e-3)
+        t = torque_bearing_Palmgren(3.3e-4, 7495.0, DM_6205, 1.5, NU_100, n)
+        assert heat_bearing(t, n) == pytest.approx(expected, rel=2e-3)
     # But f1 = 3.3e-4 is not the corrected Eq. 19: with z = 5e-4, C0 = 7.8 kN and P0 = Fa
     # it is 5e-4·0.53483 = 2.674e-4.  3.3e-4 follows from the *printed* z = 9e-4 with
     # P0 = 0.6Fr + 0.5Fa = 1280 N: 9e-4·(1280/7800)^0.55 = 9e-4·0.3701 = 3.331e-4.
-    assert palmgren_f1_deep_groove(2500.0, 7800.0) == pytest.approx(2.674e-4, rel=1e-3)
+    assert f1_deep_groove_Palmgren(2500.0, 7800.0) == pytest.approx(2.674e-4, rel=1e-3)
     with pytest.warns(UserWarning, match="z"):
-        assert palmgren_f1_deep_groove(1280.0, 7800.0, z=9e-4) == pytest.approx(
+        assert f1_deep_groove_Palmgren(1280.0, 7800.0, z=9e-4) == pytest.approx(
             3.331e-4, rel=1e-3
         )
 
@@ -315,26 +315,26 @@ def test_rear_6205_audit_row_uses_printed_z():
 def test_audit_typical_bearings(label, Fa, Fr, C0, dm, f0, n, deep, expected_W):
     P0 = max(Fa, Fr)  # docs/paper-audit.md's P0 ≈ Fa (≥ Fr for the floating bearing)
     if deep:
-        f1, P1 = palmgren_f1_deep_groove(P0, C0), palmgren_P1_deep_groove(Fa, Fr)
+        f1, P1 = f1_deep_groove_Palmgren(P0, C0), P1_deep_groove_Palmgren(Fa, Fr)
     else:
-        f1, P1 = palmgren_f1_angular_contact(P0, C0), palmgren_P1_angular_contact(Fa, Fr)
-    t = bearing_friction_torque(f1, P1, dm, f0, NU_100, n)
-    assert bearing_heat(t, n) == pytest.approx(expected_W, rel=1.2e-2), label
+        f1, P1 = f1_angular_contact_Palmgren(P0, C0), P1_angular_contact_Palmgren(Fa, Fr)
+    t = torque_bearing_Palmgren(f1, P1, dm, f0, NU_100, n)
+    assert heat_bearing(t, n) == pytest.approx(expected_W, rel=1.2e-2), label
 
 
 def test_nut_pair_cannot_reach_table1_at_200_cst():
     # docs/paper-audit.md: "with ν = 200 mm²/s the required preloads fall by 15–25 %". For the nut pair
     # the viscous torque alone then exceeds the required 140.9 N·mm:
     # 4e-7·(200·360)^(2/3)·65³ = 4e-7·1730.8·274625 = 190.1 N·mm.
-    m_v = bearing_viscous_torque(4.0, 200e-6, 360.0, DM_7010)
+    m_v = torque_bearing_viscous_Palmgren(4.0, 200e-6, 360.0, DM_7010)
     assert m_v == pytest.approx(0.1901, rel=1e-3)
     assert m_v > 5.31 / (2 * math.pi * 360 / 60)
 
 
 def test_bearing_heat_zero_at_standstill_and_sign():
     # 0.1 N·m at ±600 rpm: 0.1 · 62.832 = 6.2832 W either way; standstill: 0 W.
-    assert bearing_heat(0.1, -600.0) == pytest.approx(6.2832, rel=1e-4)
-    assert bearing_heat(bearing_friction_torque(4e-4, 4335.0, DM_25x62, 4.0, NU_100, 0.0),
+    assert heat_bearing(0.1, -600.0) == pytest.approx(6.2832, rel=1e-4)
+    assert heat_bearing(torque_bearing_Palmgren(4e-4, 4335.0, DM_25x62, 4.0, NU_100, 0.0),
                         0.0) == 0.0
 
 

@@ -17,7 +17,7 @@ import pytest
 
 from feedtherm.physics import convection as cv
 from feedtherm.physics import dimensionless, forced_convection, natural_convection
-from feedtherm.physics.air import air_properties
+from feedtherm.physics.air import properties_air
 
 RTOL_HAND = 0.03
 
@@ -99,7 +99,7 @@ def test_table_2_worktable_needs_21_m_per_s_with_printed_eq_28():
     # docs/paper-audit.md §4: worktable 16.23 W/m²K "needs u ≈ 21 m/s in Eq. 28" (0.332, L = 0.3 m).
     # Hand: Re = (16.23*0.3/(0.0263*0.332*0.89085))^2 = 625.95^2 = 3.918e5;
     # u = 3.918e5 * 15.89e-6 / 0.3 = 20.75 m/s.
-    air = air_properties(300.0)
+    air = properties_air(300.0)
     Re = cv.reynolds(20.75, 0.3, air.kinematic_viscosity)
     h = cv.h_from_nusselt(cv.Nu_flat_plate_laminar_local(Re, air.prandtl), air.conductivity, 0.3)
     assert h == pytest.approx(16.23, rel=RTOL_HAND)
@@ -107,7 +107,7 @@ def test_table_2_worktable_needs_21_m_per_s_with_printed_eq_28():
 def test_mixed_convection_at_feed_speed_is_natural_dominated():
     # Replacement for Eq. 29 at 3 mm/s (docs/paper-audit.md §1, Eq. 29): h_F ≈ 0.39 vs h_N ≈ 3-5,
     # so the blend is within 0.3 % of natural convection: (0.39^3 + 4.8^3)^(1/3) = 4.8021.
-    hF = cv.h_flat_plate_forced(0.3, 0.003, 298.15)
+    hF = cv.h_flat_plate_laminar_average(0.3, 0.003, 298.15)
     hN = cv.h_natural("vertical_plate", 0.1, 303.15, 293.15)
     assert cv.h_mixed(hF, hN) == pytest.approx(hN, rel=3e-3)
     assert cv.h_mixed(hF, hN) > hN
@@ -130,6 +130,6 @@ def test_convection_all_resolves_and_keeps_the_names_boundary_uses():
     assert all(hasattr(cv, name) for name in cv.__all__)
     assert cv.G_STANDARD is dimensionless.G_STANDARD
     assert cv.NATURAL_ORIENTATIONS is natural_convection.NATURAL_ORIENTATIONS
-    for name in ("h_natural", "h_rotating_cylinder", "h_flat_plate_forced",
-                 "h_face_normal_to_motion", "h_mixed"):
+    for name in ("h_natural", "h_rotating_cylinder", "h_flat_plate_laminar_average",
+                 "h_plate_normal_to_flow", "h_mixed"):
         assert name in cv.__all__

@@ -105,7 +105,7 @@ def test_h_flat_plate_forced_table_at_3_mm_per_s():
     # docs/paper-audit.md §4 "table or slider, forced, 3 mm/s: 0.2-0.7". Hand, L = 0.3 m, 300 K:
     # Re = 0.003*0.3/15.89e-6 = 56.64; sqrt = 7.5259; Nu = 0.664*7.5259*0.89085 = 4.4518;
     # h = 4.4518 * 0.0263 / 0.3 = 0.3903 W/m²K (the printed 0.332 would give 0.195).
-    h = cv.h_flat_plate_forced(0.3, 0.003, 300.0)
+    h = cv.h_flat_plate_laminar_average(0.3, 0.003, 300.0)
     assert h == pytest.approx(0.3903, rel=RTOL_HAND)
     assert 0.2 <= h <= 0.7
 
@@ -114,6 +114,6 @@ def test_h_face_normal_to_motion():
     # Nu = 0.228 * 839.46 * 0.89085 = 170.51; h = 170.51 * 0.0263 / 0.1 = 44.84 W/m²K.
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        assert cv.h_face_normal_to_motion(0.1, 1.589, 300.0) == pytest.approx(44.84, rel=RTOL_HAND)
+        assert cv.h_plate_normal_to_flow(0.1, 1.589, 300.0) == pytest.approx(44.84, rel=RTOL_HAND)
     with pytest.warns(CorrelationRangeWarning, match="Eq. 29"):
-        cv.h_face_normal_to_motion(0.1, 0.003, 300.0)
+        cv.h_plate_normal_to_flow(0.1, 0.003, 300.0)

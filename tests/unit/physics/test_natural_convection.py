@@ -59,19 +59,19 @@ def test_morgan_arrays_and_range_warnings():
 
 def test_vertical_plate_regimes(no_warnings):
     # 0.59 * (1e8)^0.25 = 0.59 * 100 = 59.0 ; 0.10 * (1e12)^(1/3) = 0.10 * 1e4 = 1000
-    assert cv.Nu_natural_vertical_plate(1e8) == pytest.approx(59.0, rel=1e-12)
-    assert cv.Nu_natural_vertical_plate(1e12) == pytest.approx(1000.0, rel=1e-12)
+    assert cv.Nu_natural_vertical_plate_McAdams(1e8) == pytest.approx(59.0, rel=1e-12)
+    assert cv.Nu_natural_vertical_plate_McAdams(1e12) == pytest.approx(1000.0, rel=1e-12)
     # boundary 1e9: laminar side 0.59 * 177.83 = 104.92, turbulent side 0.10 * 1000 = 100
-    assert cv.Nu_natural_vertical_plate(1e9 * (1 - 1e-12)) == pytest.approx(104.918, rel=1e-5)
-    assert cv.Nu_natural_vertical_plate(1e9) == pytest.approx(100.0, rel=1e-12)
+    assert cv.Nu_natural_vertical_plate_McAdams(1e9 * (1 - 1e-12)) == pytest.approx(104.918, rel=1e-5)
+    assert cv.Nu_natural_vertical_plate_McAdams(1e9) == pytest.approx(100.0, rel=1e-12)
 
 
 def test_vertical_plate_below_1e4_still_laminar_form_but_warns():
     # 0.59 * (1e3)^0.25 = 0.59 * 5.6234 = 3.3178
     with pytest.warns(CorrelationRangeWarning, match="vertical_plate"):
-        assert cv.Nu_natural_vertical_plate(1e3) == pytest.approx(3.3178, rel=1e-4)
+        assert cv.Nu_natural_vertical_plate_McAdams(1e3) == pytest.approx(3.3178, rel=1e-4)
     with pytest.warns(CorrelationRangeWarning):
-        cv.Nu_natural_vertical_plate(1e14)
+        cv.Nu_natural_vertical_plate_McAdams(1e14)
 
 
 def test_horizontal_plate_up_regimes(no_warnings):
@@ -100,7 +100,7 @@ def test_horizontal_plate_down_warns_outside(Ra):
 
 
 @pytest.mark.parametrize("f", [cv.Nu_natural_horizontal_cylinder_Morgan,
-                               cv.Nu_natural_vertical_plate,
+                               cv.Nu_natural_vertical_plate_McAdams,
                                cv.Nu_natural_horizontal_plate_up,
                                cv.Nu_natural_horizontal_plate_down])
 def test_natural_zero_rayleigh_limit_and_negative_rejected(f, no_warnings):

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from feedtherm.physics.radiation import SIGMA, h_radiation, radiative_heat_flux
+from feedtherm.physics.radiation import SIGMA, h_radiation, heat_flux_radiation
 
 
 def test_sigma_is_codata_value():
@@ -17,7 +17,7 @@ def test_incropera_example_1_2_steam_pipe():
     # Tsur = 25 C = 298 K, eps = 0.8; radiation loss printed as q' = 421 W/m.
     # Hand: 473^4 = 5.00547e10, 298^4 = 7.88615e9, difference 4.21685e10;
     # q'' = 0.8 * 5.670374e-8 * 4.21685e10 = 1912.9 W/m^2; q' = q'' * pi * 0.07 = 420.7 W/m.
-    q_per_m = radiative_heat_flux(0.8, 473.0, 298.0) * math.pi * 0.07
+    q_per_m = heat_flux_radiation(0.8, 473.0, 298.0) * math.pi * 0.07
     assert q_per_m == pytest.approx(421.0, abs=0.5)
 
 
@@ -36,13 +36,13 @@ def test_audit_h_r_at_20_to_30_C():
 
 def test_linearisation_is_exact():
     Ts, Ta, eps = 320.0, 291.0, 0.6
-    q = radiative_heat_flux(eps, Ts, Ta)
+    q = heat_flux_radiation(eps, Ts, Ta)
     assert h_radiation(eps, Ts, Ta) * (Ts - Ta) == pytest.approx(q, rel=1e-12)
 
 
 def test_colder_surface_gains_heat_and_equal_temperatures_give_zero_flux():
-    assert radiative_heat_flux(0.5, 290.0, 300.0) < 0.0
-    assert radiative_heat_flux(0.5, 300.0, 300.0) == 0.0
+    assert heat_flux_radiation(0.5, 290.0, 300.0) < 0.0
+    assert heat_flux_radiation(0.5, 300.0, 300.0) == 0.0
     # h_r is symmetric in Ts and Ta
     assert h_radiation(0.5, 290.0, 300.0) == pytest.approx(h_radiation(0.5, 300.0, 290.0))
 
@@ -57,7 +57,7 @@ def test_rejects_emissivity_outside_0_1(eps):
     with pytest.raises(ValueError, match="emissivity"):
         h_radiation(eps, 300.0, 290.0)
     with pytest.raises(ValueError, match="emissivity"):
-        radiative_heat_flux(eps, 300.0, 290.0)
+        heat_flux_radiation(eps, 300.0, 290.0)
 
 
 def test_emissivity_one_is_allowed():
@@ -70,4 +70,4 @@ def test_rejects_non_absolute_temperatures(T):
     with pytest.raises(ValueError):
         h_radiation(0.5, T, 293.15)
     with pytest.raises(ValueError):
-        radiative_heat_flux(0.5, 293.15, T)
+        heat_flux_radiation(0.5, 293.15, T)

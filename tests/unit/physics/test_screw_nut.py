@@ -52,40 +52,40 @@ def test_helix_angle_accepts_arrays():
 
 def test_thread_friction_angle():
     # cos 15° = 0.96592583; 0.1 / 0.96592583 = 0.10352762; atan -> 0.10316011 rad (5.9106°)
-    assert sn.thread_friction_angle(MU, BETA) == pytest.approx(RHO, rel=HAND)
+    assert sn.friction_angle_thread(MU, BETA) == pytest.approx(RHO, rel=HAND)
     # square thread: rho' = atan(mu) = atan(0.1) = 0.099668652 rad
-    assert sn.thread_friction_angle(MU, 0.0) == pytest.approx(0.099668652, rel=HAND)
+    assert sn.friction_angle_thread(MU, 0.0) == pytest.approx(0.099668652, rel=HAND)
 
 
 def test_shigley_example_8_1_square_thread():
     # Shigley Ex. 8-1: d_m = 30 mm, l = 8 mm (double thread, p = 4), f = 0.08, F = 6.4 kN.
     # Printed: T_R = 15.94 N·m (raise), T_L = -0.466 N·m (lower, not self-locking).
-    # load_friction_torque is T_R minus the useful F l/(2 pi) = 6400*0.008/(2 pi) = 8.1487331
+    # torque_thread_load is T_R minus the useful F l/(2 pi) = 6400*0.008/(2 pi) = 8.1487331
     F, dm, lead, f = 6400.0, 0.030, 0.008, 0.08
     useful = F * lead / (2.0 * math.pi)
-    assert sn.load_friction_torque(F, dm, lead, f, 0.0) + useful == pytest.approx(15.94, rel=1e-3)
+    assert sn.torque_thread_load(F, dm, lead, f, 0.0) + useful == pytest.approx(15.94, rel=1e-3)
     # Split nut: T_R + T_L = 15.94 - 0.466 = 15.474 N·m
-    assert sn.preload_friction_torque(F, dm, lead, f, 0.0) == pytest.approx(15.474, rel=1e-3)
+    assert sn.torque_thread_preload(F, dm, lead, f, 0.0) == pytest.approx(15.474, rel=1e-3)
 
 
 def test_load_friction_torque_tr32_hand_and_shigley_rational_form():
     # tan(phi + rho') = tan(0.21064591) = 0.21381779;  tan(phi) = 0.10790166
     # F r2 = 25 * 0.01475 = 0.36875 N·m; [..] = 0.10591613 -> M = 0.039056575 N·m
-    M = sn.load_friction_torque(F_LOAD, D2, LEAD, MU, BETA)
+    M = sn.torque_thread_load(F_LOAD, D2, LEAD, MU, BETA)
     assert M == pytest.approx(0.039056575, rel=HAND)
     # Shigley Eq. 8-1 with sec(alpha): T_R = F d/2 (l + pi f d sec b)/(pi d - f l sec b)
     sec = 1.0 / math.cos(BETA)
     T_R = F_LOAD * D2 / 2 * (LEAD + math.pi * MU * D2 * sec) / (math.pi * D2 - MU * LEAD * sec)
     assert M == pytest.approx(T_R - F_LOAD * LEAD / (2 * math.pi), rel=1e-12)
     # direction of the load is ignored
-    assert sn.load_friction_torque(-F_LOAD, D2, LEAD, MU, BETA) == pytest.approx(M, rel=1e-12)
+    assert sn.torque_thread_load(-F_LOAD, D2, LEAD, MU, BETA) == pytest.approx(M, rel=1e-12)
 
 
 def test_preload_friction_torque_tr32_audit():
     # tan(phi + rho') = 0.21381779; tan(phi - rho') = tan(0.0043256896) = 0.0043257166
     # difference 0.20949207; F_p r2 = 500 * 0.01475 = 7.375 N·m
     # M_p = 7.375 * 0.20949207 = 1.5450040 N·m  (docs/paper-audit.md §5: ~1.55 N·m)
-    M = sn.preload_friction_torque(FP, D2, LEAD, MU, BETA)
+    M = sn.torque_thread_preload(FP, D2, LEAD, MU, BETA)
     assert M == pytest.approx(1.5450040, rel=HAND)
     assert M == pytest.approx(1.55, abs=0.005)
 
@@ -93,8 +93,8 @@ def test_preload_friction_torque_tr32_audit():
 def test_flank_normal_load():
     # sigma cos(b) cos(phi) = 12 * 0.96592583 * 0.99422896 = 11.524217
     # Q_j = 500 / 11.524217 = 43.386895 N
-    assert sn.flank_normal_load(500.0, 12, BETA, PHI) == pytest.approx(43.386895, rel=HAND)
-    assert sn.flank_normal_load(-500.0, 12, BETA, PHI) == pytest.approx(43.386895, rel=HAND)
+    assert sn.normal_load_flank(500.0, 12, BETA, PHI) == pytest.approx(43.386895, rel=HAND)
+    assert sn.normal_load_flank(-500.0, 12, BETA, PHI) == pytest.approx(43.386895, rel=HAND)
 
 
 def test_grease_shear_torque_petroff():
@@ -102,16 +102,16 @@ def test_grease_shear_torque_petroff():
     # A = pi d2 L = pi * 0.0295 * 0.060 = 5.5606190e-3 m^2; h = 0.3 mm, eta = 1 Pa·s
     # M = 1 * 3.7699112 * 2.175625e-4 * 5.5606190e-3 / 3e-4 = 0.015202571 N·m
     omega = 2 * math.pi * 36 / 60
-    M = sn.grease_shear_torque(1.0, omega, D2 / 2, 5.5606190e-3, 3e-4)
+    M = sn.torque_grease_shear(1.0, omega, D2 / 2, 5.5606190e-3, 3e-4)
     assert M == pytest.approx(0.015202571, rel=HAND)
-    M_reverse = sn.grease_shear_torque(1.0, -omega, D2 / 2, 5.5606190e-3, 3e-4)
+    M_reverse = sn.torque_grease_shear(1.0, -omega, D2 / 2, 5.5606190e-3, 3e-4)
     assert M_reverse == pytest.approx(M, rel=1e-12)
 
 
 def test_sliding_screw_torque_audit_default_condition_I():
     # load 0.039056575 + preload 1.5450040 + grease 0.015202571 (eta 1 Pa·s, h 0.3 mm,
     # L 60 mm, 36 rpm, values above) = 1.5992632 N·m
-    t = sn.sliding_screw_torque(F_LOAD, FP, D2, LEAD, MU, BETA, 1.0, 3e-4, 0.060, 36.0)
+    t = sn.torque_screw_nut_sliding(F_LOAD, FP, D2, LEAD, MU, BETA, 1.0, 3e-4, 0.060, 36.0)
     assert t.load == pytest.approx(0.039056575, rel=HAND)
     assert t.preload == pytest.approx(1.5450040, rel=HAND)
     assert t.grease == pytest.approx(0.015202571, rel=HAND)
@@ -123,14 +123,14 @@ def test_sliding_screw_torque_audit_default_condition_I():
 def test_sliding_heat_matches_audit_table_6W_at_36rpm():
     # Coulomb only (eta = 0): M_T = 0.039056575 + 1.5450040 = 1.5840606 N·m (docs/paper-audit.md: 1.58)
     # H = 1.5840606 * 3.7699112 = 5.9717678 W (docs/paper-audit.md: 6.0 W); preload only: 5.8245280 W
-    t = sn.sliding_screw_torque(F_LOAD, FP, D2, LEAD, MU, BETA, 0.0, 3e-4, 0.060, 36.0)
+    t = sn.torque_screw_nut_sliding(F_LOAD, FP, D2, LEAD, MU, BETA, 0.0, 3e-4, 0.060, 36.0)
     assert t.total == pytest.approx(1.5840606, rel=HAND)
-    H = sn.screw_nut_heat(t.total, 396.0, 360.0)
+    H = sn.heat_screw_nut(t.total, 396.0, 360.0)
     assert H == pytest.approx(5.9717678, rel=HAND)
     assert H == pytest.approx(6.0, abs=0.05)
-    assert sn.screw_nut_heat(t.preload, 396.0, 360.0) == pytest.approx(5.8245280, rel=HAND)
+    assert sn.heat_screw_nut(t.preload, 396.0, 360.0) == pytest.approx(5.8245280, rel=HAND)
     # condition III, n_T = 54 rpm: 1.5840606 * 5.6548668 = 8.9576518 W (docs/paper-audit.md: 9.0 W)
-    assert sn.screw_nut_heat(t.total, 2214.0, 2160.0) == pytest.approx(8.9576518, rel=HAND)
+    assert sn.heat_screw_nut(t.total, 2214.0, 2160.0) == pytest.approx(8.9576518, rel=HAND)
 
 
 @pytest.mark.parametrize(
@@ -147,17 +147,17 @@ def test_sliding_heat_matches_audit_table_6W_at_36rpm():
     ],
 )
 def test_sliding_heat_audit_mu_range(mu, expected_W):
-    t = sn.sliding_screw_torque(F_LOAD, FP, D2, LEAD, mu, BETA, 0.0, 3e-4, 0.060, 36.0)
-    assert sn.screw_nut_heat(t.total, 396.0, 360.0) == pytest.approx(expected_W, rel=HAND)
+    t = sn.torque_screw_nut_sliding(F_LOAD, FP, D2, LEAD, mu, BETA, 0.0, 3e-4, 0.060, 36.0)
+    assert sn.heat_screw_nut(t.total, 396.0, 360.0) == pytest.approx(expected_W, rel=HAND)
 
 
 def test_screw_nut_heat_uses_relative_speed():
     # Eq. 23 as printed, M in N·mm: 1584.0606 * 36 / 9550 = 5.9713280 W (1/9550 vs 2pi/60e3)
-    assert sn.screw_nut_heat(1.5840606, 396.0, 360.0) == pytest.approx(5.9713280, rel=1e-4)
-    assert sn.screw_nut_heat(1.5840606, 360.0, 396.0) == pytest.approx(5.9717678, rel=HAND)
-    assert sn.screw_nut_heat(1.5840606, 360.0, 360.0) == 0.0
+    assert sn.heat_screw_nut(1.5840606, 396.0, 360.0) == pytest.approx(5.9713280, rel=1e-4)
+    assert sn.heat_screw_nut(1.5840606, 360.0, 396.0) == pytest.approx(5.9717678, rel=HAND)
+    assert sn.heat_screw_nut(1.5840606, 360.0, 360.0) == 0.0
     # opposite senses add: |300 - (-60)| = 360 rpm -> 1.5840606 * 37.699112 = 59.717678 W
-    assert sn.screw_nut_heat(1.5840606, 300.0, -60.0) == pytest.approx(59.717678, rel=HAND)
+    assert sn.heat_screw_nut(1.5840606, 300.0, -60.0) == pytest.approx(59.717678, rel=HAND)
 
 
 # --------------------------------------------------------------------------------------
@@ -170,11 +170,11 @@ def test_screw_nut_heat_uses_relative_speed():
     [
         lambda: sn.helix_angle(0.0, D2),
         lambda: sn.helix_angle(LEAD, -D2),
-        lambda: sn.load_friction_torque(25.0, 0.0, LEAD, MU, BETA),
-        lambda: sn.grease_shear_torque(1.0, 3.0, D2 / 2, 5e-3, 0.0),
-        lambda: sn.sliding_screw_torque(25.0, FP, D2, LEAD, MU, BETA, 1.0, 3e-4, 0.0, 36.0),
-        lambda: sn.preload_friction_torque(-10.0, D2, LEAD, MU, BETA),
-        lambda: sn.thread_friction_angle(-0.1, BETA),
+        lambda: sn.torque_thread_load(25.0, 0.0, LEAD, MU, BETA),
+        lambda: sn.torque_grease_shear(1.0, 3.0, D2 / 2, 5e-3, 0.0),
+        lambda: sn.torque_screw_nut_sliding(25.0, FP, D2, LEAD, MU, BETA, 1.0, 3e-4, 0.0, 36.0),
+        lambda: sn.torque_thread_preload(-10.0, D2, LEAD, MU, BETA),
+        lambda: sn.friction_angle_thread(-0.1, BETA),
     ],
 )
 def test_nonpositive_sizes_and_negative_loads_raise(call):
@@ -188,16 +188,16 @@ def test_nonpositive_sizes_and_negative_loads_raise(call):
 )
 def test_out_of_range_friction_and_flank_angle_warn(mu, beta):
     with pytest.warns(CorrelationRangeWarning):
-        sn.thread_friction_angle(mu, beta)
+        sn.friction_angle_thread(mu, beta)
 
 
 def test_in_range_inputs_do_not_warn():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        sn.sliding_screw_torque(
+        sn.torque_screw_nut_sliding(
             F_LOAD, FP, D2, LEAD, 0.5, math.radians(44.9), 1.0, 3e-4, 0.06, 36.0)
 
 
 def test_frictionless_limit_is_zero_but_warns():
     with pytest.warns(CorrelationRangeWarning, match="mu"):
-        assert sn.preload_friction_torque(FP, D2, LEAD, 0.0, BETA) == 0.0
+        assert sn.torque_thread_preload(FP, D2, LEAD, 0.0, BETA) == 0.0
