@@ -39,10 +39,10 @@ class TamperedFast(FastDiscretization):
         return super().heat_vector(replace(bc, heats={n: h for n, h in bc.heats.items() if n not in self.drop}), k)
 
     def ambient_coupling(self, bc, k):
-        exact = self.ambient_links(bc, k)
-        scaled = bc.surfaces | {n: replace(t, convection=t.convection * f, radiation=t.radiation * f) for n, t in bc.surfaces.items()
-                                if (f := self.area_scale.get(n)) is not None}
-        return AmbientCoupling(self.ambient_links(replace(bc, surfaces=scaled), k), exact, float(exact.sum()))
+        exact = super().ambient_coupling(bc, k)
+        scaled = bc.surfaces | {n: replace(t, convection=t.convection * f, radiation=t.radiation * f)
+                                for n, t in bc.surfaces.items() if (f := self.area_scale.get(n)) is not None}
+        return replace(exact, matrix=self.ambient_links(replace(bc, surfaces=scaled), k))
 
 
 @pytest.mark.parametrize("drop, area_scale", [(("front_bearing",), {}), ((), {"screw_shaft": 0.5}),

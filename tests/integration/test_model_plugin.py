@@ -19,7 +19,7 @@ from feedtherm.constants import AMBIENT_SENSOR, ELONGATION_PROBE
 from feedtherm.models.interface import AmbientCoupling, ThermalModel
 from feedtherm.models.registry import ModelEntry, register_model, unregister_model
 from feedtherm.simulate import simulate
-from feedtherm.system.geometry import part_volume
+from feedtherm.system.geometry import part_volume, surface_area
 
 
 class LumpedBody(ThermalModel):
@@ -38,16 +38,18 @@ class LumpedBody(ThermalModel):
         self.screw_edges = np.array([min(e.fixed_at, e.read_at), max(e.fixed_at, e.read_at)])
         self.screw_centres = self.screw_edges.mean(keepdims=True)
         self.alpha = system.materials[system.parts[system.kinematics.screw].material].expansion
+        self.system_areas = {name: surface_area(s, system.parts[s.part]) for name, s in system.surfaces.items()}
 
     def conductance(self, k):
         return np.zeros((1, 1))
 
-    def ambient_links(self, bc, k):
-        return np.array([sum(t.total * t.area for t in bc.surfaces.values())])
+    def surface_exposure(self, name, k):
+        return np.zeros(1, dtype=int), np.array([self.system_areas[name]])
 
     def ambient_coupling(self, bc, k):
         hA = self.ambient_links(bc, k)
-        return AmbientCoupling(np.diag(hA), hA, float(hA.sum()))
+        sink_heat = hA * bc.point.ambient
+        return AmbientCoupling(np.diag(hA), hA, sink_heat, float(sink_heat.sum()))
 
     def heat_distribution(self, heat, k):
         return np.ones(1)

@@ -16,6 +16,7 @@ from ..physics.air import film_temperature
 from ..system.geometry import surface_area
 from ..system.schema import (
     FeedSystem,
+    FixedConvection,
     MovingFaceConvection,
     MovingPlateConvection,
     NaturalConvection,
@@ -27,7 +28,7 @@ from .operating import OperatingPoint
 
 @dataclass(frozen=True)
 class SurfaceTransfer:
-    """Heat transfer of one surface to the ambient air at an operating point."""
+    """Heat transfer of one surface to the ambient air (or its sink) at an operating point."""
 
     name: str
     part: str
@@ -36,6 +37,7 @@ class SurfaceTransfer:
     radiation: float  # linearised radiative coefficient [W/(m^2 K)] (0 when off)
     emissivity: float
     correlation: str  # how the convective coefficient was obtained
+    sink: float  # temperature of the medium the surface exchanges heat with [K]: the ambient or its own
 
     @property
     def total(self) -> float:
@@ -45,6 +47,8 @@ class SurfaceTransfer:
 def convective_coefficient(surface: Surface, point: OperatingPoint, t_surface: float) -> tuple[float, str]:
     """CHTC [W/(m^2 K)] of ``surface`` at surface temperature ``t_surface`` [K]."""
     conv, ambient = surface.convection, point.ambient
+    if isinstance(conv, FixedConvection):
+        return conv.coefficient, "fixed"
     t_film = film_temperature(t_surface, ambient)
     if isinstance(conv, NaturalConvection):
         return convection.h_natural(conv.orientation, conv.length, t_surface, ambient), f"natural, {conv.orientation} (Eq. 25)"
@@ -73,6 +77,8 @@ def surface_transfer(
     if surface.chtc_factor != 1.0:
         h_conv *= surface.chtc_factor
         how = f"{how}, x {surface.chtc_factor:.3g} (calibrated)"
-    h_rad = radiation.h_radiation(surface.emissivity, t_surface, point.ambient) if with_radiation else 0.0
+    sink = point.ambient if surface.sink_temperature is None else surface.sink_temperature
+    radiates = with_radiation and surface.emissivity > 0.0
+    h_rad = radiation.h_radiation(surface.emissivity, t_surface, sink) if radiates else 0.0
     area = surface_area(surface, system.parts[surface.part])
-    return SurfaceTransfer(name, surface.part, area, h_conv, h_rad, surface.emissivity, how)
+    return SurfaceTransfer(name, surface.part, area, h_conv, h_rad, surface.emissivity, how, sink)

@@ -196,7 +196,7 @@ class Integrator:
         """The steady state of segment ``seg_id`` at position k (None: the cycle average)."""
         loads = self.loads(seg_id, bc, k)
         A = operator_sum(loads.conductance, loads.ambient.matrix)
-        rhs = loads.heat + loads.ambient.load * bc.point.ambient
+        rhs = loads.heat + loads.ambient.source
         if self.direct:
             return self._factorize(A).solve(rhs)
         solution, info = cg(A, rhs, x0=self.model.uniform_state(bc.point.ambient), rtol=CG_RTOL, maxiter=50000,
@@ -234,14 +234,13 @@ class Integrator:
                     path.advance(cells_per_step * dt / dt_nominal)
                 k = None if (averaged and moving) else path.k
                 loads = self.loads(seg_id, seg.bc, k)
-                ambient = seg.bc.point.ambient
                 guess = T if T_old is None else T + (T - T_old) * (dt / dt_old)
-                rhs = capacity_times(T) / dt + loads.heat + loads.ambient.load * ambient
+                rhs = capacity_times(T) / dt + loads.heat + loads.ambient.source
                 T_new = self.solve(seg_id, seg.bc, k, dt, rhs, guess)
                 t_new = t + dt
                 # energy account: heat in from the boundary conditions, losses from the surfaces
                 trace.heat_in += seg.bc.total_heat * dt
-                trace.heat_lost += loads.ambient.heat_lost(T_new, ambient) * dt
+                trace.heat_lost += loads.ambient.heat_lost(T_new) * dt
                 # the moving sensors sit where the group is; averaged motion smears it over the stroke
                 k_probe = len(m.positions) // 2 if (averaged and moving) else path.k
                 while next_sample is not None and next_sample <= t_new + 1e-9:

@@ -4,10 +4,11 @@ A model discretises a feed system into a state vector ``T`` and offers, for each
 position ``k`` of the moving group (``positions[k]`` is its offset from the middle of the
 stroke), the operators of
 
-.. math:: C \\dot T + (G(k) + A(k))\\,T = q(k) + a(k)\\,T_{amb}
+.. math:: C \\dot T + (G(k) + A(k))\\,T = q(k) + s(k)
 
 with ``C`` the capacity, ``G`` conduction and contacts, ``A`` the coupling to the ambient
-air (``a`` its load per kelvin of ambient) and ``q`` the heat.  Any of ``C``, ``G`` and ``A``
+air (or a surface's own sink), ``s`` the heat those links bring at the sink temperatures,
+and ``q`` the heat of the sources.  Any of ``C``, ``G`` and ``A``
 may be a vector (a diagonal), a sparse or a dense matrix: full-state models (fast, FE) use
 diagonal capacities and ambient links, a projected (reduced) model uses dense matrices.
 
@@ -33,30 +34,33 @@ Operator = np.ndarray | sp.spmatrix  # a 1-D array is a diagonal
 
 @dataclass(frozen=True)
 class AmbientCoupling:
-    """How the state exchanges heat with the ambient air at one position.
+    """How the state exchanges heat with the air (or a surface's sink) at one position.
 
-    The heat lost is ``load @ T - total * T_amb`` [W]; the step equations get ``matrix`` on
-    the left and ``load * T_amb`` on the right.
+    With node links ``g`` [W/K] to sinks at ``T_s`` [K], the heat lost is
+    ``Σ g (T - T_s) = load @ T - source_total``; the step equations get ``matrix`` on the left
+    and ``source`` on the right.  A projected model keeps the same quantities projected.
     """
 
     matrix: Operator  # [W/K] (1-D: diagonal)
-    load: np.ndarray  # [W/K] per state entry
-    total: float  # Σ of every link [W/K]
+    load: np.ndarray  # [W/K] per state entry: the heat lost per kelvin of each entry
+    source: np.ndarray  # [W] per state entry: the links' heat at the sink temperatures
+    source_total: float  # [W] Σ g T_s over every link
 
-    def heat_lost(self, state: np.ndarray, ambient: float) -> float:
-        """Heat to the air [W] from ``state`` at ambient temperature ``ambient`` [K]."""
-        return float(self.load @ state) - self.total * ambient
+    def heat_lost(self, state: np.ndarray) -> float:
+        """Heat to the sinks [W] from ``state``."""
+        return float(self.load @ state) - self.source_total
 
     @classmethod
-    def diagonal(cls, links: np.ndarray) -> "AmbientCoupling":
-        """Node-to-air conductances [W/K] of a full-state model."""
-        return cls(links, links, float(links.sum()))
+    def diagonal(cls, links: np.ndarray, sink_heat: np.ndarray) -> "AmbientCoupling":
+        """Node-to-sink conductances ``g`` [W/K] and ``g·T_s`` [W] of a full-state model."""
+        return cls(links, links, sink_heat, float(sink_heat.sum()))
 
     @classmethod
     def averaged(cls, weights: np.ndarray, couplings: list["AmbientCoupling"]) -> "AmbientCoupling":
         return cls(weighted_sum(weights, [c.matrix for c in couplings]),
                    weighted_sum(weights, [c.load for c in couplings]),
-                   float(sum(w * c.total for w, c in zip(weights, couplings))))
+                   weighted_sum(weights, [c.source for c in couplings]),
+                   float(sum(w * c.source_total for w, c in zip(weights, couplings))))
 
 
 @dataclass(frozen=True)
@@ -126,6 +130,7 @@ class ThermalModel(ABC):
         Axial sections of the screw [m] for its temperature profile.
     """
 
+    system: FeedSystem
     n_nodes: int
     capacity: Operator
     positions: np.ndarray
@@ -140,16 +145,31 @@ class ThermalModel(ABC):
         """Conduction in the parts and across every joint, moving group at position k [W/K]."""
 
     @abstractmethod
-    def ambient_links(self, bc: BoundaryConditions, k: int) -> np.ndarray:
-        """Conductance [W/K] of every state entry to the ambient air at position k."""
+    def surface_exposure(self, name: str, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """Nodes of surface ``name`` and their exposed areas [m²] at position k.
+
+        What a joined part covers is not exposed; a declared ``area`` of the surface is
+        spread over the exposed nodes in proportion.
+        """
 
     @abstractmethod
     def heat_distribution(self, heat: HeatInput, k: int) -> np.ndarray:
         """Fractions (summing to 1) of one :class:`HeatInput` over the state, at position k."""
 
+    def ambient_links(self, bc: BoundaryConditions, k: int) -> np.ndarray:
+        """Conductance [W/K] of every node to its surface's sink (convection + radiation)."""
+        return self._links(bc, k, sink=False)
+
     def ambient_coupling(self, bc: BoundaryConditions, k: int) -> AmbientCoupling:
         """The ambient operator of the step equations (diagonal for full-state models)."""
-        return AmbientCoupling.diagonal(self.ambient_links(bc, k))
+        return AmbientCoupling.diagonal(self._links(bc, k, sink=False), self._links(bc, k, sink=True))
+
+    def _links(self, bc: BoundaryConditions, k: int, *, sink: bool) -> np.ndarray:
+        g = np.zeros(self.n_nodes)
+        for name, transfer in bc.surfaces.items():
+            nodes, areas = self.surface_exposure(name, k)
+            np.add.at(g, nodes, transfer.total * areas * (transfer.sink if sink else 1.0))
+        return g
 
     def heat_vector(self, bc: BoundaryConditions, k: int) -> np.ndarray:
         """Heat [W] into every state entry at position k, placed by :func:`heat_inputs`."""

@@ -246,8 +246,15 @@ class MovingFaceConvection(Strict):
     natural_length: PosLength
 
 
+class FixedConvection(Strict):
+    """A coefficient stated directly: a measured film coefficient, a coolant, a textbook case."""
+
+    kind: Literal["fixed"]
+    coefficient: PosHeatTransferCoefficient
+
+
 Convection = Annotated[
-    Union[NaturalConvection, RotatingConvection, MovingPlateConvection, MovingFaceConvection],
+    Union[NaturalConvection, RotatingConvection, MovingPlateConvection, MovingFaceConvection, FixedConvection],
     Field(discriminator="kind"),
 ]
 
@@ -262,10 +269,21 @@ class Surface(Strict):
     boxes: list[int] | None = None  # indices of the part's boxes (default: all)
     cylinders: list[int] | None = None  # indices of the part's cylinders (default: all)
     convection: Convection
-    emissivity: Annotated[float, Field(gt=0.0, le=1.0)]
+    emissivity: Annotated[float, Field(ge=0.0, le=1.0)]  # 0: no radiation
     area: PosArea | None = None  # overrides the area computed from the faces
     chtc_factor: PosDimensionless = 1.0  # multiplies the convective coefficient (set by calibration)
+    # The medium this surface exchanges heat with, when it is not the ambient air (a coolant, a
+    # clamped face held at a temperature); only with a fixed coefficient, as the air correlations
+    # are for the ambient air.
+    sink_temperature: Temperature | None = None
     description: str = ""
+
+    @model_validator(mode="after")
+    def _sink_needs_a_fixed_coefficient(self) -> "Surface":
+        if self.sink_temperature is not None and self.convection.kind != "fixed":
+            raise ValueError("sink_temperature: only a surface with convection.kind = 'fixed' may exchange heat "
+                             "with a medium other than the ambient air")
+        return self
 
 
 # --------------------------------------------------------------------------- sensors

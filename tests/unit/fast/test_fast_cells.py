@@ -6,11 +6,11 @@ numbers the code returned once.
 
 import math
 import tomllib
-from importlib import resources
 
 import numpy as np
 import pytest
 
+from feedtherm.benches import bench
 from feedtherm.boundary import boundary_conditions
 from feedtherm.models.fast.cells import part_cells
 from feedtherm.models.fast.contacts import aggregate, spread_along
@@ -150,7 +150,7 @@ def test_exposed_area_of_the_front_housing_is_the_hand_count(paper, fast):
     housing = (110 * 95 - bore) + (110 * 95 - bore - 80 * 30) + 2 * 60 * 95 + 60 * 110
     bracket = 80 * 30 + 2 * 190 * 30 + (190 * 80 - 120 * 60)
     bc = boundary_conditions(paper, "I", "physics")
-    nodes, areas = fast.network.surface_areas(bc, 0)["front_housing"]
+    nodes, areas = fast.surface_exposure("front_housing", 0)
     assert areas.sum() == pytest.approx((housing + bracket) * 1e-6, rel=0.01)
     assert np.isin(nodes, fast.layout.part_nodes("front_housing")).all()
 
@@ -158,7 +158,7 @@ def test_exposed_area_of_the_front_housing_is_the_hand_count(paper, fast):
 def test_a_declared_area_is_kept(paper, fast):
     bc = boundary_conditions(paper, "I", "physics")
     for name in ("base_top", "worktable_bottom"):
-        assert fast.network.surface_areas(bc, 7)[name][1].sum() == pytest.approx(paper.surfaces[name].area, rel=1e-12)
+        assert fast.surface_exposure(name, 7)[1].sum() == pytest.approx(paper.surfaces[name].area, rel=1e-12)
 
 
 def test_what_rides_on_the_screw_and_the_rails_covers_them(paper, fast):
@@ -167,12 +167,12 @@ def test_what_rides_on_the_screw_and_the_rails_covers_them(paper, fast):
     (the ball-screw example's) is spread over the exposed cells, not reduced again."""
     bc = boundary_conditions(paper, "I", "physics")
     for k in (0, 13, 40):
-        areas = fast.network.surface_areas(bc, k)["guideways"][1]
+        areas = fast.surface_exposure("guideways", k)[1]
         assert areas.sum() == pytest.approx(2 * 800 * (20 + 2 * 18) * 1e-6 - 4 * 60 * 20 * 1e-6, rel=1e-9)
     example = load_system("ballscrew_example").system
     model = discretize(example, "fast", ModelOptions())
     bc = boundary_conditions(example, "v10", "physics")
-    nodes, areas = model.network.surface_areas(bc, 5)["screw_shaft"]
+    nodes, areas = model.surface_exposure("screw_shaft", 5)
     assert areas.sum() == pytest.approx(example.surfaces["screw_shaft"].area, rel=1e-12)
     screw = model.layout.screw
     under_nut = screw.nodes[screw.cell_at(0.300 + model.positions[5]), -1]
@@ -212,7 +212,7 @@ def test_sensors_read_their_spot(paper, fast):
 
 
 def test_parts_that_do_not_touch_are_joined_at_their_nearest_cells():
-    text = resources.files("feedtherm.system").joinpath("data").joinpath("paper_bench.toml").read_text()
+    text = bench("paper").description.read_text(encoding="utf-8")
     data = tomllib.loads(text)
     data["parts"]["screw_motor"]["boxes"][0]["origin"][2] = "-25 mm"  # lifted 5 mm off its bracket
     system = validate_data(data, "variant").system

@@ -131,24 +131,11 @@ class Network:
                 edges.add(*contact.links(k))
         return laplacian(self.layout.n_nodes, edges)
 
-    def ambient_links(self, bc: BoundaryConditions, k: int) -> np.ndarray:
-        """Conductance [W/K] of every node to the ambient air (convection + radiation)."""
-        g = np.zeros(self.layout.n_nodes)
-        for name, (nodes, areas) in self.surface_areas(bc, k).items():
-            np.add.at(g, nodes, bc.surfaces[name].total * areas)
-        return g
-
-    def surface_areas(self, bc: BoundaryConditions, k: int) -> dict[str, tuple[np.ndarray, np.ndarray]]:
-        """Per surface: the nodes it belongs to and their exposed areas [m²] at position ``k``."""
-        out = {}
-        offset = self.layout.positions[k]
-        for name, transfer in bc.surfaces.items():
-            surface = self.system.surfaces[name]
-            if surface.part in self.layout.cells:
-                out[name] = self._cell_surface(name, k)
-                continue
-            out[name] = self._body_surface(name, k, offset)
-        return out
+    def surface_exposure(self, name: str, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """The nodes of surface ``name`` and their exposed areas [m²] at position ``k``."""
+        if self.system.surfaces[name].part in self.layout.cells:
+            return self._cell_surface(name, k)
+        return self._body_surface(name, k, self.layout.positions[k])
 
     def _body_surface(self, name: str, k: int, offset: float) -> tuple[np.ndarray, np.ndarray]:
         """Exposed area [m²] per axial cell of a surface on the screw or a rail.

@@ -32,8 +32,8 @@ class FastDiscretization(ThermalModel):
             self._sliding[k] = (self.network.fixed + self.network.sliding(k)).tocsr()
         return self._sliding[k]
 
-    def ambient_links(self, bc, k: int) -> np.ndarray:
-        return self.network.ambient_links(bc, k)
+    def surface_exposure(self, name: str, k: int) -> tuple[np.ndarray, np.ndarray]:
+        return self.network.surface_exposure(name, k)
 
     def heat_distribution(self, heat: HeatInput, k: int) -> np.ndarray:
         return self.network.heat_distribution(heat.part, heat.over_contact_with, k)

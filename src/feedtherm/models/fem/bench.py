@@ -279,17 +279,17 @@ class FemDiscretization(ThermalModel):
             self._coverage[key] = touching(x, s["normals"], self._nearest[other], j.contact.tol)
         return self._coverage[key]
 
-    def ambient_links(self, bc: BoundaryConditions, k: int) -> np.ndarray:
-        """Conductance [W/K] of every node to the ambient: ``h·∫N dA`` over exposed facets."""
-        g = np.zeros(self.n_nodes)
-        for name, transfer in bc.surfaces.items():
-            nodes, areas = self.surface_area(name, k)
-            h = transfer.total
-            declared = self.system.surfaces[name].area
-            if declared is not None:  # the description's area is authoritative: h·A matches
-                h *= declared / areas.sum()
-            g[nodes] += h * areas
-        return g
+    def surface_exposure(self, name: str, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """Nodes and exposed areas of surface ``name`` at position k, scaled to a declared area.
+
+        The description's area is authoritative: the mesh's ``∫N dA`` over the exposed facets
+        only shares it out.
+        """
+        nodes, areas = self.surface_area(name, k)
+        declared = self.system.surfaces[name].area
+        if declared is not None:
+            areas = areas * (declared / areas.sum())
+        return nodes, areas
 
     def heat_distribution(self, heat: HeatInput, k: int) -> np.ndarray:
         """Fractions over the nodes of a heat input at position k: by volume, or over its contact."""
