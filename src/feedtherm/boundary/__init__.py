@@ -22,6 +22,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, replace
 from typing import Literal
 
+from ..physics.contact import conductance_contact
 from ..physics.validity import CorrelationRangeWarning
 from ..system.schema import FeedSystem
 from .heat import SourceHeat, source_heats
@@ -43,7 +44,7 @@ class JointConductance:
     @property
     def conductance(self) -> float:
         """[W/K]"""
-        return self.area / self.tcr
+        return conductance_contact(self.tcr, self.area)
 
 
 @dataclass(frozen=True)
