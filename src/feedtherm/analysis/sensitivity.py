@@ -14,6 +14,7 @@ from __future__ import annotations
 import re
 from typing import Callable
 
+from ..constants import AMBIENT_SENSOR, ELONGATION_PROBE
 from ..simulate import steady_state
 from ..system.checks import covers, leaf_paths, specificity
 from ..system.load import LoadedSystem
@@ -75,7 +76,7 @@ def sensitivities(loaded: LoadedSystem, condition: str, *, mode: str = "physics"
         value = get_path(loaded.system, path)
         variant = with_values(loaded, {path: value * factor}, origin_suffix=f"{path} x {factor:g}")
         perturbed = steady_state(variant, condition, mode=mode)
-        effect = {name: perturbed[name] - base[name] for name in base if name not in ("D", "T6")}
+        effect = {name: perturbed[name] - base[name] for name in base if name not in (ELONGATION_PROBE, AMBIENT_SENSOR)}
         effect[ELONGATION_QUANTITY] = (perturbed["D"] - base["D"]) * 1e6
         out.append(Sensitivity(path, source_of(loaded, path), factor, effect, name=readable_name(loaded, path)))
         if progress is not None:

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation
 
 from ..errors import FeedthermError
-from ..solution import KELVIN_OFFSET, SENSOR_NAMES_AMBIENT
+from ..constants import AMBIENT_SENSOR, KELVIN_OFFSET
 from ..system.load import LoadedSystem
 from ..system.variants import with_condition
 
@@ -176,7 +176,7 @@ def sensor_labels(loaded: LoadedSystem) -> dict[str, str]:
     """
     out = {}
     for name, sensor in loaded.system.sensors.items():
-        if name == SENSOR_NAMES_AMBIENT:
+        if name == AMBIENT_SENSOR:
             continue
         out[name] = sensor.description.split(":")[0].strip() or sensor.part
     return out

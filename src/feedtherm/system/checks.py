@@ -11,6 +11,7 @@ import math
 import re
 from dataclasses import dataclass
 
+from ..constants import AMBIENT_SENSOR
 from ..physics.mechanics import speed_table
 from .geometry import contains, gap, screw_axis, surface_area
 from .schema import FeedSystem
@@ -84,8 +85,9 @@ def _geometry(system: FeedSystem) -> list[Finding]:
         x = getattr(system.elongation, key)
         if not screw.start <= x <= screw.end:
             findings.append(Finding(f"elongation.{key}", f"x = {x * 1e3:g} mm is not on the screw ({screw.start * 1e3:g}..{screw.end * 1e3:g} mm)"))
-    if "T6" in system.sensors:
-        findings.append(Finding("sensors.T6", "T6 is the ambient temperature; a declared T6 is ignored"))
+    if AMBIENT_SENSOR in system.sensors:
+        findings.append(Finding(f"sensors.{AMBIENT_SENSOR}",
+                                f"{AMBIENT_SENSOR} is the ambient temperature; a declared {AMBIENT_SENSOR} is ignored"))
     return findings
 
 

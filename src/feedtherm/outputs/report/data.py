@@ -5,7 +5,8 @@ from __future__ import annotations
 from functools import lru_cache
 
 from ...analysis.validation_types import ELONGATION_QUANTITY, TEMPERATURE_QUANTITIES, Comparison, Validation
-from ...solution import KELVIN_OFFSET, SENSOR_NAMES_AMBIENT, Solution
+from ...constants import AMBIENT_SENSOR, KELVIN_OFFSET
+from ...solution import Solution
 
 QUANTITIES = (*TEMPERATURE_QUANTITIES, ELONGATION_QUANTITY)
 # The paper's two series (§4.3): speed at 20 °C ambient, and ambient at the speed of II.
@@ -46,10 +47,10 @@ def final_values(solution: Solution) -> dict[str, float]:
 
 def ambient_c(solution: Solution) -> float | None:
     """The run's final ambient temperature [°C] (sensor T6), None without one."""
-    if SENSOR_NAMES_AMBIENT in solution.final:
-        return float(solution.final[SENSOR_NAMES_AMBIENT] - KELVIN_OFFSET)
-    if SENSOR_NAMES_AMBIENT in solution.sensors:
-        return float(solution.sensors[SENSOR_NAMES_AMBIENT][-1] - KELVIN_OFFSET)
+    if AMBIENT_SENSOR in solution.final:
+        return float(solution.final[AMBIENT_SENSOR] - KELVIN_OFFSET)
+    if AMBIENT_SENSOR in solution.sensors:
+        return float(solution.sensors[AMBIENT_SENSOR][-1] - KELVIN_OFFSET)
     return None
 
 
@@ -69,17 +70,17 @@ def equilibrium_minutes(solution: Solution) -> float | None:
 
 @lru_cache(maxsize=1)
 def _table5() -> dict[str, dict[str, float]]:
-    from ...data import paper_table
+    from ...benches import bench
 
     return {row["condition"]: {key: float(value) for key, value in row.items() if key != "condition"}
-            for row in paper_table(5)}
+            for row in bench("paper").table(5)}
 
 
 @lru_cache(maxsize=1)
 def _locations() -> dict[str, str]:
-    from ...data import paper_table
+    from ...benches import bench
 
-    return {row["point"]: row["location"] for row in paper_table(6)}
+    return {row["point"]: row["location"] for row in bench("paper").table(6)}
 
 
 def screw_rpm(condition: str) -> float | None:

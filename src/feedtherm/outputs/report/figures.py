@@ -14,7 +14,8 @@ from collections.abc import Sequence
 import numpy as np
 
 from ...analysis.validation_types import ELONGATION_QUANTITY, TEMPERATURE_QUANTITIES, Comparison, Sensitivity
-from ...solution import KELVIN_OFFSET, SENSOR_NAMES_AMBIENT, Solution
+from ...constants import AMBIENT_SENSOR, KELVIN_OFFSET
+from ...solution import Solution
 from ..plots import _thinned
 
 _DPI = 120
@@ -51,10 +52,10 @@ def sensor_curves(solution: Solution, condition: str, measured: dict[str, float]
         else:
             handles.append(line)
             labels.append(f"{name} (not measured)")
-    if SENSOR_NAMES_AMBIENT in celsius:
-        (line,) = top.plot(hours, celsius[SENSOR_NAMES_AMBIENT], color="0.5", linestyle=":", linewidth=1.2)
+    if AMBIENT_SENSOR in celsius:
+        (line,) = top.plot(hours, celsius[AMBIENT_SENSOR], color="0.5", linestyle=":", linewidth=1.2)
         handles.append(line)
-        labels.append(f"{SENSOR_NAMES_AMBIENT} ambient")
+        labels.append(f"{AMBIENT_SENSOR} ambient")
     bottom.plot(hours, solution.elongation_um, color=_D_COLOUR, linewidth=1.6, label="D simulated")
     if ELONGATION_QUANTITY in measured:
         bottom.axhline(measured[ELONGATION_QUANTITY], color=_D_COLOUR, linestyle="--", linewidth=1.2,

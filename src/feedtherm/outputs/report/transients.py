@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from ...analysis.validation_types import Validation
-from ...solution import KELVIN_OFFSET, Solution
+from ...constants import KELVIN_OFFSET
+from ...solution import Solution
 from . import data, figures
 from .html import heading, number, paragraph, png_image, section, table
 
