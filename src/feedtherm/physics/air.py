@@ -99,6 +99,13 @@ def film_temperature(T_surface, T_ambient):
     .. [1] Paper, Eq. 25 (ε).
     .. [2] Incropera, DeWitt, Bergman, Lavine, *Fundamentals of Heat and Mass Transfer*,
        6th ed., Wiley, 2007, §7.1 (film temperature).
+
+    Examples
+    --------
+    A surface at 30 °C in air at 20 °C: T_f = (303.15 + 293.15)/2 = 596.3/2 = 298.15 K.
+
+    >>> round(film_temperature(303.15, 293.15), 2)
+    298.15
     """
     mean = (np.asarray(T_surface, dtype=float) + np.asarray(T_ambient, dtype=float)) / 2.0
     return float(mean) if mean.ndim == 0 else mean
@@ -163,6 +170,17 @@ def properties_air(T, p=P_ATM):
     .. [3] Incropera, DeWitt, Bergman, Lavine, *Fundamentals of Heat and Mass Transfer*,
        6th ed., Wiley, 2007, Table A.4 (air at atmospheric pressure).
     .. [4] Paper, Eqs. 24-26 (λ, v_a, β).
+
+    Examples
+    --------
+    Incropera Table A.4, air at 300 K (its densities are for 10⁵ Pa, see Notes):
+    Pr = 0.707, ρ = 1.1614 kg/m³, k = 26.3e-3 W/(m·K); and β = 1/300 = 3.333e-3 1/K.
+
+    >>> air = properties_air(300.0, p=1e5)
+    >>> round(air.prandtl, 3), round(air.density, 2), round(air.conductivity, 3)
+    (0.707, 1.16, 0.026)
+    >>> round(air.expansion_coefficient * 1e3, 3)
+    3.333
     """
     T = _positive_finite("T", T)
     p = _positive_finite("p", p)

@@ -89,6 +89,14 @@ def f1_angular_contact_Palmgren(P0, C0):
     References
     ----------
     .. [1] Paper Eq. 17; Harris & Kotzalas 2006 (table of z, y); Palmgren 1959.
+
+    Examples
+    --------
+    docs/paper-audit.md §3, front 25×62 pair, P₀ ≈ F_a = 3100 N, C₀ = 40 kN: f₁ = 4.3e-4
+    (0.001·0.0775^0.33 = 0.001·e^(0.33·ln 0.0775) = 0.001·e^(−0.8440) = 4.300e-4).
+
+    >>> round(f1_angular_contact_Palmgren(3100.0, 40e3) * 1e4, 2)
+    4.3
     """
     return _f1(P0, C0, 1e-3, 0.33, "f1_angular_contact_Palmgren (Eq. 17)")
 
@@ -123,6 +131,14 @@ def f1_deep_groove_Palmgren(P0, C0, z=5e-4):
     ----------
     .. [1] Paper Eq. 19 (coefficient corrected); Harris & Kotzalas 2006 (table of z,
        y); Palmgren 1959.
+
+    Examples
+    --------
+    P₀/C₀ = 1950/7800 = 0.25: 5e-4·0.25^0.55 = 5e-4·e^(0.55·ln 0.25) = 5e-4·e^(−0.76246)
+    = 5e-4·0.46652 = 2.3326e-4.
+
+    >>> round(f1_deep_groove_Palmgren(1950.0, 7800.0) * 1e4, 4)
+    2.3326
     """
     z = _check(z, "z", "[-]", strict=True)
     check_range("f1_deep_groove_Palmgren (Eq. 19)", "z", z, *Z_DEEP_GROOVE_RANGE)
@@ -154,6 +170,14 @@ def P1_angular_contact_Palmgren(Fa, Fr):
     References
     ----------
     .. [1] Paper Eq. 18 (rule P₁ ≥ F_r added); Harris & Kotzalas 2006; Palmgren 1959.
+
+    Examples
+    --------
+    docs/paper-audit.md §3, front pair: 1.4·3100 − 0.1·50 = 4335 N; without axial load the
+    printed Eq. 18 gives −5 N, the rule P₁ ≥ F_r gives 50 N.
+
+    >>> P1_angular_contact_Palmgren(3100.0, 50.0), P1_angular_contact_Palmgren(0.0, 50.0)
+    (4335.0, 50.0)
     """
     Fa, Fr = _loads(Fa, Fr)
     return _out(np.maximum(1.4 * Fa - 0.1 * Fr, Fr))
@@ -181,6 +205,13 @@ def P1_deep_groove_Palmgren(Fa, Fr):
     References
     ----------
     .. [1] Paper Eq. 20 (rule P₁ ≥ F_r added); Harris & Kotzalas 2006; Palmgren 1959.
+
+    Examples
+    --------
+    docs/paper-audit.md §3, 6205 row: 3·2500 − 0.1·50 = 7495 N.
+
+    >>> P1_deep_groove_Palmgren(2500.0, 50.0)
+    7495.0
     """
     Fa, Fr = _loads(Fa, Fr)
     return _out(np.maximum(3.0 * Fa - 0.1 * Fr, Fr))
@@ -208,6 +239,13 @@ def torque_bearing_load_Palmgren(f1, P1, dm):
     References
     ----------
     .. [1] Paper Eq. 16; Harris & Kotzalas 2006; Palmgren 1959.
+
+    Examples
+    --------
+    docs/paper-audit.md §3, front pair: M_l = 4.300e-4·4335 N·43.5 mm = 81.09 N·mm.
+
+    >>> round(torque_bearing_load_Palmgren(4.300e-4, 4335.0, 0.0435) * 1e3, 2)
+    81.09
     """
     return _out(_check(f1, "f1", "[-]") * _check(P1, "P1", "[N]") * _dm(dm))
 
@@ -251,6 +289,15 @@ def torque_bearing_viscous_Palmgren(f0, nu, n_rpm, dm):
     ----------
     .. [1] Paper Eqs. 21–22 (corrected); Harris & Kotzalas 2006 (viscous torque, f₀
        table); Palmgren 1959.
+
+    Examples
+    --------
+    docs/paper-audit.md §3, front pair at 396 rpm with ν = 100 mm²/s, f₀ = 4: ν·n = 39600,
+    39600^(2/3) = e^(2/3·10.58658) = 1161.80, d_m³ = 43.5³ = 82312.9 mm³,
+    M_v = 1e-7·4·1161.80·82312.9 = 38.25 N·mm (the review: 38).
+
+    >>> round(torque_bearing_viscous_Palmgren(4.0, 100e-6, 396.0, 0.0435) * 1e3, 2)
+    38.25
     """
     f0 = _check(f0, "f0", "[-]")
     nu = _check(nu, "nu", "[m²/s]")
@@ -286,6 +333,15 @@ def torque_bearing_Palmgren(f1, P1, dm, f0, nu, n_rpm):
     References
     ----------
     .. [1] Paper Eqs. 16–22 (corrected); Harris & Kotzalas 2006; Palmgren 1959.
+
+    Examples
+    --------
+    docs/paper-audit.md §3, front pair at condition I: 81.09 + 38.25 = 119.34 N·mm,
+    the torque that Table 1's 4.95 W at 396 rpm requires (4.95/41.469 = 119.37 N·mm).
+
+    >>> t = torque_bearing_Palmgren(4.300e-4, 4335.0, 0.0435, 4.0, 100e-6, 396.0)
+    >>> round(t.load * 1e3, 2), round(t.viscous * 1e3, 2), round(t.total * 1e3, 2)
+    (81.09, 38.25, 119.34)
     """
     load = torque_bearing_load_Palmgren(f1, P1, dm)
     viscous = torque_bearing_viscous_Palmgren(f0, nu, n_rpm, dm)
@@ -317,6 +373,13 @@ def heat_bearing(torque, n_rpm):
     References
     ----------
     .. [1] Paper Eq. 15; docs/paper-audit.md §3 (bearing speeds).
+
+    Examples
+    --------
+    Paper Table 1, front bearings: 119.4 N·mm at 396 rpm, 0.1194·41.469 = 4.951 W (printed 4.95).
+
+    >>> round(heat_bearing(0.1194, 396.0), 2)
+    4.95
     """
     if isinstance(torque, BearingTorque):
         torque = torque.total

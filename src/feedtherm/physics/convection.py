@@ -114,6 +114,14 @@ def Nu_mixed(Nu_forced, Nu_natural, n=3.0, assisting=True):
     ----------
     .. [1] docs/paper-audit.md §1, Eq. 29. Incropera (2007), §9.9.
     .. [2] S. W. Churchill, AIChE J. 23 (1977) 10-16.
+
+    Examples
+    --------
+    Churchill's blend with n = 3: assisting (3³ + 4³)^(1/3) = 91^(1/3) = 4.4979; opposing
+    (4³ − 3³)^(1/3) = 37^(1/3) = 3.3322.
+
+    >>> round(Nu_mixed(3.0, 4.0), 4), round(Nu_mixed(4.0, 3.0, assisting=False), 4)
+    (4.4979, 3.3322)
     """
     if not n > 0:
         raise ValueError(f"n must be > 0, got {n!r}")
@@ -150,6 +158,15 @@ def h_mixed(h_forced, h_natural, n=3.0):
     References
     ----------
     .. [1] Incropera (2007), §9.9; S. W. Churchill, AIChE J. 23 (1977) 10-16.
+
+    Examples
+    --------
+    docs/paper-audit.md §1, Eq. 29: at 3 mm/s h_F ≈ 0.39 beside h_N ≈ 4.8 W/(m²·K), so the blend
+    is natural convection: (0.39³ + 4.8³)^(1/3) = 110.6513^(1/3) = 4.8·(1 + 0.059319/110.592)^(1/3)
+    = 4.8·1.000179 = 4.8009.
+
+    >>> round(h_mixed(0.39, 4.8), 4)
+    4.8009
     """
     if not n > 0:
         raise ValueError(f"n must be > 0, got {n!r}")

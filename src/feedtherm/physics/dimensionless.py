@@ -51,6 +51,14 @@ def grashof(L, T_surface, T_ambient, nu, beta, g=G_STANDARD):
     References
     ----------
     .. [1] Paper, Eq. 26; docs/paper-audit.md §1, Eq. 26. Incropera (2007), Eq. 9.12.
+
+    Examples
+    --------
+    L = 0.1 m, ΔT = 10 K, air at 300 K (Incropera Table A.4: ν = 15.89e-6 m²/s), β = 1/300:
+    Gr = 9.80665/300·10·0.1³/(15.89e-6)² = 3.26888e-4/2.52492e-10 = 1.2946e6.
+
+    >>> round(grashof(0.1, 310.0, 300.0, 15.89e-6, 1 / 300) / 1e6, 4)
+    1.2946
     """
     L, nu = _arr(L, "L", positive=True), _arr(nu, "nu", positive=True)
     dT = np.abs(np.asarray(T_surface, dtype=float) - np.asarray(T_ambient, dtype=float))
@@ -77,6 +85,13 @@ def rayleigh(Gr, Pr):
     References
     ----------
     .. [1] Paper, Eq. 25 ((Gr·Pr)). Incropera (2007), Ch. 9.
+
+    Examples
+    --------
+    Ra = 1.2946e6·0.707 = 9.153e5.
+
+    >>> round(rayleigh(1.2946e6, 0.707) / 1e5, 3)
+    9.153
     """
     return _out(_arr(Gr, "Gr") * _arr(Pr, "Pr", positive=True))
 
@@ -103,6 +118,14 @@ def reynolds(u, L, nu):
     References
     ----------
     .. [1] Paper, Eqs. 28-29 (Re not defined there). Incropera (2007), Ch. 7.
+
+    Examples
+    --------
+    A 0.3 m table at 3 mm/s in air (ν = 15.89e-6 m²/s): Re = 0.003·0.3/15.89e-6 = 56.64
+    (docs/paper-audit.md §4: 56.6).
+
+    >>> round(reynolds(0.003, 0.3, 15.89e-6), 2)
+    56.64
     """
     L, nu = _arr(L, "L", positive=True), _arr(nu, "nu", positive=True)
     return _out(np.abs(np.asarray(u, dtype=float)) * L / nu)
@@ -135,6 +158,14 @@ def reynolds_rotating(omega, d, nu):
     ----------
     .. [1] W. M. Kays, I. S. Bjorklund, "Heat transfer from a rotating cylinder with and
        without crossflow", Trans. ASME 80 (1958) 70-78.
+
+    Examples
+    --------
+    docs/paper-audit.md §4, screw shaft Ø32 at 396 rpm (41.469 rad/s):
+    Re = 41.469·0.032²/15.89e-6 = 0.042464/15.89e-6 = 2672.4 (the review: 2672).
+
+    >>> round(reynolds_rotating(41.469, 0.032, 15.89e-6), 1)
+    2672.4
     """
     d, nu = _arr(d, "d", positive=True), _arr(nu, "nu", positive=True)
     return _out(np.abs(np.asarray(omega, dtype=float)) * d**2 / nu)
@@ -162,5 +193,13 @@ def h_from_nusselt(Nu, k, L):
     References
     ----------
     .. [1] Paper, Eq. 24; docs/paper-audit.md §1, Eq. 24.
+
+    Examples
+    --------
+    docs/paper-audit.md §4, screw shaft: h = 22.817·0.0263/0.032 = 18.753 W/(m²·K) (the
+    review: 18.8); L in mm, as printed, would give 1000× less.
+
+    >>> round(h_from_nusselt(22.817, 0.0263, 0.032), 3)
+    18.753
     """
     return _out(_arr(Nu, "Nu") * _arr(k, "k", positive=True) / _arr(L, "L", positive=True))

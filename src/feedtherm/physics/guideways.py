@@ -50,6 +50,14 @@ def friction_force_guideway(mu, normal_load, seal_drag_per_carriage, n_carriages
     References
     ----------
     .. [1] docs/paper-audit.md §1 row 13 (H_g = v(μ_g W + F_seal)) and §4 (defaults).
+
+    Examples
+    --------
+    docs/paper-audit.md §1, Eq. 13: μ = 0.005, W = 60 kg·9.81 m/s² = 588.6 N, four carriages
+    of 4 N seal drag: 0.005·588.6 + 4·4 = 2.943 + 16 = 18.943 N (the review: 18.9 N).
+
+    >>> round(friction_force_guideway(0.005, 588.6, 4.0, 4), 3)
+    18.943
     """
     mu = _nonneg(mu, "mu", "[-]")
     W = _nonneg(normal_load, "normal_load", "[N]")
@@ -87,6 +95,13 @@ def heat_guideway(friction_force, speed):
     ----------
     .. [1] Paper, Eq. 13 (standard form, λ dropped).
     .. [2] docs/paper-audit.md §1 row 13.
+
+    Examples
+    --------
+    docs/paper-audit.md §1, Eq. 13: 18.943 N at 0.003 m/s gives 0.0568 W (the review: 0.057 W).
+
+    >>> round(heat_guideway(18.943, 0.003), 4)
+    0.0568
     """
     F = _nonneg(friction_force, "friction_force", "[N]")
     v = _finite(speed, "speed", "[m/s]")
@@ -126,6 +141,14 @@ def heat_guideway_paper(lam, f_g, F_g, v):
     ----------
     .. [1] Paper, Eq. 13 and Table 1.
     .. [2] docs/paper-audit.md §1 row 13.
+
+    Examples
+    --------
+    Paper Table 1: 0.39 W at 0.003 m/s, which needs λf_gF_g = 0.39/0.003 = 130 N
+    (docs/paper-audit.md §1, Eq. 13), e.g. λ = 1, f_g = 0.005, F_g = 26 kN.
+
+    >>> round(heat_guideway_paper(1.0, 0.005, 26000.0, 0.003), 2)
+    0.39
     """
     lam = _nonneg(lam, "lam", "[-]")
     f_g = _nonneg(f_g, "f_g", "[-]")

@@ -24,6 +24,13 @@ def angular_speed(n_rpm):
     -------
     float or ndarray
         Angular speed, [rad/s], with the sign of ``n_rpm``.
+
+    Examples
+    --------
+    The screw at 396 rpm (the paper's condition I): 2π·396/60 = 41.469 rad/s.
+
+    >>> round(angular_speed(396.0), 3)
+    41.469
     """
     return _scalar_or_array(np.asarray(n_rpm, dtype=float) * RPM_TO_RAD_PER_S)
 
@@ -53,6 +60,14 @@ def heat_friction(torque, n_rpm):
     References
     ----------
     .. [1] Paper, Eqs. 15 and 23.
+
+    Examples
+    --------
+    docs/paper-audit.md §5: the sliding nut's 1.5841 N·m at n_T = 396 − 360 = 36 rpm gives
+    1.5841·2π·36/60 = 1.5841·3.76991 = 5.972 W (Eq. 23 as printed: 1584.1·36/9550 = 5.971 W).
+
+    >>> round(heat_friction(1.5841, 36.0), 3)
+    5.972
     """
     power = np.abs(np.asarray(torque, dtype=float)) * np.abs(np.asarray(n_rpm, dtype=float))
     return _scalar_or_array(power * RPM_TO_RAD_PER_S)
@@ -84,6 +99,14 @@ def torque_screw_drive(axial_force, lead):
     References
     ----------
     .. [1] Shigley's Mechanical Engineering Design, 10th ed., §8-2 (power screws, μ = 0).
+
+    Examples
+    --------
+    Shigley Example 8-1 (F = 6.4 kN, l = 8 mm): the frictionless part of its raising torque
+    is F·l/(2π) = 6400·0.008/(2π) = 8.149 N·m.
+
+    >>> round(torque_screw_drive(6400.0, 0.008), 3)
+    8.149
     """
     if lead <= 0:
         raise ValueError(f"lead must be positive, got {lead!r} m")
@@ -111,5 +134,12 @@ def speed_table(n_screw_rpm, n_nut_rpm, lead):
     ----------
     .. [1] Paper §2.1: "the worktable obtains displacement through the velocity
        difference between the two".
+
+    Examples
+    --------
+    docs/paper-audit.md §2, condition I: (396 − 360) rpm × 10 mm = 0.36 m/min = 0.006 m/s.
+
+    >>> round(speed_table(396.0, 360.0, 0.010) * 60.0, 9)
+    0.36
     """
     return (float(n_screw_rpm) - float(n_nut_rpm)) / 60.0 * float(lead)

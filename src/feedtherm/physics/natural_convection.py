@@ -73,6 +73,13 @@ def Nu_natural_horizontal_cylinder_Morgan(Ra):
     .. [1] Paper, Eq. 25; docs/paper-audit.md §1, Eq. 25.
     .. [2] Incropera (2007), §9.6.3, Table 9.1 (V. T. Morgan, Adv. Heat Transfer 11,
        1975, 199-264).
+
+    Examples
+    --------
+    Incropera Table 9.1, Ra_D = 1e5 (regime 1e4-1e7): 0.480·(1e5)^0.25 = 0.480·17.7828 = 8.536.
+
+    >>> round(Nu_natural_horizontal_cylinder_Morgan(1e5), 3)
+    8.536
     """
     Ra = _arr(Ra, "Ra")
     _check_nonzero("Nu_natural_horizontal_cylinder_Morgan", "Ra_D", Ra, 1e-10, 1e12)
@@ -110,6 +117,13 @@ def Nu_natural_vertical_plate_McAdams(Ra):
     .. [1] Paper, Eq. 25; docs/paper-audit.md §1, Eq. 25.
     .. [2] Incropera (2007), §9.6.1 (Nu = C Ra^n, McAdams' C and n; W. H. McAdams,
        *Heat Transmission*, 3rd ed., 1954).
+
+    Examples
+    --------
+    Laminar 0.59·(1e8)^(1/4) = 0.59·100 = 59.0; turbulent 0.10·(1e12)^(1/3) = 0.10·1e4 = 1000.
+
+    >>> round(Nu_natural_vertical_plate_McAdams(1e8), 9), round(Nu_natural_vertical_plate_McAdams(1e12), 9)
+    (59.0, 1000.0)
     """
     Ra = _arr(Ra, "Ra")
     _check_nonzero("Nu_natural_vertical_plate_McAdams", "Ra_L", Ra, 1e4, 1e13)
@@ -143,6 +157,13 @@ def Nu_natural_horizontal_plate_up(Ra):
     ----------
     .. [1] Paper, Eq. 25; docs/paper-audit.md §1, Eq. 25.
     .. [2] Incropera (2007), §9.6.2, Eqs. 9.29 (L = A/P), 9.30 and 9.31.
+
+    Examples
+    --------
+    Incropera Eqs. 9.30-9.31: 0.54·(1e6)^(1/4) = 0.54·31.623 = 17.076; 0.15·(1e9)^(1/3) = 150.
+
+    >>> round(Nu_natural_horizontal_plate_up(1e6), 3), round(Nu_natural_horizontal_plate_up(1e9), 9)
+    (17.076, 150.0)
     """
     Ra = _arr(Ra, "Ra")
     _check_nonzero("Nu_natural_horizontal_plate_up", "Ra_L", Ra, 1e4, 1e11)
@@ -172,6 +193,13 @@ def Nu_natural_horizontal_plate_down(Ra):
     ----------
     .. [1] Paper, Eq. 25; docs/paper-audit.md §1, Eq. 25.
     .. [2] Incropera (2007), §9.6.2, Eq. 9.32.
+
+    Examples
+    --------
+    Incropera Eq. 9.32: 0.27·(1e8)^(1/4) = 0.27·100 = 27.0.
+
+    >>> round(Nu_natural_horizontal_plate_down(1e8), 9)
+    27.0
     """
     Ra = _arr(Ra, "Ra")
     _check_nonzero("Nu_natural_horizontal_plate_down", "Ra_L", Ra, 1e5, 1e10)
@@ -231,6 +259,17 @@ def h_natural(orientation, L, T_surface, T_ambient):
     References
     ----------
     .. [1] Paper, Eqs. 24-26; docs/paper-audit.md §1, Eqs. 24-26. Incropera (2007), §9.6.
+
+    Examples
+    --------
+    docs/paper-audit.md §1, Eq. 25: a 0.1 m vertical plate 10 K above 20 °C air has
+    h = 4.8 W/(m²·K) (Incropera's air at 300 K). With CoolProp air at T_f = 298.15 K
+    (k = 0.026247 W/(m·K), ν = 1.55770e-5 m²/s, α = 2.20231e-5 m²/s): Ra = 9.80665/298.15·10·0.1³
+    /(1.55770e-5·2.20231e-5) = 9.5879e5, Ra^(1/4) = 31.292, Nu = 0.59·31.292 = 18.462,
+    h = 18.462·0.026247/0.1 = 4.846 W/(m²·K).
+
+    >>> round(h_natural("vertical_plate", 0.1, 303.15, 293.15), 3)
+    4.846
     """
     if orientation not in _NATURAL_NU:
         raise ValueError(f"unknown orientation {orientation!r}; valid choices: "

@@ -47,6 +47,14 @@ def helix_angle(lead, d2):
     References
     ----------
     .. [1] Shigley's *Mechanical Engineering Design*, §8-2 (power screws); docs/paper-audit.md §5.
+
+    Examples
+    --------
+    docs/paper-audit.md §4, Tr32×10: atan(10/(π·29.5)) = atan(0.10790) = 6.16°.
+
+    >>> import math
+    >>> round(math.degrees(helix_angle(0.010, 0.0295)), 2)
+    6.16
     """
     return _out(np.arctan(_positive("lead", lead) / (math.pi * _positive("d2", d2))))
 
@@ -75,6 +83,15 @@ def friction_angle_thread(mu, flank_half_angle):
     References
     ----------
     .. [1] Shigley's *Mechanical Engineering Design*, §8-2, Eq. (8-5); docs/paper-audit.md §5.
+
+    Examples
+    --------
+    μ = 0.1 on a Tr flank (β = 15°): atan(0.1/cos 15°) = atan(0.1/0.965926) = atan(0.103528)
+    = 0.10316 rad.
+
+    >>> import math
+    >>> round(friction_angle_thread(0.1, math.radians(15.0)), 5)
+    0.10316
     """
     mu = _mu("friction_angle_thread (power screw)", mu)
     beta = np.asarray(flank_half_angle, dtype=float)
@@ -113,6 +130,16 @@ def torque_thread_load(F_axial, d2, lead, mu, flank_half_angle):
     References
     ----------
     .. [1] Shigley's *Mechanical Engineering Design*, §8-2, Eq. (8-1), (8-5); docs/paper-audit.md §5.
+
+    Examples
+    --------
+    Shigley Example 8-1 (square thread, d_m = 30 mm, l = 8 mm, f = 0.08, F = 6.4 kN): raising
+    torque T_R = 15.94 N·m, of which F·l/(2π) = 8.149 N·m is useful work.
+
+    >>> import math
+    >>> F, d_m, lead = 6400.0, 0.030, 0.008
+    >>> round(torque_thread_load(F, d_m, lead, 0.08, 0.0) + F * lead / (2 * math.pi), 2)
+    15.94
     """
     phi, rho = helix_angle(lead, d2), friction_angle_thread(mu, flank_half_angle)
     F = np.abs(np.asarray(F_axial, dtype=float))
@@ -150,6 +177,14 @@ def torque_thread_preload(F_preload, d2, lead, mu, flank_half_angle):
     ----------
     .. [1] Shigley's *Mechanical Engineering Design*, §8-2, Eqs. (8-1), (8-2), (8-5);
        docs/paper-audit.md §5.
+
+    Examples
+    --------
+    Shigley Example 8-1 as a split nut preloaded with F = 6.4 kN: T_R + T_L = 15.94 − 0.466
+    = 15.47 N·m.
+
+    >>> round(torque_thread_preload(6400.0, 0.030, 0.008, 0.08, 0.0), 2)
+    15.47
     """
     F_p = _nonnegative("F_preload", F_preload)
     phi, rho = helix_angle(lead, d2), friction_angle_thread(mu, flank_half_angle)
@@ -184,6 +219,15 @@ def torque_grease_shear(eta, omega, r2, area, gap):
     ----------
     .. [1] Petroff (1883); Shigley's *Mechanical Engineering Design*, §12 (Petroff's
        equation); docs/paper-audit.md §5.
+
+    Examples
+    --------
+    η = 1 Pa·s, 36 rpm (3.76991 rad/s), r₂ = 14.75 mm, A = π·0.0295·0.060 = 5.5606e-3 m²,
+    h = 0.3 mm: 1·3.76991·2.175625e-4·5.5606e-3/3e-4 = 0.015203 N·m.
+
+    >>> import math
+    >>> round(torque_grease_shear(1.0, 2 * math.pi * 36 / 60, 0.01475, 5.5606e-3, 3e-4), 6)
+    0.015203
     """
     eta = _nonnegative("eta", eta)
     r2, area, gap = _positive("r2", r2), _positive("area", area), _positive("gap", gap)
@@ -217,6 +261,15 @@ def normal_load_flank(F_axial, n_flanks, flank_half_angle, helix_angle):
     References
     ----------
     .. [1] Paper, Eqs. 3, 8 (Q_j); Shigley §8-2; docs/paper-audit.md §5.
+
+    Examples
+    --------
+    500 N over 12 Tr flanks (β = 15°, φ = 6.158° = 0.107486 rad): 500/(12·0.965926·0.994229)
+    = 500/11.5242 = 43.387 N.
+
+    >>> import math
+    >>> round(normal_load_flank(500.0, 12, math.radians(15.0), 0.107486), 3)
+    43.387
     """
     sigma, F = _positive("n_flanks", n_flanks), np.abs(np.asarray(F_axial, dtype=float))
     return _out(F / (sigma * np.cos(flank_half_angle) * np.cos(helix_angle)))
@@ -270,6 +323,17 @@ def torque_screw_nut_sliding(F_axial, F_preload, d2, lead, mu, flank_half_angle,
     References
     ----------
     .. [1] Shigley's *Mechanical Engineering Design*, §8-2; Petroff (1883); docs/paper-audit.md §5.
+
+    Examples
+    --------
+    docs/paper-audit.md §5, Tr32×10 (d₂ = 29.5 mm), μ = 0.10, F_p = 500 N, 25 N of guideway
+    friction, no grease term: M_T = 0.039 + 1.545 = 1.58 N·m.
+
+    >>> import math
+    >>> t = torque_screw_nut_sliding(25.0, 500.0, 0.0295, 0.010, 0.10, math.radians(15.0),
+    ...                              0.0, 3e-4, 0.060, 36.0)
+    >>> round(t.load, 3), round(t.preload, 3), round(t.total, 2)
+    (0.039, 1.545, 1.58)
     """
     M_load = torque_thread_load(F_axial, d2, lead, mu, flank_half_angle)
     M_pre = torque_thread_preload(F_preload, d2, lead, mu, flank_half_angle)
@@ -304,6 +368,13 @@ def heat_screw_nut(torque, n_screw_rpm, n_nut_rpm):
     References
     ----------
     .. [1] Paper, Eq. 23 (docs/paper-audit.md §1, §2).
+
+    Examples
+    --------
+    docs/paper-audit.md §5: 1.584 N·m at |396 − 360| = 36 rpm gives 1.584·3.7699 = 6.0 W.
+
+    >>> round(heat_screw_nut(1.584, 396.0, 360.0), 1)
+    6.0
     """
     n_rel = np.asarray(n_screw_rpm, dtype=float) - np.asarray(n_nut_rpm, dtype=float)
     return heat_friction(torque, n_rel)

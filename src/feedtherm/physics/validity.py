@@ -30,6 +30,18 @@ def check_range(correlation: str, quantity: str, value, low: float, high: float)
         The value(s) used.
     low, high : float
         Inclusive validity range of the source.
+
+    Examples
+    --------
+    Eq. 29 (Incropera Table 7.3) holds for 4e3 ≤ Re ≤ 1.5e4; a 0.3 m table at 3 mm/s has
+    Re = 0.003·0.3/15.89e-6 = 56.6:
+
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     check_range("Nu_plate_normal_to_flow (Eq. 29)", "Re", 56.6, 4e3, 1.5e4)
+    >>> print(caught[0].message)
+    Nu_plate_normal_to_flow (Eq. 29): Re = 56.6 is outside its validity range [4000, 1.5e+04]
     """
     arr = np.asarray(value, dtype=float)
     if arr.size == 0:

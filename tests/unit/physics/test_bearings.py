@@ -159,15 +159,15 @@ def test_load_torque_rejects_bad_dm(dm):
 
 
 def test_viscous_torque_front_pair_audit():
-    # docs/paper-audit.md: M_v = 38 N·mm. ν n = 100·396 = 39600; 39600^(2/3) = e^(2/3·10.5865) = 1162.2;
-    # dm³ = 43.5³ = 82312.9; 1e-7 · 4 · 1162.2 · 82312.9 = 38.26 N·mm.
+    # docs/paper-audit.md: M_v = 38 N·mm. ν n = 100·396 = 39600; 39600^(2/3) = e^(2/3·10.58658) = 1161.80;
+    # dm³ = 43.5³ = 82312.9; 1e-7 · 4 · 1161.80 · 82312.9 = 38.252 N·mm.
     assert torque_bearing_viscous_Palmgren(4.0, NU_100, 396.0, DM_25x62) == pytest.approx(
-        0.03826, rel=1e-3
+        0.038252, rel=1e-4
     )
 
 
 def test_viscous_torque_eq21_printed_lacks_cube():
-    # Printed Eq. 21 (dm, not dm³): 1e-7·4·1162.2·43.5 = 0.0202 N·mm (docs/paper-audit.md: "0.02").
+    # Printed Eq. 21 (dm, not dm³): 1e-7·4·1161.8·43.5 = 0.0202 N·mm (docs/paper-audit.md: "0.02").
     printed_Nmm = 1e-7 * 4.0 * (100.0 * 396.0) ** (2.0 / 3.0) * 43.5
     assert printed_Nmm == pytest.approx(0.0202, rel=2e-3)
     corrected_Nmm = torque_bearing_viscous_Palmgren(4.0, NU_100, 396.0, DM_25x62) * 1e3
@@ -195,9 +195,9 @@ def test_viscous_torque_regime_boundary():
 
 def test_viscous_torque_speed_sign_and_array():
     # Direction does not matter; arrays evaluate element-wise (front pair at I and III):
-    # III: 100·2214 = 221400; ^(2/3) = 3662.6; 4e-7·3662.6·82312.9 = 120.59 N·mm.
+    # III: 100·2214 = 221400; ^(2/3) = 3659.75; 4e-7·3659.75·82312.9 = 120.50 N·mm.
     m = torque_bearing_viscous_Palmgren(4.0, NU_100, np.array([-396.0, 2214.0]), DM_25x62)
-    np.testing.assert_allclose(m, [0.03826, 0.12059], rtol=1e-3)
+    np.testing.assert_allclose(m, [0.038252, 0.12050], rtol=1e-4)
 
 
 def test_viscous_torque_rejects_unit_slips():
@@ -234,8 +234,8 @@ def test_required_torques_from_table1(heat_W, n_rpm, torque_Nmm):
 def test_front_pair_reproduces_table1_and_speed_scaling():
     # docs/paper-audit.md back-out, front 25x62 pair, Fa = 3.1 kN: M = 81.09 + 38.25 = 119.34 N·mm
     # -> H(I) = 0.11934 · 41.469 = 4.949 W (Table 1: 4.95).
-    # II: M_v = 4e-7·(111600)^(2/3)·82312.9 = 4e-7·2319.4·82312.9 = 76.37;
-    #     (81.09 + 76.37)·116.867e-3 = 18.40 W.  III: (81.09 + 120.59)·231.850e-3 = 46.76 W.
+    # II: M_v = 4e-7·(111600)^(2/3)·82312.9 = 4e-7·2317.98·82312.9 = 76.32;
+    #     (81.09 + 76.32)·116.867e-3 = 18.40 W.  III: (81.09 + 120.50)·231.850e-3 = 46.74 W.
     f1 = f1_angular_contact_Palmgren(3100.0, 40e3)
     P1 = P1_angular_contact_Palmgren(3100.0, 50.0)
     t = torque_bearing_Palmgren(f1, P1, DM_25x62, 4.0, NU_100, 396.0)
@@ -276,10 +276,10 @@ def test_nut_pair_at_nut_speed_reproduces_table1():
 
 def test_rear_6205_audit_row_uses_printed_z():
     # docs/paper-audit.md row "Rear: 6205 via Eqs. 19–20": f1 = 3.3e-4, M_l 95 / M_v 10, H 4.4/13.4/29.3.
-    # M_v = 1.5e-7·1162.2·38.5³ = 1.5e-7·1162.2·57066.6 = 9.95 N·mm.
-    # H(I) = (95.22 + 9.95)·41.469e-3 = 4.361 W; II: M_v = 1.5e-7·2319.4·57066.6 = 19.85,
-    # 115.07·116.867e-3 = 13.45 W; III: M_v = 31.35, 126.57·231.850e-3 = 29.35 W.
-    for n, expected in ((396.0, 4.36), (1116.0, 13.45), (2214.0, 29.35)):
+    # M_v = 1.5e-7·1161.8·38.5³ = 1.5e-7·1161.8·57066.6 = 9.945 N·mm.
+    # H(I) = (95.22 + 9.945)·41.469e-3 = 4.361 W; II: M_v = 1.5e-7·2317.98·57066.6 = 19.84,
+    # 115.07·116.867e-3 = 13.45 W; III: M_v = 31.33, 126.55·231.850e-3 = 29.34 W.
+    for n, expected in ((396.0, 4.36), (1116.0, 13.45), (2214.0, 29.34)):
         t = torque_bearing_Palmgren(3.3e-4, 7495.0, DM_6205, 1.5, NU_100, n)
         assert heat_bearing(t, n) == pytest.approx(expected, rel=2e-3)
     # But f1 = 3.3e-4 is not the corrected Eq. 19: with z = 5e-4, C0 = 7.8 kN and P0 = Fa
@@ -304,7 +304,7 @@ def test_rear_6205_audit_row_uses_printed_z():
         # M_l = 0.060, M_v = 9.945 -> 10.005 · 41.469e-3 = 0.415 W (docs/paper-audit.md 0.41).
         ("6205 floating", 0.0, 50.0, 7800.0, DM_6205, 1.5, 396.0, True, 0.41),
         # 7205 DB pair, 300 N preload, C0 = 2·10 kN (assumed catalogue value):
-        # f1 = 1e-3·0.015^0.33 = 2.496e-4, P1 = 415, M_l = 3.99; M_v = 4e-7·1162.2·57066.6
+        # f1 = 1e-3·0.015^0.33 = 2.496e-4, P1 = 415, M_l = 3.99; M_v = 4e-7·1161.8·57066.6
         # = 26.52 -> 30.52 · 41.469e-3 = 1.265 W (docs/paper-audit.md 1.27).
         ("7205 DB", 300.0, 50.0, 20e3, DM_6205, 4.0, 396.0, False, 1.27),
         # 7010 single, 300 N, C0 ≈ 20 kN (assumed), f0 = 2, 360 rpm: M_l = 6.75,
