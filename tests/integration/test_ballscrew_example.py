@@ -13,10 +13,11 @@ import math
 
 import pytest
 
+from feedtherm.benches import bench_names
 from feedtherm.boundary import boundary_conditions
 from feedtherm.cli import main
 from feedtherm.system.checks import check_system
-from feedtherm.system.load import bundled_names, load_system
+from feedtherm.system.load import load_system
 from feedtherm.system.schema import TorqueSource
 
 NAME = "ballscrew_example"
@@ -35,7 +36,7 @@ def system():
 
 
 def test_loads_by_its_bundled_name(system):
-    assert NAME in bundled_names()
+    assert NAME in bench_names()
     loaded = load_system(NAME)
     assert loaded.origin == f"bundled:{NAME}"
     assert system.meta.name == NAME

@@ -3,11 +3,12 @@
 import json
 import subprocess
 import sys
-from importlib import resources
 
 import pytest
 
-BENCH = resources.files("feedtherm.system").joinpath("data").joinpath("paper_bench.toml").read_text()
+from feedtherm.benches import bench
+
+BENCH = bench("paper").description.read_text(encoding="utf-8")
 
 
 def run(*args):

@@ -16,8 +16,8 @@ from pathlib import Path
 import pytest
 
 from feedtherm.analysis.validation_types import Comparison, Sensitivity, Validation
+from feedtherm.benches import bench
 from feedtherm.boundary import boundary_conditions
-from feedtherm.data import paper_table
 from feedtherm.outputs.report import write_report
 from feedtherm.simulate import simulate
 from feedtherm.system.load import load_system
@@ -39,9 +39,9 @@ def validation() -> Validation:
     single = {c: simulate(loaded, condition=c, duration=1800.0, motion="averaged", single_drive=True)
               for c in CONDITIONS}
     comparisons = [Comparison(r["condition"], r["point"], "C", runs[r["condition"]].summary_values()[r["point"]],
-                              float(r["measured_C"]), float(r["paper_simulated_C"])) for r in paper_table(6)]
+                              float(r["measured_C"]), float(r["paper_simulated_C"])) for r in bench("paper").table(6)]
     comparisons += [Comparison(r["condition"], "D_um", "um", runs[r["condition"]].summary_values()["D_um"],
-                               float(r["measured_um"]), float(r["paper_simulated_um"])) for r in paper_table(7)]
+                               float(r["measured_um"]), float(r["paper_simulated_um"])) for r in bench("paper").table(7)]
     budget = {c: {name: h.power for name, h in boundary_conditions(loaded.system, c).heats.items()}
               for c in CONDITIONS}
     sensitivities = [Sensitivity(f"sources.front_bearing.preload_{i}", "bearing catalogues", 1.0 + 0.1 * (i % 3),

@@ -1,7 +1,7 @@
 import pytest
 
 from feedtherm.analysis.measurements import read_measurements
-from feedtherm.data import paper_table
+from feedtherm.benches import bench
 from feedtherm.errors import DescriptionError
 
 SENSORS = ["T1", "T2", "T3", "T4", "T5"]
@@ -11,9 +11,9 @@ def test_bundled_measurements_equal_tables_6_and_7():
     data = read_measurements("bundled:paper", sensors=SENSORS)
     assert len(data.rows) == 30
     measured = {(r.condition, r.quantity): r.measured for r in data.rows}
-    for row in paper_table(6):
+    for row in bench("paper").table(6):
         assert measured[(row["condition"], row["point"])] == float(row["measured_C"])
-    for row in paper_table(7):
+    for row in bench("paper").table(7):
         assert measured[(row["condition"], "D_um")] == float(row["measured_um"])
     assert data.equilibrium_min == {"I": 120.0, "II": 100.0, "III": 90.0, "IV": 70.0, "V": 110.0}
 

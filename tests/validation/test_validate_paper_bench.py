@@ -12,13 +12,13 @@ import time
 import pytest
 
 from feedtherm.analysis.validation import validate
-from feedtherm.data import paper_table
+from feedtherm.benches import bench
 from feedtherm.system.load import load_system
 
 
 def measured_from_tables():
-    out = {(r["condition"], r["point"]): float(r["measured_C"]) for r in paper_table(6)}
-    out.update({(r["condition"], "D_um"): float(r["measured_um"]) for r in paper_table(7)})
+    out = {(r["condition"], r["point"]): float(r["measured_C"]) for r in bench("paper").table(6)}
+    out.update({(r["condition"], "D_um"): float(r["measured_um"]) for r in bench("paper").table(7)})
     return out
 
 

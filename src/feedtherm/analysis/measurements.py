@@ -8,8 +8,10 @@ File layout, one row per condition and quantity::
 
 ``quantity`` is a sensor name (unit ``C``) or ``D_um`` (unit ``um``); the optional last
 column holds another model's simulated value (for the paper's bench: its ANSYS results).
-A description names its measurements in ``meta.measurements``: ``bundled:<name>`` for data
-shipped with feedtherm, or a path relative to the description file.
+A description names its measurements in ``meta.measurements``: ``bundled:<bench>`` for the
+measurements file of a bench (feedtherm.benches), or a path relative to the description file
+(for a bench's description: relative to its folder). A description loaded from a bench that
+names none is compared with the bench's own measurements file.
 """
 
 from __future__ import annotations
@@ -17,9 +19,9 @@ from __future__ import annotations
 import csv
 import math
 from dataclasses import dataclass
-from importlib import resources
 from pathlib import Path
 
+from ..benches import MEASUREMENTS, ORIGIN_PREFIX, bench, bench_name_of
 from ..errors import DescriptionError
 
 HEADER = ["condition", "quantity", "unit", "measured"]
@@ -49,23 +51,42 @@ class MeasurementSet:
         return [r for r in self.rows if r.condition == condition]
 
 
-def _bundled(name: str) -> tuple[str, str, str | None]:
-    folder = resources.files("feedtherm.data").joinpath(name)
-    if not folder.joinpath("measurements.csv").is_file():
-        raise DescriptionError(f"bundled:{name}: no bundled measurements of that name")
-    eq = folder.joinpath("equilibrium_times.csv")
-    return folder.joinpath("measurements.csv").read_text(encoding="utf-8"), f"bundled:{name}", (
-        eq.read_text(encoding="utf-8") if eq.is_file() else None)
+def measurement_spec(measured: str | None, declared: str, origin: str) -> str:
+    """Which measurements to read: the file given, else the description's ``meta.measurements``,
+    else, for a description loaded from a bench, that bench's own measurements file."""
+    if measured or declared:
+        return measured or declared
+    name = bench_name_of(origin)
+    if name is None:
+        raise DescriptionError(f"{origin} names no measurements (meta.measurements); pass --measured FILE")
+    if bench(name).measurements is None:
+        raise DescriptionError(f"{origin}: bench {name!r} has no measurements (no {MEASUREMENTS} in its folder, "
+                               f"no meta.measurements); pass --measured FILE")
+    return f"{ORIGIN_PREFIX}{name}"
+
+
+def _from_bench(name: str) -> tuple[str, str, str | None]:
+    found = bench(name)
+    source = f"{ORIGIN_PREFIX}{name}"
+    if found.measurements is None:
+        raise DescriptionError(f"{source}: bench {name!r} has no {MEASUREMENTS} in {found.folder}")
+    eq = found.equilibrium_times
+    return found.measurements.read_text(encoding="utf-8"), source, eq.read_text(encoding="utf-8") if eq else None
 
 
 def read_measurements(spec: str, relative_to: str | None = None, sensors: list[str] | None = None) -> MeasurementSet:
-    """Read a measurement file (path or ``bundled:<name>``); one-line errors naming the line."""
-    if spec.startswith("bundled:"):
-        text, source, eq_text = _bundled(spec.split(":", 1)[1])
+    """Read a measurement file (path or ``bundled:<bench>``); one-line errors naming the line.
+
+    ``relative_to`` is the origin of the description that names ``spec``: a relative path is
+    read beside that file, or in that bench's folder.
+    """
+    if spec.startswith(ORIGIN_PREFIX):
+        text, source, eq_text = _from_bench(spec[len(ORIGIN_PREFIX):])
     else:
         path = Path(spec)
-        if relative_to and not path.is_absolute() and not relative_to.startswith("bundled:"):
-            path = Path(relative_to).parent / path
+        if relative_to and not path.is_absolute():
+            name = bench_name_of(relative_to)
+            path = (bench(name).folder if name else Path(relative_to).parent) / path
         if not path.is_file():
             raise DescriptionError(f"{path}: no such measurement file")
         text, source, eq_text = path.read_text(encoding="utf-8"), str(path), None

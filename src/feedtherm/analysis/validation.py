@@ -14,7 +14,7 @@ from ..errors import FeedthermError
 from ..simulate import provenance, simulate
 from ..system.checks import check_system
 from ..system.load import LoadedSystem
-from .measurements import MeasurementSet, read_measurements
+from .measurements import MeasurementSet, measurement_spec, read_measurements
 from .sensitivity import sensitivities
 from .validation_types import ELONGATION_QUANTITY, Comparison, Validation
 
@@ -23,12 +23,11 @@ INCONSISTENCY_RATIO = 2.0
 
 
 def measurements_of(loaded: LoadedSystem, measured: str | None) -> MeasurementSet:
-    """The measurement file given, or the one the description names in ``meta.measurements``."""
-    spec = measured or loaded.system.meta.measurements
-    if not spec:
-        raise FeedthermError(f"{loaded.origin} names no measurements (meta.measurements); pass --measured FILE")
+    """The measurement file given, else the description's ``meta.measurements``, else its bench's own."""
+    spec = measurement_spec(measured, loaded.system.meta.measurements, loaded.origin)
     sensors = [n for n in loaded.system.sensors]
-    data = read_measurements(spec, relative_to=loaded.origin, sensors=sensors)
+    # a file given on the command line is where the user says; one the description names is beside it
+    data = read_measurements(spec, relative_to=None if measured else loaded.origin, sensors=sensors)
     missing = [c for c in data.conditions() if c not in loaded.system.conditions]
     if missing:
         raise FeedthermError(f"{data.source}: conditions {', '.join(missing)} are not in {loaded.origin}")

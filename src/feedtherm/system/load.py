@@ -1,4 +1,4 @@
-"""Load a feed-system description from a TOML file or a bundled name.
+"""Load a feed-system description from a TOML file or a bench name (feedtherm.benches).
 
 Every problem becomes one :class:`~feedtherm.errors.DescriptionError` whose message names
 the file, the field (as a dotted path) and the reason; unknown keys are answered with the
@@ -12,20 +12,14 @@ import hashlib
 import json
 import tomllib
 from dataclasses import dataclass
-from importlib import resources
 from pathlib import Path
 from typing import get_args
 
 from pydantic import BaseModel, ValidationError
 
+from ..benches import ORIGIN_PREFIX, bench, bench_names, suggestion
 from ..errors import DescriptionError
 from .schema import FeedSystem
-
-#: Descriptions shipped with the package, loadable by name.
-BUNDLED = {
-    "paper": "paper_bench.toml",
-    "ballscrew_example": "ballscrew_example.toml",
-}
 
 
 @dataclass(frozen=True)
@@ -33,29 +27,29 @@ class LoadedSystem:
     """A validated description with where it came from and the hash of its content."""
 
     system: FeedSystem
-    origin: str  # file path or "bundled:<name>"
+    origin: str  # file path or "bundled:<bench name>"
     sha256: str  # of the resolved description (canonical JSON of the validated data)
 
 
-def bundled_names() -> list[str]:
-    return sorted(BUNDLED)
-
-
 def read_text(spec: str) -> tuple[str, str]:
-    """Return ``(text, origin)`` for a bundled name or a file path."""
-    if spec in BUNDLED:
-        data = resources.files("feedtherm.system").joinpath("data").joinpath(BUNDLED[spec])
-        return data.read_text(encoding="utf-8"), f"bundled:{spec}"
+    """Return ``(text, origin)`` for a bench name or a file path (a bench name wins)."""
+    if spec in bench_names():
+        origin = f"{ORIGIN_PREFIX}{spec}"
+        return _read(bench(spec).description, origin), origin
     path = Path(spec)
     if not path.exists():
-        hint = "" if spec.endswith(".toml") else f" (bundled descriptions: {', '.join(bundled_names())})"
+        hint = "" if spec.endswith(".toml") else f" or bench{suggestion(spec)}"
         raise DescriptionError(f"{spec}: no such file{hint}")
     if path.is_dir():
         raise DescriptionError(f"{spec}: is a directory, not a TOML file")
+    return _read(path, spec), str(path)
+
+
+def _read(path: Path, origin: str) -> str:
     try:
-        return path.read_text(encoding="utf-8"), str(path)
+        return path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
-        raise DescriptionError(f"{spec}: cannot be read ({exc.__class__.__name__}: {exc})") from None
+        raise DescriptionError(f"{origin}: cannot be read ({exc.__class__.__name__}: {exc})") from None
 
 
 def parse_toml(text: str, origin: str) -> dict:
@@ -68,7 +62,7 @@ def parse_toml(text: str, origin: str) -> dict:
 
 
 def load_system(spec: str = "paper") -> LoadedSystem:
-    """Load and validate a description given as a TOML path or a bundled name."""
+    """Load and validate a description given as a TOML path or a bench name."""
     text, origin = read_text(spec)
     return validate_data(parse_toml(text, origin), origin)
 

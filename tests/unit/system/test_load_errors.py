@@ -1,13 +1,12 @@
 """Every bad description ends in one DescriptionError line naming the file, field and reason."""
 
-from importlib import resources
-
 import pytest
 
+from feedtherm.benches import bench
 from feedtherm.errors import DescriptionError
 from feedtherm.system.load import load_system
 
-BENCH = resources.files("feedtherm.system").joinpath("data").joinpath("paper_bench.toml").read_text()
+BENCH = bench("paper").description.read_text(encoding="utf-8")
 
 
 def write_variant(tmp_path, old: str, new: str) -> str:

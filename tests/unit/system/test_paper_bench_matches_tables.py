@@ -1,10 +1,10 @@
-"""The `paper` description carries Tables 1-5 exactly as printed (data/paper/*.csv)."""
+"""The `paper` description carries Tables 1-5 exactly as printed (benches/paper/tables/*.csv)."""
 
 import math
 
 import pytest
 
-from feedtherm.data import paper_table
+from feedtherm import benches
 from feedtherm.system.load import load_system
 
 MATERIAL_KEYS = {"nut": "copper_alloy", "screw/bearing": "gcr15", "base/bearing housing": "q345b",
@@ -18,6 +18,7 @@ TCR_JOINTS = {  # Table 3 row -> joints of the bench that use it
     "guideway-slider": [("sliders", "guideways")],
     "nut_servo_motor-nut": [("nut_motor", "nut_housing")],
 }
+TABLES = benches.bench("paper")  # its tables/ folder holds Tables 1-7 as printed
 
 
 @pytest.fixture(scope="module")
@@ -26,7 +27,7 @@ def bench():
 
 
 def test_table4_materials(bench):
-    for row in paper_table(4):
+    for row in TABLES.table(4):
         m = bench.materials[MATERIAL_KEYS[row["components"]]]
         assert m.density == pytest.approx(float(row["density_kg_per_m3"]))
         assert m.youngs_modulus == pytest.approx(float(row["youngs_modulus_GPa"]) * 1e9)
@@ -38,13 +39,13 @@ def test_table4_materials(bench):
 
 def test_table3_contact_resistances(bench):
     joints = {tuple(j.between): j for j in bench.joints}
-    for row in paper_table(3):
+    for row in TABLES.table(3):
         for pair in TCR_JOINTS[row["joint"]]:
             assert joints[pair].tcr == pytest.approx(float(row["tcr_m2K_per_W"])), pair
 
 
 def test_table5_conditions(bench):
-    for row in paper_table(5):
+    for row in TABLES.table(5):
         c = bench.conditions[row["condition"]]
         assert c.screw_speed == pytest.approx(float(row["screw_speed_rpm"]) * 2 * math.pi / 60)
         assert c.nut_speed == pytest.approx(float(row["nut_speed_rpm"]) * 2 * math.pi / 60)
@@ -55,9 +56,9 @@ def test_table5_conditions(bench):
 
 def test_tables_1_and_2_in_paper_mode_mapping(bench):
     heat = {row.source: row.value for row in bench.paper.heat}
-    assert heat == {SOURCE_KEYS[r["source"]]: pytest.approx(float(r["heat_W"])) for r in paper_table(1)}
+    assert heat == {SOURCE_KEYS[r["source"]]: pytest.approx(float(r["heat_W"])) for r in TABLES.table(1)}
     chtc = {row.table_label.lower().replace(" ", "_"): row.value for row in bench.paper.chtc}
-    printed = {r["surface"]: float(r["chtc_W_per_m2K"]) for r in paper_table(2)}
+    printed = {r["surface"]: float(r["chtc_W_per_m2K"]) for r in TABLES.table(2)}
     assert chtc == {k: pytest.approx(v) for k, v in printed.items()}
     assert bench.paper.reference_condition == "I"
 

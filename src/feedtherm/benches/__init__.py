@@ -1,0 +1,165 @@
+"""The benches feedtherm knows by name, each one a folder with its description and its data.
+
+A bench folder holds::
+
+    description.toml        the system description (required; docs/system-description.md)
+    measurements.csv        measured values to validate and calibrate against (optional; the
+                            layout is in feedtherm.analysis.measurements)
+    equilibrium_times.csv   the equilibrium time the source states per condition (optional)
+    tables/tableN_*.csv     the source's printed tables, as printed (optional)
+    SOURCES.md              where each file comes from
+
+The benches shipped with feedtherm are the folders beside this file. Another package adds
+its own through the entry-point group ``feedtherm.benches``: the entry point's name is the
+bench's name, and it points to a folder path, a :class:`Bench`, or a function returning
+either. In that package's pyproject.toml::
+
+    [project.entry-points."feedtherm.benches"]
+    my_mill = "my_package.benches:my_mill_folder"
+
+An entry point is loaded only when its bench is asked for, so a broken one costs one error
+line naming it, and only when that bench is used or all benches are listed.
+"""
+
+from __future__ import annotations
+
+import csv
+import difflib
+import os
+import tomllib
+from dataclasses import dataclass
+from importlib import metadata
+from pathlib import Path
+
+from ..errors import DescriptionError
+
+#: The entry-point group through which other packages add benches.
+GROUP = "feedtherm.benches"
+#: A description loaded from a bench has the origin ``bundled:<name>``.
+ORIGIN_PREFIX = "bundled:"
+
+DESCRIPTION = "description.toml"
+MEASUREMENTS = "measurements.csv"
+EQUILIBRIUM_TIMES = "equilibrium_times.csv"
+TABLES = "tables"
+
+_SHIPPED = Path(__file__).parent
+_PROVIDER = "feedtherm"
+
+
+@dataclass(frozen=True)
+class Bench:
+    """One bench: its name, its folder and the files in it that feedtherm reads."""
+
+    name: str
+    folder: Path
+    title: str
+    description: Path
+    measurements: Path | None = None
+    equilibrium_times: Path | None = None
+    provider: str = _PROVIDER  # "feedtherm", or the entry point that registered it
+
+    @classmethod
+    def from_folder(cls, name: str, folder: str | os.PathLike, provider: str = _PROVIDER) -> "Bench":
+        """The bench in ``folder``, laid out as this module's docstring says."""
+        folder = Path(folder)
+        description = folder / DESCRIPTION
+        if not description.is_file():
+            raise DescriptionError(f"bench {name!r} ({provider}): {description}: no such file; a bench folder needs {DESCRIPTION}")
+        return cls(name=name, folder=folder, title=_title(description), description=description,
+                   measurements=_optional(folder / MEASUREMENTS),
+                   equilibrium_times=_optional(folder / EQUILIBRIUM_TIMES), provider=provider)
+
+    def table(self, number: int) -> list[dict[str, str]]:
+        """Rows of the source's Table ``number`` (``tables/table<number>_*.csv``), strings as printed."""
+        found = sorted((self.folder / TABLES).glob(f"table{number}_*.csv"))
+        if len(found) != 1:
+            count = "no" if not found else f"{len(found)} files for"
+            raise DescriptionError(f"bench {self.name!r} has {count} table {number} ({TABLES}/table{number}_*.csv in {self.folder})")
+        return list(csv.DictReader(found[0].read_text(encoding="utf-8").splitlines()))
+
+
+def bench_names() -> list[str]:
+    """Names of every bench: the shipped ones and those registered by entry points."""
+    return sorted({*_shipped(), *(entry.name for entry in _entry_points())})
+
+
+def bench(name: str) -> Bench:
+    """The bench called ``name``; one-line DescriptionError if there is none or it is broken."""
+    shipped = _shipped()
+    registered = [entry for entry in _entry_points() if entry.name == name]
+    if registered and (name in shipped or len(registered) > 1):
+        others = (["feedtherm"] if name in shipped else []) + [_describe(entry) for entry in registered]
+        raise DescriptionError(f"bench {name!r} is registered {len(others)} times ({'; '.join(others)}); "
+                               f"rename the entry point")
+    if name in shipped:
+        return Bench.from_folder(name, shipped[name])
+    if registered:
+        return _from_entry_point(registered[0])
+    raise DescriptionError(f"{name}: no bench of that name{suggestion(name)}")
+
+
+def benches() -> list[Bench]:
+    """Every bench, shipped ones and registered ones, by name."""
+    return [bench(name) for name in bench_names()]
+
+
+def suggestion(name: str) -> str:
+    """``"; did you mean 'paper'? (benches: ...)"`` for a mistyped bench name."""
+    names = bench_names()
+    close = difflib.get_close_matches(name, names, n=1, cutoff=0.5)
+    return (f"; did you mean {close[0]!r}?" if close else "") + f" (benches: {', '.join(names)})"
+
+
+def bench_name_of(origin: str) -> str | None:
+    """The bench a description came from, given its origin (``bundled:paper`` or a variant of it)."""
+    if not origin.startswith(ORIGIN_PREFIX):
+        return None
+    return origin[len(ORIGIN_PREFIX):].split(" (", 1)[0]  # variants append " (<what changed>)"
+
+
+def _shipped() -> dict[str, Path]:
+    return {folder.name: folder for folder in sorted(_SHIPPED.iterdir()) if (folder / DESCRIPTION).is_file()}
+
+
+def _entry_points() -> list[metadata.EntryPoint]:
+    return list(metadata.entry_points(group=GROUP))
+
+
+def _from_entry_point(entry: metadata.EntryPoint) -> Bench:
+    where = _describe(entry)
+    try:
+        target = entry.load()
+        found = target() if callable(target) and not isinstance(target, Bench) else target
+    except Exception as exc:  # whatever another package raises, the user gets one line naming it
+        reason = " ".join(str(exc).split())
+        raise DescriptionError(f"bench {entry.name!r}: {where} failed: {type(exc).__name__}: {reason}") from None
+    if isinstance(found, Bench):
+        if found.name != entry.name:
+            raise DescriptionError(f"bench {entry.name!r}: {where} returned a bench named {found.name!r}; "
+                                   f"the two names must agree")
+        return found
+    if isinstance(found, (str, os.PathLike)):
+        return Bench.from_folder(entry.name, found, provider=where)
+    raise DescriptionError(f"bench {entry.name!r}: {where} returned an object of type {type(found).__name__}; "
+                           f"expected a folder path or a feedtherm.benches.Bench")
+
+
+def _describe(entry: metadata.EntryPoint) -> str:
+    package = getattr(entry.dist, "name", None)
+    return f"entry point {entry.name} = {entry.value}" + (f" of {package}" if package else "") + f" in {GROUP}"
+
+
+def _optional(path: Path) -> Path | None:
+    return path if path.is_file() else None
+
+
+def _title(description: Path) -> str:
+    # Only for listings: a description that cannot be read gets its one-line error from
+    # load_system, which reads it in full.
+    try:
+        meta = tomllib.loads(description.read_text(encoding="utf-8")).get("meta", {})
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return ""
+    title = meta.get("title", "") if isinstance(meta, dict) else ""
+    return title if isinstance(title, str) else ""
