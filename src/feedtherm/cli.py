@@ -94,6 +94,15 @@ def cmd_run(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_benches(args: argparse.Namespace) -> int:
+    from .benches import benches
+
+    for bench in benches():
+        measured = "measurements" if bench.measurements is not None else "no measurements"
+        print(f"{bench.name:<20} {bench.title} ({measured}; from {bench.provider})")
+    return 0
+
+
 def cmd_models(args: argparse.Namespace) -> int:
     from .models.registry import available_models
 
@@ -233,7 +242,7 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
 
 def _system_argument(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("system", nargs="?", default="paper",
-                        help="a TOML description or a bundled name (default: paper)")
+                        help="a TOML description or a bench name of `feedtherm benches` (default: paper)")
 
 
 def _mode_argument(parser: argparse.ArgumentParser) -> None:
@@ -319,6 +328,9 @@ def build_parser() -> argparse.ArgumentParser:
     _measured_argument(validate)
     _out_argument(validate, "out/<system>_validation_<mode>")
     validate.set_defaults(func=cmd_validate)
+
+    bench_list = sub.add_parser("benches", help="list the bundled and plugged-in benches SYSTEM may name")
+    bench_list.set_defaults(func=cmd_benches)
 
     models = sub.add_parser("models", help="list the models --model accepts")
     models.set_defaults(func=cmd_models)
