@@ -8,7 +8,6 @@ was calibrated, on which conditions, from which original value.  It loads like a
 from __future__ import annotations
 
 import csv
-import json
 import sys
 from pathlib import Path
 
@@ -21,9 +20,11 @@ from ..analysis.calibration import CalibrationResult, Prediction
 from ..system.load import LoadedSystem, read_text
 from ..system.quantities import registry
 from ..system.variants import split_path
-from .run_files import _jsonable, staged_directory
+from .files import staged_directory, write_json
 
 PREDICTION_HEADER = ["condition", "quantity", "unit", "predicted", "measured", "deviation"]
+#: Every file a calibration can write: crossval.csv only with cross-validation.
+CALIBRATION_FILES = ("calibrated.toml", "calibration.json", "heldout.csv", "crossval.csv")
 
 
 def calibrated_toml(original: LoadedSystem, result: CalibrationResult) -> str:
@@ -108,15 +109,19 @@ def calibration_summary(result: CalibrationResult) -> dict:
 
 def write_calibration(original: LoadedSystem, result: CalibrationResult, out_dir: Path,
                       cross: list[tuple[str, CalibrationResult]] | None = None) -> list[Path]:
-    """Write calibrated.toml, calibration.json, heldout.csv (and crossval.csv), all or none."""
-    with staged_directory(out_dir) as stage:
-        (stage / "calibrated.toml").write_text(calibrated_toml(original, result))
+    """Write calibrated.toml, calibration.json, heldout.csv (and crossval.csv), all or none.
+
+    The set replaces an earlier calibration's files in ``out_dir`` whole: a crossval.csv it
+    does not write is removed with them.
+    """
+    with staged_directory(out_dir, replaces=CALIBRATION_FILES) as stage:
+        (stage / "calibrated.toml").write_text(calibrated_toml(original, result), encoding="utf-8")
         summary = calibration_summary(result)
         if cross is not None:
             summary["cross_validation"] = cross_summary(cross)
             write_predictions([(r, left) for left, res in cross for r in res.held_out], stage / "crossval.csv",
                               first_column="left_out")
-        (stage / "calibration.json").write_text(json.dumps(_jsonable(summary), indent=2))
+        write_json(stage / "calibration.json", summary)
         write_predictions([(r, None) for r in result.held_out], stage / "heldout.csv")
         names = sorted(p.name for p in stage.iterdir())
     return [Path(out_dir) / n for n in names]

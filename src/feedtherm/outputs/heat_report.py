@@ -2,20 +2,22 @@
 
 from __future__ import annotations
 
-import json
 import sys
 
 from rich.console import Console
 from rich.table import Table
 
 from ..boundary import BoundaryConditions
-
-_KELVIN_OFFSET = 273.15
+from ..constants import KELVIN_OFFSET
+from .files import json_text
 
 
 def heat_json(bc: BoundaryConditions) -> str:
-    """One JSON object: heats [W] and CHTCs [W/(m^2 K)], with the paper's values beside."""
-    return json.dumps({
+    """One JSON object: heats [W] and CHTCs [W/(m^2 K)], with the paper's values beside.
+
+    A value the correlations could not compute (NaN, infinite) is ``null``: JSON has no NaN.
+    """
+    return json_text({
         "condition": bc.condition,
         "mode": bc.mode,
         "heat_W": {name: h.power for name, h in bc.heats.items()},
@@ -26,11 +28,11 @@ def heat_json(bc: BoundaryConditions) -> str:
         "screw_rpm": bc.point.screw_rpm,
         "nut_rpm": bc.point.nut_rpm,
         "table_speed_m_per_min": bc.point.table_speed * 60.0,
-        "ambient_C": bc.point.ambient - _KELVIN_OFFSET,
+        "ambient_C": bc.point.ambient - KELVIN_OFFSET,
         "details": {name: h.details for name, h in bc.heats.items()},
         "correlation": {name: s.correlation for name, s in bc.surfaces.items()},
         "warnings": bc.warnings,
-    }, indent=2)
+    })
 
 
 def _paper(value: float | None, fmt: str) -> str:
@@ -44,7 +46,7 @@ def print_heat(bc: BoundaryConditions, system_name: str, console: Console | None
     console.print(
         f"[bold]{system_name}[/], condition [bold]{bc.condition}[/], mode [bold]{bc.mode}[/]: "
         f"screw {p.screw_rpm:.0f} rpm, nut {p.nut_rpm:.0f} rpm, relative {p.relative_rpm:.0f} rpm, "
-        f"table {abs(p.table_speed) * 60:.3g} m/min, ambient {p.ambient - _KELVIN_OFFSET:.1f} °C"
+        f"table {abs(p.table_speed) * 60:.3g} m/min, ambient {p.ambient - KELVIN_OFFSET:.1f} °C"
     )
     heats = Table(title="Heat per source", title_justify="left")
     heats.add_column("source")

@@ -12,12 +12,15 @@ from pathlib import Path
 
 import numpy as np
 
-from ..solution import KELVIN_OFFSET, SENSOR_NAMES_AMBIENT, Solution
-from .run_files import ordered_sensor_names, staged_directory
+from ..constants import AMBIENT_SENSOR, KELVIN_OFFSET
+from ..solution import Solution
+from .files import staged_directory
+from .sensor_order import ordered_sensor_names
 
 SENSORS_PNG = "sensors.png"
 ELONGATION_PNG = "elongation.png"
 SCREW_HEATMAP_PNG = "screw_heatmap.png"
+PLOT_NAMES = (SENSORS_PNG, ELONGATION_PNG, SCREW_HEATMAP_PNG)
 
 _DPI = 150
 _HOURS = 3600.0
@@ -28,8 +31,8 @@ _MAX_HEATMAP_COLUMNS = 1500
 def write_run_plots(solution: Solution, out_dir: Path) -> list[Path]:
     """Write ``sensors.png``, ``elongation.png`` and ``screw_heatmap.png`` into ``out_dir``.
 
-    Written like the tables (see :func:`~feedtherm.outputs.run_files.staged_directory`):
-    all three appear, or none.
+    Staged and swapped in as one set (:func:`~feedtherm.outputs.files.staged_directory`):
+    all three appear, or none; other files in ``out_dir`` are kept.
     """
     out_dir = Path(out_dir)
     with staged_directory(out_dir) as stage:
@@ -42,7 +45,7 @@ def draw_run_plots(solution: Solution, directory: Path) -> list[str]:
     plot_sensors(solution, directory / SENSORS_PNG)
     plot_elongation(solution, directory / ELONGATION_PNG)
     plot_screw_heatmap(solution, directory / SCREW_HEATMAP_PNG)
-    return [SENSORS_PNG, ELONGATION_PNG, SCREW_HEATMAP_PNG]
+    return list(PLOT_NAMES)
 
 
 def run_label(solution: Solution) -> str:
@@ -63,7 +66,7 @@ def plot_sensors(solution: Solution, path: Path) -> None:
     hours = solution.times / _HOURS
     celsius = solution.sensors_celsius()
     for name in ordered_sensor_names(solution):
-        if name == SENSOR_NAMES_AMBIENT:
+        if name == AMBIENT_SENSOR:
             ax.plot(hours, celsius[name], color="0.45", linestyle="--", linewidth=1.2, label=f"{name} (ambient)")
         else:
             ax.plot(hours, celsius[name], linewidth=1.4, label=name)

@@ -4,32 +4,43 @@ Everything is read from a :class:`~feedtherm.solution.Solution` (SI inside); the
 °C and metre → µm conversions happen here, at the output edge.  The layout of every file is
 documented in ``docs/outputs.md``.
 
-The files of one call are written into a temporary directory beside the output directory
-and moved into place only once all of them are complete, so an error (or Ctrl-C) never
-leaves a half-written file or a partial set behind.
+The files of one call are staged and swapped in as one set
+(:func:`~feedtherm.outputs.files.staged_directory`): an error, Ctrl-C or a killed process
+never leaves a half-written file, or new files beside old ones, behind.
 """
 
 from __future__ import annotations
 
-import json
 import math
-import os
 import re
-import shutil
-import uuid
-from collections.abc import Iterator
-from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 
-from ..errors import FeedthermError
-from ..solution import KELVIN_OFFSET, SENSOR_NAMES_AMBIENT, Solution
+from ..constants import AMBIENT_SENSOR, KELVIN_OFFSET
+from ..solution import Solution
+from .field_images import (
+    SCREW_DEFORMATION_PNG,
+    TEMPERATURE_FIELD_PNG,
+    write_field_images,
+)
+from .fields import PVD_NAME, write_pvd
+from .files import (
+    check_output_dir,  # noqa: F401  the CLI checks --out with it, from here
+    staged_directory,
+    to_json_ready,
+    write_json,
+)
+from .plots import PLOT_NAMES, draw_run_plots
+from .sensor_order import ordered_sensor_names
 
 SENSORS_CSV = "sensors.csv"
 SCREW_CSV = "screw.csv"
 SCREW_DISPLACEMENT_CSV = "screw_displacement.csv"
 SUMMARY_JSON = "summary.json"
+TABLES = (SENSORS_CSV, SCREW_CSV, SCREW_DISPLACEMENT_CSV, SUMMARY_JSON)
+#: Every file a run can write (glob patterns): an earlier run's files in its directory.
+RUN_FILES = (*TABLES, *PLOT_NAMES, PVD_NAME, "fields_*.vtu", TEMPERATURE_FIELD_PNG, SCREW_DEFORMATION_PNG)
 
 # Fixed decimals keep the columns readable; 1e-4 °C and 1e-4 µm are far below any
 # measurement or model accuracy.
@@ -61,55 +72,26 @@ def write_run_outputs(solution: Solution, out_dir: Path, *, sample_interval: flo
 
 
 def write_run(solution: Solution, out_dir: Path, *, sample_interval: float) -> list[Path]:
-    """Tables and plots of a run in one step: all files appear in ``out_dir``, or none."""
-    from .plots import draw_run_plots  # plots import from this module
+    """Tables, plots and (FE runs) fields of a run in one set: all files appear in ``out_dir``, or none.
 
+    The set replaces every file of an earlier run in ``out_dir`` (:data:`RUN_FILES`), also
+    those this run does not write, such as the fields of an earlier FE run or its extra
+    snapshots; other files in ``out_dir`` are kept.
+    """
     out_dir = Path(out_dir)
-    with staged_directory(out_dir) as stage:
+    with staged_directory(out_dir, replaces=RUN_FILES) as stage:
         names = write_tables(solution, stage, sample_interval=sample_interval) + draw_run_plots(solution, stage)
         names += write_field_outputs(solution, stage)
-    if solution.snapshots:
-        _remove_stale_fields(out_dir, set(names))
     return [out_dir / name for name in names]
-
-
-def field_series(solution: Solution):
-    """The FE run's snapshots as a :class:`~feedtherm.outputs.fields.FieldSeries` (None for the fast model)."""
-    from .fields import FieldSeries
-
-    if not solution.snapshots or solution.mesh is None:
-        return None
-    mesh = solution.mesh
-    times = np.array([t for t, _, _ in solution.snapshots])
-    rows = [int(np.argmin(np.abs(solution.times - t))) for t in times]
-    info = solution.info
-    title = f"condition {info.get('condition')}, {info.get('mode')} mode, fem model ({info.get('mesh', '')} mesh)"
-    return FieldSeries(
-        points=np.asarray(mesh.points).T, tets=np.asarray(mesh.tets).T, part_id=np.asarray(mesh.part_id),
-        part_names=mesh.part_names, moving_part=mesh.moving_part, snapshot_times=times,
-        temperatures=np.array([state for _, state, _ in solution.snapshots]),
-        offsets=np.array([offset for _, _, offset in solution.snapshots]),
-        screw_x=solution.screw_x, screw_displacement=solution.screw_displacement[rows], title=title,
-    )
 
 
 def write_field_outputs(solution: Solution, directory: Path) -> list[str]:
     """fields.pvd, its .vtu snapshots and the two field images of an FE run (nothing otherwise)."""
-    series = field_series(solution)
+    series = solution.fields
     if series is None:
         return []
-    from .field_images import write_field_images
-    from .fields import write_pvd
-
     paths = write_pvd(series, directory) + write_field_images(series, directory)
     return [Path(p).name for p in paths]
-
-
-def _remove_stale_fields(out_dir: Path, keep: set[str]) -> None:
-    """Snapshots of an earlier, longer run in the same directory would join ParaView's file series."""
-    for path in Path(out_dir).glob("fields_*.vtu"):
-        if path.name not in keep:
-            path.unlink()
 
 
 def write_tables(solution: Solution, directory: Path, *, sample_interval: float) -> list[str]:
@@ -121,7 +103,7 @@ def write_tables(solution: Solution, directory: Path, *, sample_interval: float)
     write_screw_csv(solution.times[rows], solution.screw_x, solution.screw_displacement[rows] * 1e6,
                     directory / SCREW_DISPLACEMENT_CSV)
     write_summary_json(solution, directory / SUMMARY_JSON)
-    return [SENSORS_CSV, SCREW_CSV, SCREW_DISPLACEMENT_CSV, SUMMARY_JSON]
+    return list(TABLES)
 
 
 # --------------------------------------------------------------------------- rows
@@ -145,14 +127,6 @@ def sample_rows(times: np.ndarray, interval: float) -> np.ndarray:
     keep[1:] = bins[1:] > bins[:-1]
     keep[-1] = True
     return np.flatnonzero(keep)
-
-
-def ordered_sensor_names(solution: Solution) -> list[str]:
-    """The sensors as the description declares them, with the ambient sensor last."""
-    names = [name for name in solution.sensors if name != SENSOR_NAMES_AMBIENT]
-    if SENSOR_NAMES_AMBIENT in solution.sensors:
-        names.append(SENSOR_NAMES_AMBIENT)
-    return names
 
 
 # --------------------------------------------------------------------------- CSV
@@ -195,7 +169,7 @@ def run_summary(solution: Solution) -> dict:
     steady = _ordered_values(solution, solution.summary_values("steady"))
     start_um = float(solution.elongation_um[0])
     energy = solution.energy
-    return _jsonable({
+    return to_json_ready({
         "condition": info.get("condition"),
         "model": info.get("model"),
         "mode": info.get("mode"),
@@ -219,8 +193,7 @@ def run_summary(solution: Solution) -> dict:
 
 
 def write_summary_json(solution: Solution, path: Path) -> None:
-    text = json.dumps(run_summary(solution), indent=2, ensure_ascii=False, allow_nan=False)
-    path.write_text(text + "\n", encoding="utf-8")
+    write_json(path, run_summary(solution))
 
 
 def _ordered_values(solution: Solution, values: dict[str, float]) -> dict[str, float]:
@@ -230,21 +203,6 @@ def _ordered_values(solution: Solution, values: dict[str, float]) -> dict[str, f
     return {name: values[name] for name in order + rest}
 
 
-def _jsonable(value):
-    """Plain JSON types: numpy scalars and arrays unwrapped, NaN/inf as null, paths as text."""
-    if isinstance(value, dict):
-        return {str(key): _jsonable(item) for key, item in value.items()}
-    if isinstance(value, (list, tuple, np.ndarray)):
-        return [_jsonable(item) for item in value]
-    if isinstance(value, np.generic):
-        value = value.item()
-    if isinstance(value, float) and not math.isfinite(value):
-        return None  # JSON has no NaN; null is what a reader can parse
-    if isinstance(value, Path):
-        return str(value)
-    return value
-
-
 # --------------------------------------------------------------------------- the console line
 
 
@@ -252,7 +210,7 @@ def summary_line(solution: Solution, out_dir: Path) -> str:
     """One line: where the files are and the final values (°C, µm, energy balance)."""
     final = solution.summary_values("final")
     temperatures = ", ".join(f"{name} {final[name]:.2f} °C" for name in ordered_sensor_names(solution)
-                             if name != SENSOR_NAMES_AMBIENT and name in final)
+                             if name != AMBIENT_SENSOR and name in final)
     error_percent = 100.0 * solution.energy.relative_error
     return (f"{out_dir}: {temperatures}, D {final['D_um']:.2f} µm, "
             f"energy balance error {error_percent:.2g} %")
@@ -269,85 +227,3 @@ def default_out_dir(system: str, run: str, mode: str) -> Path:
 def _safe_name(text: str) -> str:
     # Duty-cycle names and CSV stems may hold spaces or separators; a directory name should not.
     return re.sub(r"[^A-Za-z0-9_.+-]+", "-", text).strip("-.") or "run"
-
-
-# --------------------------------------------------------------------------- atomic writes
-
-
-def check_output_dir(out_dir: Path) -> None:
-    """Fail now, before a long run, if ``out_dir`` cannot become a directory we write into."""
-    out_dir = Path(out_dir)
-    target = Path(os.path.abspath(out_dir))
-    if target.exists() and not target.is_dir():
-        raise FeedthermError(f"{out_dir}: exists and is not a directory")
-    existing = _nearest_existing(target)
-    if not existing.is_dir():
-        raise FeedthermError(f"{out_dir}: {existing} is a file, not a directory")
-    # Files are staged beside out_dir and then moved into it: both places must be writable.
-    must_write = [target.parent, target] if existing == target else [existing]
-    for directory in must_write:
-        if not os.access(directory, os.W_OK | os.X_OK):
-            raise FeedthermError(f"{out_dir}: no permission to write in {directory}")
-
-
-@contextmanager
-def staged_directory(out_dir: Path) -> Iterator[Path]:
-    """Yield an empty directory beside ``out_dir``; on success move its files into ``out_dir``.
-
-    A missing ``out_dir`` is created by renaming the staging directory (one atomic step); in
-    an existing one each file is replaced with ``os.replace`` (atomic per file).  On any error
-    the staging directory, and any parent directories made for it, are removed again.
-    """
-    out_dir = Path(out_dir)
-    check_output_dir(out_dir)
-    made = _make_parents(out_dir.parent)
-    stage = out_dir.parent / f".{out_dir.name}.partial-{uuid.uuid4().hex[:12]}"
-    try:
-        stage.mkdir()
-        yield stage
-        _move_into_place(stage, out_dir)
-    except BaseException as exc:
-        shutil.rmtree(stage, ignore_errors=True)
-        _remove_if_empty(made)
-        if isinstance(exc, OSError):
-            raise FeedthermError(f"{out_dir}: cannot write the outputs ({exc.strerror or exc})") from None
-        raise
-
-
-def _move_into_place(stage: Path, out_dir: Path) -> None:
-    if not out_dir.exists():
-        try:
-            stage.rename(out_dir)
-            return
-        except OSError:
-            pass  # created meanwhile by someone else: move file by file below
-    out_dir.mkdir(exist_ok=True)
-    for path in sorted(stage.iterdir()):
-        os.replace(path, out_dir / path.name)
-    stage.rmdir()
-
-
-def _nearest_existing(path: Path) -> Path:
-    while not path.exists():
-        path = path.parent
-    return path
-
-
-def _make_parents(directory: Path) -> list[Path]:
-    """Create ``directory`` and its missing parents; return the ones made, deepest first."""
-    missing = []
-    current = Path(directory)
-    while not current.exists():
-        missing.append(current)
-        current = current.parent
-    for path in reversed(missing):
-        path.mkdir()
-    return missing
-
-
-def _remove_if_empty(directories: list[Path]) -> None:
-    for path in directories:  # deepest first
-        try:
-            path.rmdir()
-        except OSError:
-            return

@@ -1,9 +1,9 @@
 """The files of ``feedtherm sweep``: ``sweep.csv`` and PNG plots of the swept values.
 
 Reads the row dicts of :func:`feedtherm.analysis.sweep.run_sweep` (already in °C, µm, rpm
-and m/min).  Like a run's files (:func:`~feedtherm.outputs.run_files.staged_directory`),
-everything is written into a hidden directory beside the output directory and moved into
-place only when complete: all files appear, or none.  The layout is documented in
+and m/min).  Like a run's files, the set is staged and swapped in whole
+(:func:`~feedtherm.outputs.files.staged_directory`): all files appear, or none, and no plot
+of an earlier sweep is left beside the new CSV.  The layout is documented in
 ``docs/sweep.md``.
 
 Plots are built with ``matplotlib.figure.Figure`` (no pyplot state), matplotlib imported
@@ -19,12 +19,14 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.sweep import OPTIONS, columns
-from .run_files import staged_directory
+from .files import staged_directory
 
 SWEEP_CSV = "sweep.csv"
 HEAT_MAP_PNG = "sweep_heat_map.png"
 #: One plot per swept variable that has more than one value.
 PLOT_NAMES = {"screw_rpm": "sweep_screw_rpm.png", "nut_rpm": "sweep_nut_rpm.png", "ambient_C": "sweep_ambient.png"}
+#: Every file a sweep can write: the plots depend on which variables vary.
+SWEEP_FILES = (SWEEP_CSV, HEAT_MAP_PNG, *PLOT_NAMES.values())
 
 AXIS_LABELS = {"screw_rpm": r"screw speed $n_\mathrm{s}$ [rpm]", "nut_rpm": r"nut speed $n_\mathrm{n}$ [rpm]",
                "ambient_C": "ambient temperature [°C]"}
@@ -53,12 +55,13 @@ def write_sweep(rows: list[dict], sensors: dict[str, str], out_dir: Path, *, tit
     sensors : dict
         Sensor name -> short label (``{"T1": "front bearing", …}``), in column order.
     out_dir : Path
-        Created if missing; files of the same names are replaced, others left alone.
+        Created if missing; an earlier sweep's files (:data:`SWEEP_FILES`) are replaced as a
+        whole, also plots this sweep does not draw; other files are kept.
     title : str
         What the sweep ran (description, mode, motion, duration), shown on every plot.
     """
     out_dir = Path(out_dir)
-    with staged_directory(out_dir) as stage:
+    with staged_directory(out_dir, replaces=SWEEP_FILES) as stage:
         write_sweep_csv(rows, list(sensors), stage / SWEEP_CSV)
         names = [SWEEP_CSV] + draw_sweep_plots(rows, sensors, stage, title=title)
     return [out_dir / name for name in names]

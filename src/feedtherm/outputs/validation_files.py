@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import csv
-import json
 import sys
 from pathlib import Path
 
@@ -11,7 +10,7 @@ from rich.console import Console
 from rich.table import Table
 
 from ..analysis.validation_types import Validation
-from .run_files import _jsonable, staged_directory
+from .files import staged_directory, write_json
 
 VALIDATION_HEADER = ["condition", "quantity", "unit", "simulated", "measured", "paper_simulated", "deviation"]
 
@@ -22,7 +21,7 @@ def write_validation(validation: Validation, out_dir: Path) -> list[Path]:
 
     with staged_directory(out_dir) as stage:
         write_validation_csv(validation, stage / "validation.csv")
-        (stage / "validation.json").write_text(json.dumps(_jsonable(validation_summary(validation)), indent=2))
+        write_json(stage / "validation.json", validation_summary(validation))
         write_report(validation, stage / "report.html")
         names = sorted(p.name for p in stage.iterdir())
     return [Path(out_dir) / name for name in names]

@@ -270,6 +270,21 @@ def test_write_run_writes_tables_and_plots_together(solution, tmp_path):
         "sensors.png", "summary.json"]
 
 
+def test_a_run_replaces_every_file_of_an_earlier_run_and_keeps_others(solution, tmp_path):
+    """A fast run over an FE run's directory: no fields of the other run beside the new summary."""
+    out_dir = tmp_path / "run"
+    out_dir.mkdir()
+    for name in ("summary.json", "fields.pvd", "fields_0000.vtu", "fields_0012.vtu", "temperature_field.png",
+                 "screw_deformation.png"):
+        (out_dir / name).write_text("earlier FE run\n")
+    (out_dir / "notes.txt").write_text("mine\n")
+    written = write_run(solution, out_dir, sample_interval=600.0)
+    assert sorted(p.name for p in out_dir.iterdir()) == sorted([p.name for p in written] + ["notes.txt"])
+    assert len(written) == 7 and (out_dir / "notes.txt").read_text() == "mine\n"
+    assert json.loads((out_dir / "summary.json").read_text())["model"] == "fast"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
+
+
 # --------------------------------------------------------------------------- names and the console line
 
 
