@@ -75,7 +75,8 @@ PROGRESS_DELAY_S = 1.0
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    from .outputs.run_files import check_output_dir, default_out_dir, summary_line, write_run
+    from .outputs.files import check_output_dir
+    from .outputs.run_files import default_out_dir, summary_line, write_run
     from .plan import plan_run
 
     loaded = _load(args.system)
@@ -129,7 +130,8 @@ def _positive_seconds(text: str) -> float:
 
 def cmd_sweep(args: argparse.Namespace) -> int:
     from .analysis.sweep import parse_grid, run_sweep, sensor_labels
-    from .outputs.run_files import check_output_dir, default_out_dir
+    from .outputs.files import check_output_dir
+    from .outputs.run_files import default_out_dir
     from .system.schema import DEFAULT_DURATION_S
 
     started = time.perf_counter()
@@ -193,7 +195,8 @@ class _LazyProgress:
 
 
 def cmd_validate(args: argparse.Namespace) -> int:
-    from .outputs.run_files import check_output_dir, default_out_dir
+    from .outputs.files import check_output_dir
+    from .outputs.run_files import default_out_dir
 
     from .models.registry import model_entry
 
@@ -215,7 +218,8 @@ def cmd_validate(args: argparse.Namespace) -> int:
 
 
 def cmd_calibrate(args: argparse.Namespace) -> int:
-    from .outputs.run_files import check_output_dir, default_out_dir
+    from .outputs.files import check_output_dir
+    from .outputs.run_files import default_out_dir
 
     loaded = _load(args.system)
     _require_paper_table(loaded, args.mode)

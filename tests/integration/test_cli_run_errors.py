@@ -45,7 +45,7 @@ def assert_one_line_error_and_nothing_written(result, tmp_path, *fragments, inpu
         (["--condition", "IX"], ["no condition 'IX'", "I, II, III, IV, V"]),
         (["--cycle", "I_then_standstil"], ["'I_then_standstil'", "I_then_standstill"]),
         (["--cycle", "missing.csv"], ["'missing.csv'", "nor an existing CSV file"]),
-        (["--condition", "I", "--model", "ansys"], ["--model", "invalid choice: 'ansys'"]),
+        (["--condition", "I", "--model", "ansys"], ["--model", "no model 'ansys'", "fast, fem"]),
         (["--condition", "I", "--model", "fem", "--mesh", "huge"], ["--mesh", "invalid choice: 'huge'"]),
         (["ballscrew_example", "--condition", "v10", "--mode", "paper"], ["--mode paper", "no [paper] table"]),
         (["no_such_bench.toml", "--condition", "I"], ["no_such_bench.toml: no such file"]),
@@ -102,23 +102,27 @@ def fake_solution():
     )
 
 
-def test_valid_arguments_reach_simulate_and_the_files_appear(tmp_path, monkeypatch, capsys):
+def test_valid_arguments_reach_the_plan_and_the_files_appear(tmp_path, monkeypatch, capsys):
     calls = []
 
-    def simulate(loaded, **kwargs):
-        calls.append((loaded.origin, kwargs))
-        kwargs["progress"](0.5)
+    def execute(plan, progress):
+        calls.append(plan)
+        progress(0.5)
         return fake_solution()
 
-    monkeypatch.setitem(sys.modules, "feedtherm.simulate", types.SimpleNamespace(simulate=simulate))
+    monkeypatch.setitem(sys.modules, "feedtherm.simulate", types.SimpleNamespace(execute=execute))
     monkeypatch.chdir(tmp_path)
     assert cli.main(["run", "--condition", "I", "--duration", "60", "--sample-interval", "5"]) == 0
-    origin, kwargs = calls[0]
-    assert origin == "bundled:paper"
-    assert {k: v for k, v in kwargs.items() if k != "progress"} == {
-        "condition": "I", "cycle": None, "mode": "physics", "model": "fast", "duration": 60.0,
-        "single_drive": False, "sample_interval": 5.0, "motion": "resolved", "mesh": "coarse",
-        "solver": "auto"}
+    (plan,) = calls
+    assert plan.loaded.origin == "bundled:paper" and plan.label == "I" and plan.mode == "physics"
+    assert plan.model.name == "fast" and not plan.single_drive and plan.sample_interval == 5.0
+    assert (plan.options.motion, plan.options.mesh, plan.options.solver) == ("resolved", "coarse", "auto")
+    (segment,) = plan.segments
+    assert (segment.t0, segment.t1) == (0.0, 60.0)
+    # Table 5, condition I: 396 and 360 rpm at 20 °C
+    point = segment.bc.point
+    assert (point.screw_rpm, point.nut_rpm, point.ambient) == (pytest.approx(396.0), pytest.approx(360.0),
+                                                               pytest.approx(293.15))
     out = capsys.readouterr().out
     assert out == "out/paper_I_physics: T1 21.00 °C, D 1.00 µm, energy balance error 0 %\n"
     assert len(list((tmp_path / "out" / "paper_I_physics").iterdir())) == 7

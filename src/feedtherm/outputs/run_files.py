@@ -25,12 +25,7 @@ from .field_images import (
     write_field_images,
 )
 from .fields import PVD_NAME, write_pvd
-from .files import (
-    check_output_dir,  # noqa: F401  the CLI checks --out with it, from here
-    staged_directory,
-    to_json_ready,
-    write_json,
-)
+from .files import staged_directory, to_json_ready, write_json
 from .plots import PLOT_NAMES, draw_run_plots
 from .sensor_order import ordered_sensor_names
 

@@ -11,7 +11,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..constants import AMBIENT_SENSOR as SENSOR_NAMES_AMBIENT  # noqa: F401  TODO remove
 from ..constants import ELONGATION_PROBE, KELVIN_OFFSET
 from .fields import FieldSeries
 

