@@ -9,9 +9,17 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from ..physics import bearings, guideways, motors, screw_nut
-from ..physics.mechanics import heat_friction, torque_screw_drive
+from ..physics import (
+    ball_screw,
+    bearings,
+    guideways,
+    motors,
+    screw_nut,
+    screw_nut_rolling,
+)
+from ..physics.mechanics import angular_speed, heat_friction, torque_screw_drive
 from ..system.schema import (
+    BallScrewSource,
     BearingSource,
     FeedSystem,
     FixedSource,
@@ -61,6 +69,8 @@ def source_heats(system: FeedSystem, point: OperatingPoint) -> dict[str, SourceH
     for name, src in sources.items():
         if isinstance(src, SlidingScrewSource):
             heats[name] = _sliding_screw(name, src, point, axial_force, shaft_torque)
+        elif isinstance(src, BallScrewSource):
+            heats[name] = _ball_screw(name, src, point, axial_force, shaft_torque)
         elif isinstance(src, BearingSource):
             heats[name] = _bearing(name, src, point, shaft_torque)
         elif isinstance(src, TorqueSource):
@@ -90,6 +100,61 @@ def _sliding_screw(name, src: SlidingScrewSource, point, axial_force, shaft_torq
         "axial_load_N": force, "load_torque_Nm": torque.load, "preload_torque_Nm": torque.preload,
         "grease_torque_Nm": torque.grease, "friction_torque_Nm": torque.total,
     })
+
+
+def _ball_screw(name, src: BallScrewSource, point, axial_force, shaft_torque) -> SourceHeat:
+    force = axial_force + src.external_axial_load
+    sets = ball_screw.axial_loads_preloaded_nut(force, src.preload) if src.preload > 0.0 else (force,)
+    sliding, hysteresis, rolling = (sum(terms) for terms in zip(
+        *(_ball_set_torques(src, set_load, point) for set_load in sets)))
+    total = screw_nut_rolling.torque_screw_nut_rolling(sliding, hysteresis, rolling)
+    # As for the sliding screw: the screw also pushes the table, and the friction drags the nut.
+    drive = total + torque_screw_drive(force, point.lead)
+    direction = _sign(point.relative_rpm)
+    shaft_torque["screw"] += drive * direction
+    shaft_torque["nut"] -= drive * direction
+    power = screw_nut.heat_screw_nut(total, point.screw_rpm, point.nut_rpm)
+    return SourceHeat(name, power, dict(src.into), point.relative_rpm, {
+        "axial_load_N": force, **{f"ball_set_{i + 1}_load_N": load for i, load in enumerate(sets)},
+        "differential_sliding_torque_Nm": sliding, "hysteresis_torque_Nm": hysteresis,
+        "rolling_resistance_torque_Nm": rolling, "friction_torque_Nm": total,
+    })
+
+
+def _ball_set_torques(src: BallScrewSource, set_load, point) -> tuple[float, float, float]:
+    """Screw torques [N·m] of one ball set's screw and nut contacts: sliding, hysteresis, EHL.
+
+    Each term is a resistance at a ball contact turned into screw torque by power
+    (physics.ball_screw.lever_arm_rolling_ball_screw): the EHL and hysteresis forces act over
+    the rolling speed u = r_e·ω, Heathcote's sliding moment over the ball's spin Ω = (2r_e/D)·ω.
+    Eq. 5's cos α (a thread flank's projection) has no place here.
+    """
+    if set_load == 0.0:  # a lifted-off set rolls unloaded
+        return 0.0, 0.0, 0.0
+    helix = screw_nut.helix_angle(point.lead, src.pitch_diameter)
+    D, alpha, z = src.ball_diameter, src.contact_angle, src.loaded_balls
+    Q = ball_screw.normal_load_ball(set_load, z, alpha, helix)
+    lever = ball_screw.lever_arm_rolling_ball_screw(src.pitch_diameter, D, alpha, helix)
+    u = lever * abs(angular_speed(point.relative_rpm))
+    E, nu = src.youngs_modulus, src.poisson_ratio
+    E_star = screw_nut_rolling.effective_modulus_Hertz(E, nu, E, nu)
+    E_prime = screw_nut_rolling.effective_modulus_Hamrock_Dowson(E, nu, E, nu)
+    rolling_lines = 2.0 * math.cos(math.radians(80.0))  # Heathcote: zero net tangential force
+    sliding = hysteresis = rolling = 0.0
+    for race, conformity in (("screw", src.screw_conformity), ("nut", src.nut_conformity)):
+        Rx, Ry = ball_screw.radii_effective_ball_groove(D, src.pitch_diameter, alpha, conformity, race)
+        k = screw_nut_rolling.ellipticity_Hamrock_Brewe(Ry, Rx)
+        gamma = ball_screw.semi_minor_axis_coefficient(k, ball_screw.elliptic_integral_Hamrock_Brewe(Ry, Rx))
+        b = screw_nut_rolling.semi_minor_axis_Hertz(gamma, Q, E_star, 1.0 / Rx + 1.0 / Ry)
+        R_c = ball_screw.radius_contact_surface_ball_groove(D, conformity)
+        M_slide = screw_nut_rolling.torque_differential_sliding_contact(
+            src.slip_friction_coefficient, Q, k * b, R_c, -rolling_lines, rolling_lines)
+        sliding += M_slide * 2.0 * lever / D
+        hysteresis += screw_nut_rolling.torque_hysteresis_contact(src.hysteresis_loss_fraction, Q, b, D / 2.0, lever)
+        U, G, W = screw_nut_rolling.dimensionless_groups_ehl(
+            src.lubricant_dynamic_viscosity, src.pressure_viscosity_coefficient, u, Q, E_prime, Rx)
+        rolling += screw_nut_rolling.rolling_resistance_ehl(E_prime, Rx, k, G, U, W) * lever
+    return z * sliding, z * hysteresis, z * rolling
 
 
 def _bearing(name, src: BearingSource, point, shaft_torque) -> SourceHeat:

@@ -101,6 +101,7 @@ NonNegForce = _quantity("N", "nonnegative")
 NonNegTorque = _quantity("N*m", "nonnegative")
 PosKinematicViscosity = _quantity("m^2/s", "positive")
 PosDynamicViscosity = _quantity("Pa*s", "positive")
+PosPressureViscosityCoefficient = _quantity("1/Pa", "positive")  # Barus alpha of a lubricant
 PosMass = _quantity("kg", "positive")
 Fraction = Annotated[float, BeforeValidator(lambda v: _fraction(v))]
 PosDimensionless = _quantity("", "positive")

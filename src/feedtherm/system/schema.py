@@ -11,6 +11,7 @@ the nut.  The canonical names of the paper's bench are listed in ``names.py``.
 
 from __future__ import annotations
 
+import math
 import re
 from typing import Annotated, Literal, Union
 
@@ -39,6 +40,7 @@ from .quantities import (
     PosLength,
     PosMass,
     PosModulus,
+    PosPressureViscosityCoefficient,
     PosSpecificHeat,
     PosTemperatureDifference,
     Power,
@@ -189,6 +191,46 @@ class SlidingScrewSource(_Source):
     engaged_length: PosLength
 
 
+class BallScrewSource(_Source):
+    """Rolling friction of a ball screw–nut pair at the relative speed |n_screw − n_nut|.
+
+    Every loaded ball touches the screw's and the nut's groove; each contact adds Heathcote's
+    differential sliding, elastic hysteresis and EHL rolling resistance (the paper's Eqs. 1–12,
+    corrected: docs/paper-audit.md §1).  The axial load is the guideways' friction plus
+    ``external_axial_load``; the lead is the kinematics' lead.  Seals, ball recirculation and
+    ball–ball contacts are not modelled (a catalogue drag torque includes them: use ``torque``).
+    """
+
+    model: Literal["ball_screw"]
+    pitch_diameter: PosLength  # ball-centre (pitch circle) diameter d_m [m]
+    ball_diameter: PosLength  # D [m]
+    contact_angle: NonNegAngle  # between contact normal and a plane normal to the axis [rad]; 45 deg usual
+    screw_conformity: Annotated[float, Field(gt=0.5, lt=1.0)]  # screw groove radius / D [-]; 0.52-0.56 usual
+    nut_conformity: Annotated[float, Field(gt=0.5, lt=1.0)]  # nut groove radius / D [-]
+    loaded_balls: Annotated[int, Field(ge=1)]  # balls of one load direction (of each half of a preloaded nut) [-]
+    preload: NonNegForce = 0.0  # axial preload between the nut's two ball sets [N]; 0: one set carries the load
+    external_axial_load: NonNegForce = 0.0  # axial load besides the guideways' friction (a cutting force) [N]
+    slip_friction_coefficient: Annotated[float, Field(gt=0.0, le=0.5)]  # Coulomb mu in the micro-slip zones [-]
+    hysteresis_loss_fraction: Annotated[float, Field(ge=0.0, le=1.0)]  # alpha_h of the rolling steel [-]
+    lubricant_dynamic_viscosity: PosDynamicViscosity  # eta_0 at the nut's temperature, ambient pressure [Pa s]
+    pressure_viscosity_coefficient: PosPressureViscosityCoefficient  # alpha_p [1/Pa]; ~2e-8 for mineral oils
+    youngs_modulus: PosModulus  # of balls and grooves (one steel) [Pa]
+    poisson_ratio: Annotated[float, Field(gt=0.0, lt=0.5)]  # of balls and grooves [-]
+
+    @field_validator("contact_angle")
+    @classmethod
+    def _angle_between_0_and_90_deg(cls, value: float) -> float:
+        if not 0.0 < value < math.pi / 2.0:
+            raise ValueError(f"must lie between 0 and 90 deg, got {math.degrees(value):g} deg")
+        return value
+
+    @model_validator(mode="after")
+    def _balls_fit_the_pitch_circle(self) -> "BallScrewSource":
+        if self.ball_diameter >= self.pitch_diameter:
+            raise ValueError("ball_diameter must be smaller than pitch_diameter")
+        return self
+
+
 class TorqueSource(_Source):
     """A drag torque stated directly (e.g. a catalogue's preload drag torque of a ball nut).
 
@@ -208,7 +250,8 @@ class FixedSource(_Source):
 
 
 HeatSource = Annotated[
-    Union[BearingSource, MotorSource, GuidewaySource, SlidingScrewSource, TorqueSource, FixedSource],
+    Union[BearingSource, MotorSource, GuidewaySource, SlidingScrewSource, BallScrewSource, TorqueSource,
+          FixedSource],
     Field(discriminator="model"),
 ]
 
