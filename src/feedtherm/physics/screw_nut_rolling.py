@@ -3,8 +3,9 @@ r"""The paper's three-part rolling-analogy friction torque of the screw–nut pa
 Differential sliding, elastic hysteresis and EHL rolling resistance, with the paper's
 printed errors corrected (docs/paper-audit.md §1).  Tr flanks are conformal helicoids (no Hertz radius
 R), so the sliding model of :mod:`feedtherm.physics.screw_nut` is the model for the real
-nut; the rolling terms here come out ~10³× too small.  Kept to reproduce and audit the
-paper.  SI units throughout.
+nut; the rolling terms here come out ~10³× too small.  For a ball screw, where balls do roll
+in their grooves, the source model ``ball_screw`` (:mod:`feedtherm.physics.ball_screw`,
+boundary/heat.py) builds on these terms.  SI units throughout.
 
 Names end in the source where two conventions or approximations exist for the same
 quantity: E* (``effective_modulus_Hertz``) vs. E′ = 2E* (``..._Hamrock_Dowson``); the
