@@ -117,6 +117,17 @@ def _require_paper_table(loaded, mode: str) -> None:
         raise FeedthermError(f"--mode paper: {loaded.origin} has no [paper] table of printed values")
 
 
+def _positive_number(text: str) -> float:
+    """argparse type: a finite number > 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"must be a positive number, got {text!r}")
+    return value
+
+
 def _positive_seconds(text: str) -> float:
     """argparse type: a finite number of seconds > 0."""
     try:
@@ -244,6 +255,33 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_infer(args: argparse.Namespace) -> int:
+    from .models.registry import model_entry
+    from .outputs.files import check_output_dir
+    from .outputs.run_files import default_out_dir
+
+    loaded = _load(args.system)
+    _require_paper_table(loaded, args.mode)
+    model_entry(args.model)
+    out_dir = Path(args.out) if args.out else default_out_dir(args.system, "inference", args.mode)
+    check_output_dir(out_dir)
+    from .analysis.inverse import Noise, infer_conditions
+    from .analysis.validation import measurements_of
+    from .outputs.inference_files import print_inference, write_inference
+
+    data = measurements_of(loaded, args.measured)
+    conditions = [c.strip() for c in args.conditions.split(",") if c.strip()] if args.conditions else data.conditions()
+    noise = Noise(args.sigma_temperature, args.sigma_elongation * 1e-6)
+    results = infer_conditions(loaded, data, conditions, groups=args.groups, noise=noise,
+                               prior_width=args.prior_width, mode=args.mode, model=args.model)
+    context = {"system": loaded.origin, "mode": args.mode, "model": args.model, "measurements": data.source,
+               "sigma_temperature_K": args.sigma_temperature, "sigma_elongation_um": args.sigma_elongation,
+               "prior_width": args.prior_width}
+    write_inference(results, out_dir, context)
+    print_inference(results, out_dir)
+    return 0
+
+
 def _system_argument(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("system", nargs="?", default="paper",
                         help="a TOML description or a bench name of `feedtherm benches` (default: paper)")
@@ -335,6 +373,25 @@ def build_parser() -> argparse.ArgumentParser:
 
     bench_list = sub.add_parser("benches", help="list the bundled and plugged-in benches SYSTEM may name")
     bench_list.set_defaults(func=cmd_benches)
+
+    infer = sub.add_parser("infer", help="infer the heat of each source (group) from measured temperatures and "
+                                         "elongation, beside the loss models' heat")
+    _system_argument(infer)
+    _measured_argument(infer)
+    infer.add_argument("--conditions", metavar="C,C,...", help="measured conditions to infer (default: all)")
+    infer.add_argument("--groups", metavar="NAME=SRC,SRC;...",
+                       help="sources estimated together (e.g. motors=screw_motor,nut_motor); others one by one")
+    infer.add_argument("--sigma-temperature", type=_positive_number, default=0.5, metavar="K",
+                       help="standard uncertainty of a measured temperature [K] (default 0.5)")
+    infer.add_argument("--sigma-elongation", type=_positive_number, default=2.0, metavar="UM",
+                       help="standard uncertainty of the measured elongation [µm] (default 2)")
+    infer.add_argument("--prior-width", type=_positive_number, default=1.0, metavar="F",
+                       help="prior standard deviation of each heat, relative to the loss models' heat (floor 1 W; "
+                            "default 1.0)")
+    infer.add_argument("--model", default="fast", help="a model of `feedtherm models` (default fast)")
+    _mode_argument(infer)
+    _out_argument(infer, "out/<system>_inference_<mode>")
+    infer.set_defaults(func=cmd_infer)
 
     models = sub.add_parser("models", help="list the models --model accepts")
     models.set_defaults(func=cmd_models)
