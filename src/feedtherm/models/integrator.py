@@ -14,6 +14,7 @@ capacities.
 
 from __future__ import annotations
 
+import hashlib
 import math
 from dataclasses import dataclass, field
 from typing import Callable
@@ -126,6 +127,18 @@ def jacobi(A: sp.spmatrix) -> sp.linalg.LinearOperator:
     return sp.linalg.LinearOperator(A.shape, matvec=lambda v: inverse_diagonal * v)
 
 
+def _digest(op: Operator) -> str:
+    """A fingerprint of an operator's values (vector, sparse or dense matrix)."""
+    h = hashlib.blake2b(digest_size=16)
+    if sp.issparse(op):
+        op = op.tocsr()
+        for array in (op.indptr, op.indices, op.data):
+            h.update(np.ascontiguousarray(array).tobytes())
+    else:
+        h.update(np.ascontiguousarray(op).tobytes())
+    return h.hexdigest()
+
+
 @dataclass(frozen=True)
 class Loads:
     """The operators at one position (or their cycle average)."""
@@ -139,9 +152,10 @@ class Integrator:
     def __init__(self, model: ThermalModel, options: ModelOptions):
         self.model = model
         self.options = options
-        self._lu = {}  # (segment, position, dt) → LU factors (direct solver)
-        self._cg = {}  # (segment, position, dt) → (matrix, preconditioner) (conjugate gradients)
+        self._lu = {}  # (step-matrix key, dt) → LU factors (direct solver)
+        self._cg = {}  # (step-matrix key, dt) → (matrix, preconditioner) (conjugate gradients)
         self._loads = {}
+        self._matrix_keys = {}  # (segment, position) → key of its step matrix (without C/dt)
         solver = options.solver
         self.dense = isinstance(model.conductance(0), np.ndarray)
         self.direct = self.dense or solver == "direct" or (solver == "auto" and model.n_nodes <= DIRECT_SOLVER_LIMIT)
@@ -173,7 +187,7 @@ class Integrator:
 
     def solve(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float, rhs: np.ndarray,
               guess: np.ndarray) -> np.ndarray:
-        key = (seg_id, k, round(dt, 12))
+        key = (self._matrix_key(seg_id, bc, k), round(dt, 12))
         if self.direct:
             if key not in self._lu:
                 self._lu[key] = self._factorize(self._step_matrix(seg_id, bc, k, dt))
@@ -188,19 +202,37 @@ class Integrator:
                              "use --solver direct")
         return solution
 
+    def _matrix_key(self, seg_id: int, bc: BoundaryConditions, k: int | None) -> tuple:
+        """What the step matrix depends on: the position (conduction and contacts) and the sink links.
+
+        Segments with the same links share one factorisation: a duty cycle that returns to an
+        operating point, or one whose ambient changes but not its coefficients.
+        """
+        if (seg_id, k) not in self._matrix_keys:
+            self._matrix_keys[(seg_id, k)] = (k, _digest(self.loads(seg_id, bc, k).ambient.matrix))
+        return self._matrix_keys[(seg_id, k)]
+
     def _step_matrix(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float) -> Operator:
         loads = self.loads(seg_id, bc, k)
         return operator_sum(loads.conductance, self.model.capacity / dt, loads.ambient.matrix)
 
-    def steady(self, seg_id: int, bc: BoundaryConditions, k: int | None) -> np.ndarray:
-        """The steady state of segment ``seg_id`` at position k (None: the cycle average)."""
+    def steady(self, seg_id: int, bc: BoundaryConditions, k: int | None,
+               rhs: np.ndarray | None = None) -> np.ndarray:
+        """The steady state of segment ``seg_id`` at position k (None: the cycle average).
+
+        ``rhs`` replaces the heat and sink terms: the steady response to any load (the inverse
+        estimation's transfer matrix is made of such responses, one factorisation for all).
+        """
         loads = self.loads(seg_id, bc, k)
         A = operator_sum(loads.conductance, loads.ambient.matrix)
-        rhs = loads.heat + loads.ambient.source
+        if rhs is None:
+            rhs = loads.heat + loads.ambient.source
         if self.direct:
-            return self._factorize(A).solve(rhs)
-        solution, info = cg(A, rhs, x0=self.model.uniform_state(bc.point.ambient), rtol=CG_RTOL, maxiter=50000,
-                            M=jacobi(A))
+            key = ("steady", seg_id, k)
+            if key not in self._lu:
+                self._lu[key] = self._factorize(A)
+            return self._lu[key].solve(rhs)
+        solution, info = cg(A, rhs, x0=np.zeros_like(rhs), rtol=CG_RTOL, maxiter=50000, M=jacobi(A))
         if info != 0:
             raise ModelError(f"--solver cg: conjugate gradients did not converge in {info} iterations of the steady "
                              "state; use --solver direct")
