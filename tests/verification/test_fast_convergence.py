@@ -11,7 +11,7 @@ import math
 import numpy as np
 import pytest
 
-from feedtherm.models.options import FastOptions
+from feedtherm.models.options import ModelOptions
 from feedtherm.simulate import simulate
 
 SENSORS = ["T1", "T2", "T3", "T4", "T5"]
@@ -36,7 +36,7 @@ def base(paper):
 
 
 def test_halving_the_time_step(paper, base):
-    fine = simulate(paper, condition="I", options=FastOptions(steps_per_stroke=40))
+    fine = simulate(paper, condition="I", options=ModelOptions(steps_per_stroke=40))
     assert fine.info["time_step_s"] == pytest.approx(base.info["time_step_s"] / 2)
     assert fine.info["screw_cells"] == base.info["screw_cells"]
     dT, dD = difference(base, fine)
@@ -44,18 +44,18 @@ def test_halving_the_time_step(paper, base):
 
 
 def test_doubling_the_axial_resolution(paper, base):
-    fine = simulate(paper, condition="I", options=FastOptions(axial_cells=200))
+    fine = simulate(paper, condition="I", options=ModelOptions(axial_cells=200))
     assert fine.info["screw_cells"] >= 1.95 * base.info["screw_cells"]  # the cell size divides the stroke
     dT, dD = difference(base, fine)
     assert dT < 0.1 and dD < 0.5
 
 
 def test_halving_the_cell_size_of_the_parts(paper, base):
-    fine = simulate(paper, condition="I", options=FastOptions(cell_size=FastOptions().cell_size / 2))
+    fine = simulate(paper, condition="I", options=ModelOptions(cell_size=ModelOptions().cell_size / 2))
     assert fine.info["screw_cells"] == base.info["screw_cells"]
     assert fine.info["part_cells"] > 3 * base.info["part_cells"]
     dT, dD = difference(base, fine)
-    print(f"cell size {FastOptions().cell_size * 1e3:g} -> {FastOptions().cell_size * 500:g} mm: "
+    print(f"cell size {ModelOptions().cell_size * 1e3:g} -> {ModelOptions().cell_size * 500:g} mm: "
           f"{dT:.3f} K, {dD:.3f} µm ({base.info['unknowns']} -> {fine.info['unknowns']} unknowns)")
     assert dT < 0.1 and dD < 0.5
 
@@ -64,7 +64,7 @@ def test_observed_order_in_time(paper):
     # Measured on the cycle-averaged motion (with the resolved motion a different step also
     # visits different nut positions, mixing position sampling into the time error), on the
     # temperatures at the end of the first hour, with steps of 20, 10 and 5 s.
-    runs = [simulate(paper, condition="I", duration=3600.0, options=FastOptions(motion="averaged", averaged_step=s))
+    runs = [simulate(paper, condition="I", duration=3600.0, options=ModelOptions(motion="averaged", averaged_step=s))
             for s in (20.0, 10.0, 5.0)]
     ends = [np.array([run.sensors[n][-1] for n in SENSORS]) for run in runs]
     e1 = np.abs(ends[0] - ends[1]).max()

@@ -1,0 +1,81 @@
+"""The verification cases: descriptions in ``cases/``, run by the ordinary entry points.
+
+Each case is a description file with a ``# requirement:`` line and its reference (MOOSE's
+way: what is verified is what users run).  Transient cases go through
+:func:`feedtherm.simulate.simulate`; steady cases through the plan, the registry's model and
+the integrator's steady solve, as :func:`feedtherm.simulate.steady_state` does, keeping the
+model so that a test can read heat flows from it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from feedtherm.boundary import BoundaryConditions
+from feedtherm.models.integrator import Integrator
+from feedtherm.models.interface import ThermalModel, cycle_weights
+from feedtherm.models.options import ModelOptions
+from feedtherm.plan import plan_run
+from feedtherm.system.load import LoadedSystem, load_system
+
+CASES = Path(__file__).parent / "cases"
+
+
+@lru_cache(maxsize=None)
+def load_case(name: str) -> LoadedSystem:
+    """The description ``cases/<name>.toml``, loaded and validated as any other."""
+    return load_system(str(CASES / f"{name}.toml"))
+
+
+@dataclass(frozen=True)
+class SteadyState:
+    """The FE model's steady state of one condition (cycle-averaged when the table moves)."""
+
+    model: ThermalModel
+    bc: BoundaryConditions
+    state: np.ndarray  # [K]
+    k: int | None  # the position, or None for the cycle average
+
+    def surface_heat(self, name: str) -> float:
+        """Heat [W] surface ``name`` gives to its sink, ``∑ h·a·(T − T_sink)`` over its exposed nodes."""
+        transfer = self.bc.surfaces[name]
+        positions = [self.k] if self.k is not None else range(len(self.model.positions))
+        weights = [1.0] if self.k is not None else cycle_weights(len(self.model.positions))
+        total = 0.0
+        for w, k in zip(weights, positions):
+            nodes, areas = self.model.surface_exposure(name, k)
+            total += w * transfer.total * float(areas @ (self.state[nodes] - transfer.sink))
+        return total
+
+
+def solve_steady(loaded: LoadedSystem, condition: str, mesh: str, options: ModelOptions | None = None) -> SteadyState:
+    """The steady state of ``condition`` with the FE model at ``mesh`` density."""
+    plan = plan_run(loaded, condition=condition, model="fem", mesh=mesh, options=options)
+    model = plan.model.build(loaded.system, plan.options)
+    segment = plan.segments[0]
+    k = None if segment.speed > 0 else 0
+    return SteadyState(model, segment.bc, Integrator(model, plan.options).steady(0, segment.bc, k), k)
+
+
+def observed_order(errors, sizes) -> list[float]:
+    """Orders ``ln(e_i/e_{i+1}) / ln(h_i/h_{i+1})`` of successive (size, error) pairs."""
+    e, h = np.abs(np.asarray(errors, float)), np.asarray(sizes, float)
+    return list(np.log(e[:-1] / e[1:]) / np.log(h[:-1] / h[1:]))
+
+
+
+def element_size(mesh, part: str) -> float:
+    """Mean edge length [m] of ``part``'s tetrahedra: the element size the mesh actually has.
+
+    ``mesh`` is a model's ``field_mesh()`` or a Solution's ``fields`` (points (n, 3), tets
+    (m, 4), part_id, part_names). The density's target size is an upper bound; gmsh may mesh
+    a part finer.
+    """
+    tets = np.asarray(mesh.tets)[np.asarray(mesh.part_id) == list(mesh.part_names).index(part)]
+    corners = np.asarray(mesh.points)[tets]  # (m, 4, 3)
+    edges = [np.linalg.norm(corners[:, i] - corners[:, j], axis=1) for i in range(4) for j in range(i + 1, 4)]
+    return float(np.mean(edges))
