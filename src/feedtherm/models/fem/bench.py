@@ -35,7 +35,7 @@ from .coupling import CONTACT_TOLERANCE, Contact, ContactQuadrature, interface_m
 from .faces import curvature_sag, surface_facets
 from .facets import RULE, NearestFacets, boundary_triangles
 from .geometry import mesh_system
-from .heat import cell_basis, conduction_matrix
+from .conduction import cell_basis, conduction_matrix
 from .readout import point_matrix, slab_matrix, tet_volumes
 
 __all__ = ["FemDiscretization"]

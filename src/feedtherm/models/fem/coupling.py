@@ -14,7 +14,7 @@ B's facing facets. This gives
 its closest point. Every row sums to zero (the basis values on each side sum to one), so the
 heat leaving A is exactly the heat entering B, whatever the two triangulations.
 
-``lumped=True`` (the default, as in :mod:`.interfaces`) replaces the A–A block by its row
+``lumped=True`` (the default) replaces the A–A block by its row
 sums :math:`\mathrm{diag}\int N_A` and the B–B block by :math:`\mathrm{diag}\int N_B`, keeping
 the A–B block :math:`-\int N_A^T N_B`: rows still sum to zero, the matrix stays symmetric and
 has no positive off-diagonal entries (an M-matrix: no overshoot when :math:`R''` is small

@@ -10,7 +10,7 @@ cylinder's radius), ``h_max`` and ``n_across`` set by the density (:data:`DENSIT
 screw (a solid rod: ``t`` is its radius; the friction heat and the sliding contact are on it)
 gets ``screw_factor`` times more elements across. Curved faces also get at least ``per_circle`` elements around.
 
-The parts' meshes are put side by side without merging nodes (:func:`.topology.join`): a
+The parts' meshes are put side by side without merging nodes: a
 joint between two parts is a non-conforming interface (:mod:`.coupling`). Moving parts are
 meshed where the description declares them (the middle of the stroke).
 
