@@ -10,7 +10,7 @@ model so that a test can read heat flows from it.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 
 import numpy as np
@@ -25,7 +25,7 @@ from feedtherm.system.load import LoadedSystem, load_system
 CASES = Path(__file__).parent / "cases"
 
 
-@lru_cache(maxsize=None)
+@cache
 def load_case(name: str) -> LoadedSystem:
     """The description ``cases/<name>.toml``, loaded and validated as any other."""
     return load_system(str(CASES / f"{name}.toml"))

@@ -25,8 +25,8 @@ import tomllib
 
 import numpy as np
 import pytest
-
 from fem_cases import CASES, load_case, solve_steady
+
 from feedtherm.constants import KELVIN_OFFSET
 from feedtherm.errors import ModelError
 from feedtherm.simulate import discretize

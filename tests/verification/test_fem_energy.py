@@ -12,11 +12,12 @@ the check: the balance has teeth. At the steady state the surfaces lose the 10 W
 """
 
 from dataclasses import replace
+from typing import ClassVar
 
 import numpy as np
 import pytest
-
 from fem_cases import load_case, solve_steady
+
 from feedtherm.models.fem.bench import FemDiscretization
 from feedtherm.models.options import ModelOptions
 from feedtherm.models.registry import ModelEntry, register_model, unregister_model
@@ -62,8 +63,8 @@ class TamperedFem(FemDiscretization):
     the step matrix only (the account keeps the exact ones).
     """
 
-    drop: tuple[str, ...] = ()
-    link_scale: dict[str, float] = {}
+    drop: ClassVar[tuple[str, ...]] = ()
+    link_scale: ClassVar[dict[str, float]] = {}
 
     def heat_vector(self, bc, k):
         return super().heat_vector(replace(bc, heats={n: h for n, h in bc.heats.items() if n not in self.drop}), k)

@@ -31,11 +31,12 @@ gmsh's meshes at the three densities are not nested, and a change of the error c
 
 import math
 import time
+from itertools import pairwise
 
 import numpy as np
 import pytest
-
 from fem_cases import element_size, load_case, observed_order, solve_steady
+
 from feedtherm.constants import KELVIN_OFFSET
 
 K, H, T_BASE, T_AIR, L, D = 200.0, 25.0, 100.0, 20.0, 0.1, 0.01
@@ -72,15 +73,15 @@ def results():
         sections = model.screw_mean(steady.state) - KELVIN_OFFSET
         edges = model.screw_edges
         exact = np.array([T_AIR + theta0 * 0.5 * np.sum(wg * fin(0.5 * (a + b) + 0.5 * (b - a) * g)[0])
-                          for a, b in zip(edges[:-1], edges[1:])])
-        out[mesh] = dict(
-            size=element_size(model.field_mesh(), "pin"), nodes=model.n_nodes,
-            tip=(sections[-1] - exact[-1]) / (exact[-1] - T_AIR),
-            profile=np.max(np.abs(sections - exact)) / (T_BASE - T_AIR),
-            heat=steady.surface_heat("cooled") / (fin(0.0)[1] * theta0) - 1.0,
-            heat_in=-steady.surface_heat("base"), heat_out=steady.surface_heat("cooled"),
-            seconds=time.perf_counter() - started,
-        )
+                          for a, b in pairwise(edges)])
+        out[mesh] = {
+            "size": element_size(model.field_mesh(), "pin"), "nodes": model.n_nodes,
+            "tip": (sections[-1] - exact[-1]) / (exact[-1] - T_AIR),
+            "profile": np.max(np.abs(sections - exact)) / (T_BASE - T_AIR),
+            "heat": steady.surface_heat("cooled") / (fin(0.0)[1] * theta0) - 1.0,
+            "heat_in": -steady.surface_heat("base"), "heat_out": steady.surface_heat("cooled"),
+            "seconds": time.perf_counter() - started,
+        }
     return out
 
 

@@ -39,9 +39,9 @@ import time
 import numpy as np
 import pytest
 import scipy.sparse as sp
+from fem_cases import load_case
 from scipy.sparse.linalg import spsolve
 
-from fem_cases import load_case
 from feedtherm.constants import KELVIN_OFFSET
 from feedtherm.models.options import ModelOptions
 from feedtherm.simulate import simulate

@@ -43,8 +43,8 @@ import time
 
 import numpy as np
 import pytest
-
 from fem_cases import element_size, load_case, observed_order
+
 from feedtherm.constants import KELVIN_OFFSET
 from feedtherm.simulate import simulate
 
@@ -116,11 +116,13 @@ class Study:
             half = 0.5 * (centres[1] - centres[0])
             assert np.allclose(np.diff(centres), 2 * half)
             exact_profile = np.array([exact_mean(c - half, c + half, T_END) for c in centres])
-            self.runs[key] = dict(value=value, error=value - exact_mean(x0, x1, T_END),
-                                  size=element_size(solution.fields, "bar"),
-                                  profile=solution.screw_temperature[-1] - KELVIN_OFFSET - exact_profile,
-                                  steps=solution.info["steps"], nodes=solution.info["unknowns"],
-                                  energy=solution.energy.relative_error, seconds=time.perf_counter() - started)
+            self.runs[key] = {
+                "value": value, "error": value - exact_mean(x0, x1, T_END),
+                "size": element_size(solution.fields, "bar"),
+                "profile": solution.screw_temperature[-1] - KELVIN_OFFSET - exact_profile,
+                "steps": solution.info["steps"], "nodes": solution.info["unknowns"],
+                "energy": solution.energy.relative_error, "seconds": time.perf_counter() - started,
+            }
         return self.runs[key]
 
 

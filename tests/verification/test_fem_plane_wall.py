@@ -12,8 +12,8 @@ exactly: the old tolerance (1e-10) is kept, at every density.
 
 import numpy as np
 import pytest
-
 from fem_cases import load_case, solve_steady
+
 from feedtherm.constants import KELVIN_OFFSET
 
 T_HELD, T_AIR, L, K, H, H_PENALTY, AREA = 100.0, 20.0, 0.05, 15.0, 300.0, 1e7, 0.02 * 0.02

@@ -32,8 +32,8 @@ import math
 
 import numpy as np
 import pytest
-
 from fem_cases import SteadyState, load_case
+
 from feedtherm.models.integrator import Integrator
 from feedtherm.models.interface import cycle_weights
 from feedtherm.models.options import ModelOptions

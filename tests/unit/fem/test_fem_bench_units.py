@@ -11,7 +11,12 @@ from feedtherm.models.fem.coupling import Contact, interface_matrix, side_load
 from feedtherm.models.fem.faces import curvature_sag, surface_facets
 from feedtherm.models.fem.facets import RULE, boundary_triangles, closest_points
 from feedtherm.models.fem.geometry import mesh_size, mesh_system
-from feedtherm.models.fem.readout import point_matrix, refined_centroids, slab_matrix, tet_volumes
+from feedtherm.models.fem.readout import (
+    point_matrix,
+    refined_centroids,
+    slab_matrix,
+    tet_volumes,
+)
 from feedtherm.system.schema import Box, Cylinder, Part, Surface
 
 

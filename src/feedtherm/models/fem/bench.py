@@ -31,11 +31,11 @@ from ...system.geometry import bounds
 from ...system.schema import FeedSystem
 from ..fields import FieldMesh
 from ..interface import HeatInput, ThermalModel, elongation_row
+from .conduction import cell_basis, conduction_matrix
 from .coupling import CONTACT_TOLERANCE, Contact, ContactQuadrature, interface_matrix, side_load, touching
 from .faces import curvature_sag, surface_facets
 from .facets import RULE, NearestFacets, boundary_triangles
 from .geometry import mesh_system
-from .conduction import cell_basis, conduction_matrix
 from .readout import point_matrix, slab_matrix, tet_volumes
 
 __all__ = ["FemDiscretization"]
