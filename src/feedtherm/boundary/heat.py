@@ -16,11 +16,13 @@ from ..physics import (
     motors,
     screw_nut,
     screw_nut_rolling,
+    servo_motor,
 )
 from ..physics.mechanics import angular_speed, heat_friction, torque_screw_drive
 from ..system.schema import (
     BallScrewSource,
     BearingSource,
+    DatasheetMotorLosses,
     FeedSystem,
     FixedSource,
     GuidewaySource,
@@ -190,8 +192,21 @@ def _motor(name, src: MotorSource, point, load_torque) -> SourceHeat:
     n = point.shaft_rpm(src.shaft)
     torque = load_torque + src.extra_torque * _sign(n)
     output = torque * n * 2.0 * math.pi / 60.0  # > 0 driving, < 0 braking (generating)
+    details = {"torque_Nm": torque, "shaft_power_W": output}
+    if src.losses is not None:
+        # Copper loss from the torque, no-load loss from the speed, driving or braking alike; a
+        # braking motor's shaft power goes back to the amplifier's DC bus, not into the motor.
+        losses = src.losses
+        if isinstance(losses, DatasheetMotorLosses):
+            copper = servo_motor.heat_motor_copper(torque, losses.torque_constant, losses.terminal_resistance)
+            details["current_A"] = abs(torque) / losses.torque_constant
+        else:
+            copper = servo_motor.heat_motor_copper_rated(torque, losses.rated_torque, losses.rated_copper_loss)
+        no_load = servo_motor.heat_motor_no_load(n, losses.friction_torque, losses.viscous_damping)
+        details.update(copper_loss_W=copper, no_load_loss_W=no_load)
+        return SourceHeat(name, copper + no_load, dict(src.into), n, details)
     if output >= 0.0:
         loss = motors.heat_motor(torque, n, src.efficiency)
     else:
         loss = motors.heat_motor_braking(torque, n, src.efficiency)
-    return SourceHeat(name, loss, dict(src.into), n, {"torque_Nm": torque, "shaft_power_W": output})
+    return SourceHeat(name, loss, dict(src.into), n, details)

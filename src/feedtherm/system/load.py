@@ -108,7 +108,8 @@ def _is_union_tag(part) -> bool:
     return isinstance(part, str) and part in _TAGS
 
 
-_TAGS = {"bearing", "motor", "guideway", "sliding_screw", "ball_screw", "torque", "fixed", "natural", "rotating", "moving_plate", "moving_face"}
+_TAGS = {"bearing", "motor", "guideway", "sliding_screw", "ball_screw", "torque", "fixed", "natural", "rotating", "moving_plate", "moving_face",
+         "datasheet", "rated"}
 
 
 def _dotted(loc) -> str:

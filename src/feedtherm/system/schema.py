@@ -15,7 +15,7 @@ import math
 import re
 from typing import Annotated, Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_serializer, model_validator
 
 from .quantities import (
     AngularSpeed,
@@ -25,6 +25,7 @@ from .quantities import (
     NonNegDuration,
     NonNegForce,
     NonNegLength,
+    NonNegRotationalDamping,
     NonNegTorque,
     PosArea,
     PosConductivity,
@@ -41,8 +42,11 @@ from .quantities import (
     PosMass,
     PosModulus,
     PosPressureViscosityCoefficient,
+    PosResistance,
     PosSpecificHeat,
     PosTemperatureDifference,
+    PosTorque,
+    PosTorqueConstant,
     Power,
     Speed,
     Temperature,
@@ -163,11 +167,60 @@ class BearingSource(_Source):
     f1_exponent_factor: PosDimensionless | None = None  # deep-groove z; default 5e-4
 
 
+class DatasheetMotorLosses(Strict):
+    """Copper loss 1.5 (M/k_T)^2 R_tt plus the no-load loss (T_F + D w) w, from a data sheet."""
+
+    model: Literal["datasheet"]
+    torque_constant: PosTorqueConstant  # k_T, torque per A r.m.s. [N m/A]
+    terminal_resistance: PosResistance  # R_tt, between two terminals ("phase to phase"), hot [ohm]
+    friction_torque: NonNegTorque  # T_F, speed-independent drag (friction, hysteresis) [N m]
+    viscous_damping: NonNegRotationalDamping  # D, drag per angular speed (viscous, eddy current) [N m s/rad]
+
+
+class RatedMotorLosses(Strict):
+    """Copper loss P_cu,N (M/M_N)^2 plus the no-load loss (T_F + D w) w."""
+
+    model: Literal["rated"]
+    rated_torque: PosTorque  # M_N, where the copper loss is known [N m]
+    rated_copper_loss: Power  # P_cu,N at M_N [W]
+    friction_torque: NonNegTorque  # T_F [N m]
+    viscous_damping: NonNegRotationalDamping  # D [N m s/rad]
+
+
+MotorLosses = Annotated[Union[DatasheetMotorLosses, RatedMotorLosses], Field(discriminator="model")]
+
+
 class MotorSource(_Source):
+    """A servo motor's heat at the torque its shaft needs: ``efficiency`` or ``losses``.
+
+    ``efficiency``: loss P(1/eta - 1) driving, |P|(1 - eta) braking (proportional to the shaft
+    power).  ``losses``: copper loss from the torque plus the no-load loss from the speed, driving
+    or braking alike (physics/servo_motor.py).
+    """
+
     model: Literal["motor"]
     shaft: ShaftName
-    efficiency: Annotated[float, Field(gt=0.0, le=1.0)]
+    efficiency: Annotated[float, Field(gt=0.0, le=1.0)] | None = None
+    losses: MotorLosses | None = None
     extra_torque: NonNegTorque = 0.0  # drag not modelled by the other sources
+
+    @model_validator(mode="after")
+    def _one_loss_model(self) -> "MotorSource":
+        if self.efficiency is None and self.losses is None:
+            raise ValueError("efficiency or losses: give one (efficiency = 0.85, or losses = { model = \"datasheet\", ... })")
+        if self.efficiency is not None and self.losses is not None:
+            raise ValueError("efficiency and losses: give one loss model, not both")
+        return self
+
+    @model_serializer(mode="wrap")
+    def _omit_the_unused_loss_model(self, handler):
+        # The loss model not chosen is left out, so a description written before `losses`
+        # existed keeps its serialised form and its hash (the benches' frozen provenance).
+        data = handler(self)
+        for key in ("efficiency", "losses"):
+            if isinstance(data, dict) and data.get(key, 0) is None:
+                del data[key]
+        return data
 
 
 class GuidewaySource(_Source):
