@@ -7,6 +7,10 @@ A motor delivering the shaft power :math:`P_{out} = M\omega` at efficiency η dr
 underestimates the loss for a given output by the factor η.  Reproducing the paper's
 Table 1 needs the printed form, kept as :func:`heat_motor_paper`.
 
+A constant η makes the loss grow with the shaft power M·ω; a servo motor's copper loss grows
+with M² and its no-load loss with the speed: :mod:`feedtherm.physics.servo_motor` models
+those from data-sheet values.
+
 References
 ----------
 .. [1] Paper, §3.1, Eq. 14, and Table 1.
