@@ -24,7 +24,6 @@ import time
 import numpy as np
 import scipy.sparse as sp
 
-from ...boundary import BoundaryConditions
 from ...constants import AMBIENT_SENSOR, ELONGATION_PROBE
 from ...errors import ModelError
 from ...system.geometry import bounds
