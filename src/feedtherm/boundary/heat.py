@@ -57,6 +57,9 @@ def source_heats(system: FeedSystem, point: OperatingPoint) -> dict[str, SourceH
     # torque each motor must deliver on its shaft, accumulated from the friction elements
     shaft_torque = {"screw": 0.0, "nut": 0.0}
     axial_force = 0.0
+    # Lubricants are taken at the temperature the frozen CHTCs use (ambient plus the declared
+    # rise, boundary.frozen_surface_temperature) until the loss models iterate with temperature.
+    frozen_temperature = point.ambient + system.temperatures.convection_delta_t
     for name, src in sources.items():
         if isinstance(src, GuidewaySource):
             force = guideways.friction_force_guideway(
@@ -74,7 +77,7 @@ def source_heats(system: FeedSystem, point: OperatingPoint) -> dict[str, SourceH
         elif isinstance(src, BallScrewSource):
             heats[name] = _ball_screw(name, src, point, axial_force, shaft_torque)
         elif isinstance(src, BearingSource):
-            heats[name] = _bearing(name, src, point, shaft_torque)
+            heats[name] = _bearing(name, src, point, shaft_torque, frozen_temperature)
         elif isinstance(src, TorqueSource):
             heats[name] = _torque(name, src, point, axial_force, shaft_torque)
         elif isinstance(src, FixedSource):
@@ -159,8 +162,9 @@ def _ball_set_torques(src: BallScrewSource, set_load, point) -> tuple[float, flo
     return z * sliding, z * hysteresis, z * rolling
 
 
-def _bearing(name, src: BearingSource, point, shaft_torque) -> SourceHeat:
+def _bearing(name, src: BearingSource, point, shaft_torque, temperature) -> SourceHeat:
     n = point.shaft_rpm(src.shaft)
+    nu = src.viscosity_at(temperature)
     p0 = src.equivalent_static_load or max(src.axial_load, src.radial_load)
     if src.bearing_type == "angular_contact":
         f1 = bearings.f1_angular_contact_Palmgren(p0, src.static_load_rating)
@@ -169,11 +173,11 @@ def _bearing(name, src: BearingSource, point, shaft_torque) -> SourceHeat:
         z = src.f1_exponent_factor if src.f1_exponent_factor is not None else 5e-4
         f1 = bearings.f1_deep_groove_Palmgren(p0, src.static_load_rating, z=z)
         p1 = bearings.P1_deep_groove_Palmgren(src.axial_load, src.radial_load)
-    torque = bearings.torque_bearing_Palmgren(f1, p1, src.mean_diameter, src.f0, src.lubricant_viscosity, n)
+    torque = bearings.torque_bearing_Palmgren(f1, p1, src.mean_diameter, src.f0, nu, n)
     shaft_torque[src.shaft] += torque.total * _sign(n)
     return SourceHeat(name, bearings.heat_bearing(torque.total, n), dict(src.into), n, {
-        "f1": f1, "P1_N": p1, "load_torque_Nm": torque.load, "viscous_torque_Nm": torque.viscous,
-        "friction_torque_Nm": torque.total,
+        "lubricant_viscosity_m2_per_s": nu, "f1": f1, "P1_N": p1, "load_torque_Nm": torque.load,
+        "viscous_torque_Nm": torque.viscous, "friction_torque_Nm": torque.total,
     })
 
 

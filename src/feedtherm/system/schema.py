@@ -24,6 +24,11 @@ from pydantic import (
     model_validator,
 )
 
+from ..physics.lubricant import (
+    kinematic_viscosity_100C_from_index,
+    kinematic_viscosity_iso_vg,
+    kinematic_viscosity_lubricant,
+)
 from .quantities import (
     AngularSpeed,
     Fraction,
@@ -160,7 +165,54 @@ class _Source(Strict):
         return value
 
 
+class Lubricant(Strict):
+    """An oil, or a grease's base oil, by its ISO VG grade (ISO 3448 midpoint at 40 °C) and
+    either its viscosity index (ν at 100 °C by ASTM D2270) or its ν at 100 °C; ν(T) follows
+    Walther's equation (ASTM D341) through the two points (physics/lubricant.py)."""
+
+    grade: str  # "ISO VG 100"
+    viscosity_index: Annotated[float, Field(allow_inf_nan=False)] | None = None
+    viscosity_100C: PosKinematicViscosity | None = None
+
+    @field_validator("grade")
+    @classmethod
+    def _iso_3448_grade(cls, value: str) -> str:
+        kinematic_viscosity_iso_vg(value)  # raises, naming the grades ISO 3448 defines
+        return value
+
+    @model_validator(mode="after")
+    def _one_way_to_100C(self) -> "Lubricant":
+        if (self.viscosity_index is None) == (self.viscosity_100C is None):
+            raise ValueError("give viscosity_index or viscosity_100C (one of them) beside grade")
+        nu40 = self.viscosity_40C
+        if self.viscosity_index is not None:
+            kinematic_viscosity_100C_from_index(nu40, self.viscosity_index)  # raises if no such oil
+        elif not self.viscosity_100C < nu40:
+            raise ValueError("viscosity_100C must be smaller than the grade's viscosity at 40 degC")
+        return self
+
+    @property
+    def viscosity_40C(self) -> float:
+        """ν at 40 °C [m²/s]: the grade's midpoint."""
+        return kinematic_viscosity_iso_vg(self.grade)
+
+    def viscosity_at(self, temperature: float) -> float:
+        """ν [m²/s] at ``temperature`` [K], by Walther's equation through 40 and 100 °C."""
+        nu40 = self.viscosity_40C
+        nu100 = self.viscosity_100C
+        if nu100 is None:
+            nu100 = kinematic_viscosity_100C_from_index(nu40, self.viscosity_index)
+        return kinematic_viscosity_lubricant(temperature, nu40, nu100)
+
+
 class BearingSource(_Source):
+    """A rolling bearing (or a set of identical bearings) on a shaft.
+
+    The lubricant is either ``lubricant_viscosity`` (a fixed ν) or ``lubricant`` (an ISO VG
+    grade whose ν is taken at the frozen temperature of the run: ambient plus
+    ``temperatures.convection_delta_t``, the temperature the frozen CHTCs use).
+    """
+
     model: Literal["bearing"]
     shaft: ShaftName  # which shaft's speed the bearing runs at
     bearing_type: Literal["angular_contact", "deep_groove"]
@@ -170,8 +222,34 @@ class BearingSource(_Source):
     radial_load: NonNegForce
     equivalent_static_load: PosForce | None = None  # default: max(axial, radial) load
     f0: PosDimensionless
-    lubricant_viscosity: PosKinematicViscosity
+    lubricant_viscosity: PosKinematicViscosity | None = None  # fixed ν [m²/s]
+    lubricant: Lubricant | None = None  # or a grade, evaluated at the frozen temperature
     f1_exponent_factor: PosDimensionless | None = None  # deep-groove z; default 5e-4
+
+    @model_validator(mode="after")
+    def _one_lubricant(self) -> "BearingSource":
+        if (self.lubricant_viscosity is None) == (self.lubricant is None):
+            raise ValueError(
+                "lubricant_viscosity or lubricant: give one (lubricant_viscosity = \"100 mm^2/s\", "
+                "or lubricant = { grade = \"ISO VG 100\", viscosity_index = 95 })"
+            )
+        return self
+
+    def viscosity_at(self, temperature: float) -> float:
+        """The lubricant's ν [m²/s] at ``temperature`` [K] (the fixed value if one is declared)."""
+        if self.lubricant is None:
+            return self.lubricant_viscosity
+        return self.lubricant.viscosity_at(temperature)
+
+    @model_serializer(mode="wrap")
+    def _omit_the_unused_lubricant(self, handler):
+        # The lubricant form not chosen is left out, so a description written before `lubricant`
+        # existed keeps its serialised form and its hash (the benches' frozen provenance).
+        data = handler(self)
+        for key in ("lubricant_viscosity", "lubricant"):
+            if isinstance(data, dict) and key in data and data[key] is None:
+                del data[key]
+        return data
 
 
 class DatasheetMotorLosses(Strict):

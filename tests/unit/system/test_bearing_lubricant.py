@@ -1,0 +1,68 @@
+"""A bearing's lubricant: a fixed viscosity or an ISO VG grade; every bad value named in one line."""
+
+from __future__ import annotations
+
+import pytest
+
+from feedtherm.benches import bench
+from feedtherm.errors import DescriptionError
+from feedtherm.system.load import load_system
+
+PAPER = bench("paper").description.read_text(encoding="utf-8")
+FIXED = 'lubricant_viscosity = "100 mm^2/s"\ninto = { front_bearing = 1.0 }'
+
+
+def write_variant(tmp_path, lubricant_lines: str) -> str:
+    """The paper bench with the front bearing's fixed viscosity replaced by ``lubricant_lines``."""
+    assert FIXED in PAPER, "test fixture out of date: the paper bench's front bearing changed"
+    path = tmp_path / "lubricant_variant.toml"
+    path.write_text(PAPER.replace(FIXED, f"{lubricant_lines}\ninto = {{ front_bearing = 1.0 }}", 1), encoding="utf-8")
+    return str(path)
+
+
+def load_error(tmp_path, lubricant_lines: str) -> str:
+    with pytest.raises(DescriptionError) as info:
+        load_system(write_variant(tmp_path, lubricant_lines))
+    message = str(info.value)
+    assert "\n" not in message
+    return message
+
+
+def test_grade_with_viscosity_index_loads(tmp_path):
+    source = load_system(write_variant(tmp_path, 'lubricant = { grade = "ISO VG 100", viscosity_index = 95 }')).system.sources["front_bearing"]
+    assert source.lubricant_viscosity is None
+    # ISO 3448 midpoint of VG 100, and D2270 inverted at VI 95 (hand calculation in
+    # tests/unit/physics/test_lubricant.py): 11.06565 mm²/s at 100 °C.
+    assert source.viscosity_at(313.15) == pytest.approx(100e-6, rel=1e-9)
+    assert source.viscosity_at(373.15) == pytest.approx(11.06565e-6, rel=1e-6)
+
+
+def test_grade_with_viscosity_100c_loads_with_units(tmp_path):
+    source = load_system(write_variant(tmp_path, 'lubricant = { grade = "VG 100", viscosity_100C = "11 cSt" }')).system.sources["front_bearing"]
+    assert source.lubricant.viscosity_100C == pytest.approx(11e-6, rel=1e-12)
+    assert source.viscosity_at(373.15) == pytest.approx(11e-6, rel=1e-9)
+
+
+def test_a_fixed_viscosity_does_not_depend_on_temperature(paper):
+    source = paper.system.sources["front_bearing"]
+    assert source.viscosity_at(250.0) == source.viscosity_at(400.0) == pytest.approx(100e-6, rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("lines", "field", "reason"),
+    [
+        ('lubricant = { grade = "ISO VG 90", viscosity_index = 95 }', "sources.front_bearing.lubricant.grade", "not an ISO 3448 grade"),
+        ('lubricant = { grade = "ISO VG 100" }', "sources.front_bearing.lubricant", "viscosity_index or viscosity_100C"),
+        ('lubricant = { grade = "ISO VG 100", viscosity_index = 95, viscosity_100C = "11 mm^2/s" }',
+         "sources.front_bearing.lubricant", "one of them"),
+        ('lubricant = { grade = "ISO VG 100", viscosity_100C = "120 mm^2/s" }', "sources.front_bearing.lubricant", "smaller"),
+        ('lubricant = { grade = "ISO VG 1500", viscosity_index = -1e6 }', "sources.front_bearing.lubricant", "below 2 mm"),
+        ('lubricant = { grade = "ISO VG 100", viscosity_index = 95, colour = "red" }', "sources.front_bearing.lubricant", "colour"),
+        ('lubricant_viscosity = "100 mm^2/s"\nlubricant = { grade = "ISO VG 100", viscosity_index = 95 }',
+         "sources.front_bearing", "give one"),
+        ("", "sources.front_bearing", "lubricant_viscosity or lubricant"),
+    ],
+)
+def test_bad_lubricant_is_named(tmp_path, lines, field, reason):
+    message = load_error(tmp_path, lines)
+    assert field in message and reason in message, message
