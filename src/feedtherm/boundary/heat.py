@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from ..physics import (
     ball_screw,
     bearings,
+    bearings_skf,
     guideways,
     motors,
     screw_nut,
@@ -165,6 +166,8 @@ def _ball_set_torques(src: BallScrewSource, set_load, point) -> tuple[float, flo
 def _bearing(name, src: BearingSource, point, shaft_torque, temperature) -> SourceHeat:
     n = point.shaft_rpm(src.shaft)
     nu = src.viscosity_at(temperature)
+    if src.friction_model == "skf":
+        return _bearing_skf(name, src, n, nu, shaft_torque)
     p0 = src.equivalent_static_load or max(src.axial_load, src.radial_load)
     if src.bearing_type == "angular_contact":
         f1 = bearings.f1_angular_contact_Palmgren(p0, src.static_load_rating)
@@ -173,11 +176,43 @@ def _bearing(name, src: BearingSource, point, shaft_torque, temperature) -> Sour
         z = src.f1_exponent_factor if src.f1_exponent_factor is not None else 5e-4
         f1 = bearings.f1_deep_groove_Palmgren(p0, src.static_load_rating, z=z)
         p1 = bearings.P1_deep_groove_Palmgren(src.axial_load, src.radial_load)
-    torque = bearings.torque_bearing_Palmgren(f1, p1, src.mean_diameter, src.f0, nu, n)
+    torque = bearings.torque_bearing_Palmgren(f1, p1, src.dm, src.f0, nu, n)
     shaft_torque[src.shaft] += torque.total * _sign(n)
     return SourceHeat(name, bearings.heat_bearing(torque.total, n), dict(src.into), n, {
         "lubricant_viscosity_m2_per_s": nu, "f1": f1, "P1_N": p1, "load_torque_Nm": torque.load,
         "viscous_torque_Nm": torque.viscous, "friction_torque_Nm": torque.total,
+    })
+
+
+def _bearing_skf(name, src: BearingSource, n, nu, shaft_torque) -> SourceHeat:
+    """SKF model: each of the set's identical bearings on its share of the radial load and
+    static rating, with the declared axial load; the set's torque is their sum."""
+    k = src.bearings_in_set
+    d, D, dm = src.bore_diameter, src.outer_diameter, src.dm
+    Fr, Fa, C0 = src.radial_load / k, src.axial_load, src.static_load_rating / k
+    R1, R2, R3, S1, S2, S3 = bearings_skf.GEOMETRIC_CONSTANTS_SKF[src.bearing_type][src.series]
+    mu = bearings_skf.mu_sl(bearings_skf.phi_bl(n, nu, dm), bearings_skf.MU_BL_SKF, bearings_skf.MU_EHL_SKF[src.base_oil])
+    if src.bearing_type == "deep_groove":
+        rolling = bearings_skf.torque_bearing_rolling_deep_groove_SKF(R1, R2, dm, Fr, Fa, C0, nu, n)
+        sliding = bearings_skf.torque_bearing_sliding_deep_groove_SKF(S1, S2, dm, Fr, Fa, C0, mu)
+    else:
+        rolling = bearings_skf.torque_bearing_rolling_angular_contact_SKF(R1, R2, R3, dm, Fr, Fa, nu, n)
+        sliding = bearings_skf.torque_bearing_sliding_angular_contact_SKF(S1, S2, S3, dm, Fr, Fa, n, mu)
+    K_rs = bearings_skf.K_RS_SKF[src.lubrication]
+    phi_rs = 1.0 if K_rs is None else bearings_skf.phi_rs(K_rs, bearings_skf.K_Z_SKF[src.bearing_type][src.series], nu, n, d, D)
+    seal = 0.0
+    if src.seal is not None:
+        beta, K_S1, K_S2 = bearings_skf.seal_constants_SKF(src.seal, src.bearing_type, D)
+        # The catalogue takes an RSL seal's moment whole on bearings over 25 mm outside diameter.
+        seal = bearings_skf.torque_bearing_seal_SKF(K_S1, beta, K_S2, src.seal_counterface_diameter,
+                                                    src.seals_per_bearing, full_value=src.seal == "RSL")
+    one = bearings_skf.torque_bearing_SKF(rolling, bearings_skf.phi_ish(n, dm, nu), phi_rs, sliding, seal, src.drag_torque)
+    total = k * one.total
+    shaft_torque[src.shaft] += total * _sign(n)
+    return SourceHeat(name, bearings.heat_bearing(total, n), dict(src.into), n, {
+        "lubricant_viscosity_m2_per_s": nu, "bearings_in_set": k, "rolling_torque_Nm": k * one.rolling,
+        "phi_ish": one.phi_ish, "phi_rs": one.phi_rs, "mu_sl": mu, "sliding_torque_Nm": k * one.sliding,
+        "seal_torque_Nm": k * one.seal, "drag_torque_Nm": k * one.drag, "friction_torque_Nm": total,
     })
 
 

@@ -7,8 +7,8 @@ N·mm/mm/mm²/s forms are converted inside. Corrections (docs/paper-audit.md §1
 Eq. 22.
 
 Functions of Palmgren's empirical model end in ``_Palmgren``: the SKF model (rolling,
-sliding, seal and drag moments, SKF catalogue since 2004) is the other one in use for the
-same bearings.
+sliding, seal and drag moments, SKF catalogue since 2004), the other one in use for the
+same bearings, is in :mod:`feedtherm.physics.bearings_skf`; :func:`heat_bearing` serves both.
 
 References
 ----------

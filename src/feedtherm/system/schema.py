@@ -24,6 +24,7 @@ from pydantic import (
     model_validator,
 )
 
+from ..physics.bearings_skf import GEOMETRIC_CONSTANTS_SKF, seal_constants_SKF
 from ..physics.lubricant import (
     kinematic_viscosity_100C_from_index,
     kinematic_viscosity_iso_vg,
@@ -208,6 +209,14 @@ class Lubricant(Strict):
 class BearingSource(_Source):
     """A rolling bearing (or a set of identical bearings) on a shaft.
 
+    ``friction_model`` chooses the torque: ``"palmgren"`` (load and viscous torque, the paper's
+    Eqs. 15–22 corrected; needs ``mean_diameter`` and ``f0``) or ``"skf"`` (rolling with the
+    inlet-shear and replenishment reductions, sliding, seals, drag; physics/bearings_skf.py;
+    needs ``bore_diameter``, ``outer_diameter`` and ``series``).  Under ``"skf"`` each of the
+    ``bearings_in_set`` identical bearings carries ``radial_load / bearings_in_set`` and
+    ``axial_load``, and has ``static_load_rating / bearings_in_set`` (the catalogue: compute
+    each bearing of a set and add them).
+
     The lubricant is either ``lubricant_viscosity`` (a fixed ν) or ``lubricant`` (an ISO VG
     grade whose ν is taken at the frozen temperature of the run: ambient plus
     ``temperatures.convection_delta_t``, the temperature the frozen CHTCs use).
@@ -216,15 +225,27 @@ class BearingSource(_Source):
     model: Literal["bearing"]
     shaft: ShaftName  # which shaft's speed the bearing runs at
     bearing_type: Literal["angular_contact", "deep_groove"]
-    mean_diameter: PosLength
+    friction_model: Literal["palmgren", "skf"] = "palmgren"
+    mean_diameter: PosLength | None = None  # default (bore_diameter + outer_diameter)/2
     static_load_rating: PosForce
     axial_load: NonNegForce
     radial_load: NonNegForce
     equivalent_static_load: PosForce | None = None  # default: max(axial, radial) load
-    f0: PosDimensionless
+    f0: PosDimensionless | None = None  # Palmgren's f0
     lubricant_viscosity: PosKinematicViscosity | None = None  # fixed ν [m²/s]
     lubricant: Lubricant | None = None  # or a grade, evaluated at the frozen temperature
     f1_exponent_factor: PosDimensionless | None = None  # deep-groove z; default 5e-4
+    # SKF model
+    bore_diameter: PosLength | None = None  # d
+    outer_diameter: PosLength | None = None  # D
+    series: str | None = None  # deep groove: "62", "60", ...; angular contact: "single_row", "double_row", "four_point"
+    bearings_in_set: Annotated[int, Field(ge=1)] = 1  # identical bearings the source stands for (a pair: 2)
+    lubrication: Literal["grease", "oil_air", "oil_jet", "oil_bath_low_level", "oil_bath"] = "grease"
+    base_oil: Literal["mineral", "synthetic", "transmission_fluid"] = "mineral"
+    seal: Literal["RSL", "RZ", "RSH", "RS1"] | None = None  # contact seal type (SKF Table 4); None: open or shielded
+    seal_counterface_diameter: PosLength | None = None  # d_s: d1 or d2 of the product table, as Table 4 names
+    seals_per_bearing: Literal[1, 2] = 2
+    drag_torque: NonNegTorque = 0.0  # M_drag per bearing of an oil bath or oil jet (SKF Diagram 2)
 
     @model_validator(mode="after")
     def _one_lubricant(self) -> "BearingSource":
@@ -235,6 +256,43 @@ class BearingSource(_Source):
             )
         return self
 
+    @model_validator(mode="after")
+    def _fields_of_the_friction_model(self) -> "BearingSource":
+        if self.friction_model == "palmgren":
+            missing = ["f0"] if self.f0 is None else []
+            if self.mean_diameter is None and None in (self.bore_diameter, self.outer_diameter):
+                missing.append("mean_diameter")
+            if missing:
+                raise ValueError(f"{', '.join(missing)}: needed by friction_model = 'palmgren'")
+            skf_only = [
+                key for key in _SKF_ONLY_FIELDS
+                if key not in ("bore_diameter", "outer_diameter")
+                and getattr(self, key) != type(self).model_fields[key].default
+            ]
+            if skf_only:
+                raise ValueError(f"{', '.join(skf_only)}: used only by friction_model = 'skf'")
+        else:
+            missing = [key for key in ("bore_diameter", "outer_diameter", "series") if getattr(self, key) is None]
+            if missing:
+                raise ValueError(f"{', '.join(missing)}: needed by friction_model = 'skf'")
+        if None not in (self.bore_diameter, self.outer_diameter):
+            if self.outer_diameter <= self.bore_diameter:
+                raise ValueError("outer_diameter must be larger than bore_diameter")
+            if self.mean_diameter is not None and not math.isclose(
+                self.mean_diameter, 0.5 * (self.bore_diameter + self.outer_diameter), rel_tol=1e-6
+            ):
+                raise ValueError("mean_diameter must be (bore_diameter + outer_diameter)/2; leave it out")
+        if self.friction_model == "skf":
+            _check_skf_bearing(self)
+        return self
+
+    @property
+    def dm(self) -> float:
+        """Mean diameter [m]: as declared, or (bore + outer diameter)/2."""
+        if self.mean_diameter is not None:
+            return self.mean_diameter
+        return 0.5 * (self.bore_diameter + self.outer_diameter)
+
     def viscosity_at(self, temperature: float) -> float:
         """The lubricant's ν [m²/s] at ``temperature`` [K] (the fixed value if one is declared)."""
         if self.lubricant is None:
@@ -242,14 +300,44 @@ class BearingSource(_Source):
         return self.lubricant.viscosity_at(temperature)
 
     @model_serializer(mode="wrap")
-    def _omit_the_unused_lubricant(self, handler):
-        # The lubricant form not chosen is left out, so a description written before `lubricant`
-        # existed keeps its serialised form and its hash (the benches' frozen provenance).
+    def _omit_the_unused_options(self, handler):
+        # Options left at their defaults (the lubricant form not chosen, the SKF model's fields
+        # of a Palmgren bearing) are left out, so a description written before they existed
+        # keeps its serialised form and its hash (the benches' frozen provenance).
         data = handler(self)
-        for key in ("lubricant_viscosity", "lubricant"):
-            if isinstance(data, dict) and key in data and data[key] is None:
-                del data[key]
+        if isinstance(data, dict):
+            for key in ("lubricant_viscosity", "lubricant", "friction_model", "mean_diameter", "f0", *_SKF_ONLY_FIELDS):
+                if key in data and getattr(self, key) == type(self).model_fields[key].default:
+                    del data[key]
         return data
+
+
+#: Fields of a bearing source that only the SKF friction model reads.
+_SKF_ONLY_FIELDS = (
+    "bore_diameter", "outer_diameter", "series", "bearings_in_set", "lubrication", "base_oil",
+    "seal", "seal_counterface_diameter", "seals_per_bearing", "drag_torque",
+)
+
+
+def _check_skf_bearing(src: BearingSource) -> None:
+    """The SKF tables know the series, the seal fits the bearing, drag only with oil."""
+    known = GEOMETRIC_CONSTANTS_SKF[src.bearing_type]
+    if src.series not in known:
+        raise ValueError(
+            f"series: SKF gives no friction constants for {src.bearing_type} series {src.series!r}; "
+            f"known: {', '.join(known)}"
+        )
+    if src.seal is not None:
+        if src.seal_counterface_diameter is None:
+            raise ValueError("seal_counterface_diameter: needed with a seal (d1 or d2 of the product table)")
+        try:
+            seal_constants_SKF(src.seal, src.bearing_type, src.outer_diameter)
+        except ValueError as exc:
+            raise ValueError(f"seal: {exc}") from None
+    elif src.seal_counterface_diameter is not None or src.seals_per_bearing != 2:
+        raise ValueError("seal_counterface_diameter, seals_per_bearing: used only with a seal")
+    if src.drag_torque > 0.0 and src.lubrication not in ("oil_bath", "oil_bath_low_level", "oil_jet"):
+        raise ValueError(f"drag_torque: an oil bath's or oil jet's drag, not for lubrication = {src.lubrication!r}")
 
 
 class DatasheetMotorLosses(Strict):
