@@ -1,10 +1,9 @@
-r"""Lubricant kinematic viscosity against temperature: ISO VG grade, viscosity index, Walther.
+r"""Lubricant kinematic viscosity against temperature: ISO VG grade and Walther's equation.
 
 A mineral or synthetic oil (or a grease's base oil) is known by two points of its
 viscosity–temperature line: ν at 40 °C and at 100 °C.  The first is the midpoint of its ISO VG
-grade (ISO 3448), the second is stated on the data sheet or follows from the viscosity index
-(ISO 2909 / ASTM D2270).  Between and near those points, ASTM D341's form of Walther's
-equation gives ν(T):
+grade (ISO 3448), the second is stated on the oil's data sheet.  Between and near those
+points, ASTM D341's form of Walther's equation gives ν(T):
 
 .. math:: \log_{10}\log_{10}(\nu + 0.7) = A - B\log_{10} T
 
@@ -14,9 +13,7 @@ standards are converted inside.
 References
 ----------
 .. [1] ISO 3448:1992, *Industrial liquid lubricants — ISO viscosity classification*, Table 1.
-.. [2] ASTM D2270-10(2016), *Standard Practice for Calculating Viscosity Index from Kinematic
-   Viscosity at 40 °C and 100 °C*; ISO 2909:2002 is the same method.
-.. [3] ASTM D341-09, *Standard Practice for Viscosity-Temperature Charts for Liquid Petroleum
+.. [2] ASTM D341-09, *Standard Practice for Viscosity-Temperature Charts for Liquid Petroleum
    Products*, Section 5 (equations); Walther, C., *Erdöl und Teer* 7 (1931) 382–384.
 """
 
@@ -28,7 +25,6 @@ import re
 import numpy as np
 
 from feedtherm.physics._arrays import scalar_or_array as _out
-from feedtherm.physics._astm_d2270 import ROWS as _D2270_ROWS
 from feedtherm.physics.validity import check_range
 
 #: ISO 3448 viscosity grades: grade number -> midpoint kinematic viscosity at 40 °C [mm²/s].
@@ -41,9 +37,6 @@ ISO_VG_MIDPOINTS_MM2_S: dict[int, float] = {
 
 #: D341's Z = ν + 0.7 holds from 2.0 mm²/s up; below, the standard adds correction terms.
 WALTHER_MIN_VISCOSITY_MM2_S = 2.0
-#: D2270 defines the viscosity index for ν₁₀₀ ≥ 2 mm²/s; its Table 1 ends at 70 mm²/s.
-_D2270_MIN_NU100 = 2.0
-_D2270_TABLE_MAX = 70.0
 _CELSIUS_40 = 313.15  # [K]
 _CELSIUS_100 = 373.15  # [K]
 _GRADE = re.compile(r"^\s*(?:ISO\s*)?(?:VG\s*)?(\d+)\s*$", re.IGNORECASE)
@@ -89,120 +82,6 @@ def kinematic_viscosity_iso_vg(grade):
         known = ", ".join(str(g) for g in ISO_VG_MIDPOINTS_MM2_S)
         raise ValueError(f"ISO VG {number} is not an ISO 3448 grade; the grades are {known}")
     return ISO_VG_MIDPOINTS_MM2_S[number] / 1e6
-
-
-def viscosity_index(nu40, nu100):
-    r"""Viscosity index of an oil from its kinematic viscosities at 40 °C and 100 °C (ASTM D2270).
-
-    With U = ν₄₀ and Y = ν₁₀₀ in mm²/s, and L, H the ν₄₀ of the reference oils of index 0 and
-    100 that have the oil's Y (D2270 Table 1, interpolated; above Y = 70:
-    L = 0.8353Y² + 14.67Y − 216, H = 0.1684Y² + 11.85Y − 97):
-
-    .. math::
-        VI = \begin{cases}
-        100\,\dfrac{L - U}{L - H} & U \ge H \quad (VI \le 100)\\[1ex]
-        100 + \dfrac{10^N - 1}{0.00715}, \quad N = \dfrac{\log H - \log U}{\log Y} & U < H
-        \end{cases}
-
-    Parameters
-    ----------
-    nu40, nu100 : float
-        Kinematic viscosities at 40 °C and 100 °C, [m²/s]; ν₁₀₀ ≥ 2 mm²/s.
-
-    Returns
-    -------
-    float
-        VI, [-], not rounded (the standard rounds the reported value to a whole number).
-
-    Notes
-    -----
-    Identical to ISO 2909:2002.  Undefined below ν₁₀₀ = 2 mm²/s (ValueError).
-
-    References
-    ----------
-    .. [1] ASTM D2270-10(2016), Sections 6–7 and Table 1.
-
-    Examples
-    --------
-    D2270's worked example for VI ≤ 100 (U = 73.30, Y = 8.86 mm²/s; Table 1 interpolated:
-    L = 118.5 + 0.6·(120.9 − 118.5) = 119.94, H = 68.79 + 0.6·(69.94 − 68.79) = 69.48;
-    VI = 100·(119.94 − 73.30)/(119.94 − 69.48) = 100·46.64/50.46 = 92.43, reported 92).
-    For VI > 100, U = 22.83, Y = 5.05: H = 28.49 + 0.5·(29.46 − 28.49) = 28.975,
-    N = (log 28.975 − log 22.83)/log 5.05 = (1.462023 − 1.358506)/0.703291 = 0.147190,
-    10^N = 1.403428, VI = 100 + 0.403428/0.00715 = 156.42.
-
-    >>> round(viscosity_index(73.30e-6, 8.86e-6), 2), round(viscosity_index(22.83e-6, 5.05e-6), 2)
-    (92.43, 156.42)
-    """
-    u = _nu_mm2_s(nu40, "nu40")
-    y = _nu_mm2_s(nu100, "nu100")
-    if y < _D2270_MIN_NU100:
-        raise ValueError(f"nu100 = {y:g} mm²/s: the viscosity index is defined from 2 mm²/s (ASTM D2270)")
-    return _vi(u, y)
-
-
-def kinematic_viscosity_100C_from_index(nu40, index):
-    r"""Kinematic viscosity at 100 °C of an oil of given ν₄₀ and viscosity index (D2270 inverted).
-
-    Solves :func:`viscosity_index` (ν₄₀, ν₁₀₀) = VI for ν₁₀₀ by bisection: at a fixed ν₄₀ the
-    index grows with ν₁₀₀ (a flatter viscosity–temperature line).
-
-    Parameters
-    ----------
-    nu40 : float
-        Kinematic viscosity at 40 °C, [m²/s].
-    index : float
-        Viscosity index, [-]; the result must have ν₁₀₀ ≥ 2 mm²/s.
-
-    Returns
-    -------
-    float
-        ν₁₀₀, [m²/s].
-
-    Notes
-    -----
-    The inverse of the standard's calculation, not a formula the standard prints; it returns
-    the ν₁₀₀ whose index is exactly ``index`` (before the standard's rounding).
-
-    References
-    ----------
-    .. [1] ASTM D2270-10(2016), Table 1 (interpolated linearly, as the standard directs).
-
-    Examples
-    --------
-    ISO VG 100 (ν₄₀ = 100 mm²/s) at VI = 95: between the D2270 rows Y = 11.0 (L = 173.9,
-    H = 95.19) and 11.1 (L = 176.6, H = 96.45), VI(11.0) = 100·73.9/78.71 = 93.89 and
-    VI(11.1) = 100·76.6/80.15 = 95.57.  VI = 95 lies at Y = 11.0 + 0.1·t with
-    100·(73.9 + 2.7t)/(78.71 + 1.44t) = 95, i.e. 7390 + 270t = 7477.45 + 136.8t,
-    t = 87.45/133.2 = 0.65653: Y = 11.0657 mm²/s.
-
-    >>> round(kinematic_viscosity_100C_from_index(100e-6, 95.0) * 1e6, 4)
-    11.0657
-    """
-    u = _nu_mm2_s(nu40, "nu40")
-    target = float(index)
-    if not math.isfinite(target):
-        raise ValueError(f"the viscosity index must be finite, got {index!r}")
-    low = _D2270_MIN_NU100
-    if _vi(u, low) > target:
-        raise ValueError(
-            f"no oil of nu40 = {u:g} mm²/s has VI = {target:g}: its nu100 would lie below 2 mm²/s, "
-            "where ASTM D2270 defines no index"
-        )
-    high = max(2.0 * low, u)
-    while _vi(u, high) < target:
-        high *= 2.0
-        if high > 1e7:
-            raise ValueError(f"no oil of nu40 = {u:g} mm²/s reaches VI = {target:g}")
-    for _ in range(200):
-        mid = 0.5 * (low + high)
-        if _vi(u, mid) < target:
-            low = mid
-        else:
-            high = mid
-        if high - low <= 1e-12 * high:
-            break
-    return 0.5 * (low + high) * 1e-6
 
 
 def coefficients_viscosity_temperature_Walther(nu1, T1, nu2, T2):
@@ -377,18 +256,3 @@ def _walther_z(nu_mm2_s: float, name: str) -> float:
     check_range(name, "nu [mm²/s]", nu_mm2_s, WALTHER_MIN_VISCOSITY_MM2_S, math.inf)
     return math.log10(math.log10(nu_mm2_s + 0.7))
 
-
-def _reference_oils(y: float) -> tuple[float, float]:
-    """L and H of D2270 [mm²/s] at ν₁₀₀ = y: Table 1 interpolated, or its formulas above 70."""
-    if y > _D2270_TABLE_MAX:
-        return 0.8353 * y * y + 14.67 * y - 216.0, 0.1684 * y * y + 11.85 * y - 97.0
-    ys, ls, hs = zip(*_D2270_ROWS)
-    return float(np.interp(y, ys, ls)), float(np.interp(y, ys, hs))
-
-
-def _vi(u: float, y: float) -> float:
-    low_ref, high_ref = _reference_oils(y)
-    if u >= high_ref:
-        return 100.0 * (low_ref - u) / (low_ref - high_ref)
-    n = (math.log10(high_ref) - math.log10(u)) / math.log10(y)
-    return 100.0 + (10.0**n - 1.0) / 0.00715

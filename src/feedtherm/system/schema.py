@@ -26,7 +26,6 @@ from pydantic import (
 
 from ..physics.bearings_skf import GEOMETRIC_CONSTANTS_SKF, seal_constants_SKF
 from ..physics.lubricant import (
-    kinematic_viscosity_100C_from_index,
     kinematic_viscosity_iso_vg,
     kinematic_viscosity_lubricant,
 )
@@ -168,12 +167,11 @@ class _Source(Strict):
 
 class Lubricant(Strict):
     """An oil, or a grease's base oil, by its ISO VG grade (ISO 3448 midpoint at 40 °C) and
-    either its viscosity index (ν at 100 °C by ASTM D2270) or its ν at 100 °C; ν(T) follows
-    Walther's equation (ASTM D341) through the two points (physics/lubricant.py)."""
+    its ν at 100 °C as the oil's data sheet states it; ν(T) follows Walther's equation
+    (ASTM D341) through the two points (physics/lubricant.py)."""
 
     grade: str  # "ISO VG 100"
-    viscosity_index: Annotated[float, Field(allow_inf_nan=False)] | None = None
-    viscosity_100C: PosKinematicViscosity | None = None
+    viscosity_100C: PosKinematicViscosity  # ν at 100 °C from the data sheet
 
     @field_validator("grade")
     @classmethod
@@ -182,13 +180,8 @@ class Lubricant(Strict):
         return value
 
     @model_validator(mode="after")
-    def _one_way_to_100C(self) -> "Lubricant":
-        if (self.viscosity_index is None) == (self.viscosity_100C is None):
-            raise ValueError("give viscosity_index or viscosity_100C (one of them) beside grade")
-        nu40 = self.viscosity_40C
-        if self.viscosity_index is not None:
-            kinematic_viscosity_100C_from_index(nu40, self.viscosity_index)  # raises if no such oil
-        elif not self.viscosity_100C < nu40:
+    def _thinner_at_100C(self) -> "Lubricant":
+        if not self.viscosity_100C < self.viscosity_40C:
             raise ValueError("viscosity_100C must be smaller than the grade's viscosity at 40 degC")
         return self
 
@@ -199,11 +192,7 @@ class Lubricant(Strict):
 
     def viscosity_at(self, temperature: float) -> float:
         """ν [m²/s] at ``temperature`` [K], by Walther's equation through 40 and 100 °C."""
-        nu40 = self.viscosity_40C
-        nu100 = self.viscosity_100C
-        if nu100 is None:
-            nu100 = kinematic_viscosity_100C_from_index(nu40, self.viscosity_index)
-        return kinematic_viscosity_lubricant(temperature, nu40, nu100)
+        return kinematic_viscosity_lubricant(temperature, self.viscosity_40C, self.viscosity_100C)
 
 
 class BearingSource(_Source):
@@ -252,7 +241,7 @@ class BearingSource(_Source):
         if (self.lubricant_viscosity is None) == (self.lubricant is None):
             raise ValueError(
                 "lubricant_viscosity or lubricant: give one (lubricant_viscosity = \"100 mm^2/s\", "
-                "or lubricant = { grade = \"ISO VG 100\", viscosity_index = 95 })"
+                "or lubricant = { grade = \"ISO VG 100\", viscosity_100C = \"11 mm^2/s\" })"
             )
         return self
 

@@ -19,7 +19,8 @@ def front_bearing_with(loaded, **lubricant):
 
 
 def test_grade_viscosity_is_walther_at_ambient_plus_convection_delta_t(paper):
-    # VG 100 with nu100 = 11 mm²/s at condition I (303.15 K), Walther / ASTM D341 by hand:
+    # VG 100 with a stated nu100 = 11 mm²/s (a hand-made example, not from a data sheet) at
+    # condition I (303.15 K), Walther / ASTM D341 by hand:
     # loglog 100.7 = log 2.0030295 = 0.3016873, loglog 11.7 = log 1.0681859 = 0.0286468,
     # log 313.15 = 2.4957524, log 373.15 = 2.5718834:
     # B = 0.2730405/0.0761310 = 3.586455, A = 0.3016873 + 3.586455·2.4957524 = 9.252591;

@@ -28,19 +28,16 @@ def load_error(tmp_path, lubricant_lines: str) -> str:
     return message
 
 
-def test_grade_with_viscosity_index_loads(tmp_path):
-    source = load_system(write_variant(tmp_path, 'lubricant = { grade = "ISO VG 100", viscosity_index = 95 }')).system.sources["front_bearing"]
-    assert source.lubricant_viscosity is None
-    # ISO 3448 midpoint of VG 100, and D2270 inverted at VI 95 (hand calculation in
-    # tests/unit/physics/test_lubricant.py): 11.06565 mm²/s at 100 °C.
-    assert source.viscosity_at(313.15) == pytest.approx(100e-6, rel=1e-9)
-    assert source.viscosity_at(373.15) == pytest.approx(11.06565e-6, rel=1e-6)
-
-
 def test_grade_with_viscosity_100c_loads_with_units(tmp_path):
+    # Hand-made example, not from a data sheet: a VG 100 oil stated as 11 mm²/s at 100 °C.
     source = load_system(write_variant(tmp_path, 'lubricant = { grade = "VG 100", viscosity_100C = "11 cSt" }')).system.sources["front_bearing"]
+    assert source.lubricant_viscosity is None
     assert source.lubricant.viscosity_100C == pytest.approx(11e-6, rel=1e-12)
+    # ISO 3448 midpoint of VG 100 at 40 °C, the stated value at 100 °C, and Walther between:
+    # 177.2454 mm²/s at 30 °C (hand calculation in tests/unit/boundary/test_bearing_lubricant_heat.py).
+    assert source.viscosity_at(313.15) == pytest.approx(100e-6, rel=1e-9)
     assert source.viscosity_at(373.15) == pytest.approx(11e-6, rel=1e-9)
+    assert source.viscosity_at(303.15) == pytest.approx(177.2454e-6, rel=1e-6)
 
 
 def test_a_fixed_viscosity_does_not_depend_on_temperature(paper):
@@ -51,14 +48,12 @@ def test_a_fixed_viscosity_does_not_depend_on_temperature(paper):
 @pytest.mark.parametrize(
     ("lines", "field", "reason"),
     [
-        ('lubricant = { grade = "ISO VG 90", viscosity_index = 95 }', "sources.front_bearing.lubricant.grade", "not an ISO 3448 grade"),
-        ('lubricant = { grade = "ISO VG 100" }', "sources.front_bearing.lubricant", "viscosity_index or viscosity_100C"),
-        ('lubricant = { grade = "ISO VG 100", viscosity_index = 95, viscosity_100C = "11 mm^2/s" }',
-         "sources.front_bearing.lubricant", "one of them"),
+        ('lubricant = { grade = "ISO VG 90", viscosity_100C = "11 mm^2/s" }', "sources.front_bearing.lubricant.grade", "not an ISO 3448 grade"),
+        ('lubricant = { grade = "ISO VG 100" }', "sources.front_bearing.lubricant.viscosity_100C", "missing (required)"),
+        ('lubricant = { grade = "ISO VG 100", viscosity_100C = "-11 mm^2/s" }', "sources.front_bearing.lubricant.viscosity_100C", "must be positive"),
         ('lubricant = { grade = "ISO VG 100", viscosity_100C = "120 mm^2/s" }', "sources.front_bearing.lubricant", "smaller"),
-        ('lubricant = { grade = "ISO VG 1500", viscosity_index = -1e6 }', "sources.front_bearing.lubricant", "below 2 mm"),
-        ('lubricant = { grade = "ISO VG 100", viscosity_index = 95, colour = "red" }', "sources.front_bearing.lubricant", "colour"),
-        ('lubricant_viscosity = "100 mm^2/s"\nlubricant = { grade = "ISO VG 100", viscosity_index = 95 }',
+        ('lubricant = { grade = "ISO VG 100", viscosity_100C = "11 mm^2/s", colour = "red" }', "sources.front_bearing.lubricant", "colour"),
+        ('lubricant_viscosity = "100 mm^2/s"\nlubricant = { grade = "ISO VG 100", viscosity_100C = "11 mm^2/s" }',
          "sources.front_bearing", "give one"),
         ("", "sources.front_bearing", "lubricant_viscosity or lubricant"),
     ],

@@ -26,7 +26,7 @@ bearings_in_set = 2
 static_load_rating = "20 kN"
 axial_load = "300 N"
 radial_load = "50 N"
-lubricant = { grade = "ISO VG 100", viscosity_index = 95 }
+lubricant = { grade = "ISO VG 100", viscosity_100C = "11 mm^2/s" }
 into = { nut_bearing = 1.0 }'''
 
 
