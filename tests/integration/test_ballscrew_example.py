@@ -18,7 +18,7 @@ from feedtherm.boundary import boundary_conditions
 from feedtherm.cli import main
 from feedtherm.system.checks import check_system
 from feedtherm.system.load import load_system
-from feedtherm.system.schema import TorqueSource
+from feedtherm.system.sources import TorqueSource
 
 NAME = "ballscrew_example"
 CONDITIONS = ("v5", "v10", "v20", "v10_warm")

@@ -20,11 +20,11 @@ from ..physics import (
     servo_motor,
 )
 from ..physics.mechanics import angular_speed, heat_friction, torque_screw_drive
-from ..system.schema import (
+from ..system.schema import FeedSystem
+from ..system.sources import (
     BallScrewSource,
     BearingSource,
     DatasheetMotorLosses,
-    FeedSystem,
     FixedSource,
     GuidewaySource,
     MotorSource,

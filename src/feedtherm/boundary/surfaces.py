@@ -14,8 +14,8 @@ from dataclasses import dataclass
 from ..physics import convection, radiation
 from ..physics.air import film_temperature
 from ..system.geometry import surface_area
-from ..system.schema import (
-    FeedSystem,
+from ..system.schema import FeedSystem
+from ..system.surfaces import (
     FixedConvection,
     MovingFaceConvection,
     MovingPlateConvection,

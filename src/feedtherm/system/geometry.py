@@ -10,7 +10,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .schema import Box, Cylinder, Part, Surface
+from .schema import Box, Cylinder, Part
+from .surfaces import Surface
 
 _AXES = {"x": 0, "y": 1, "z": 2}
 BOX_FACES = ("+x", "-x", "+y", "-y", "+z", "-z")

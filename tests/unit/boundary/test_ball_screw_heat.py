@@ -15,7 +15,7 @@ import pytest
 from feedtherm.boundary import boundary_conditions, operating_point
 from feedtherm.boundary.heat import source_heats
 from feedtherm.physics import bearings
-from feedtherm.system.schema import BallScrewSource
+from feedtherm.system.sources import BallScrewSource
 from feedtherm.system.variants import with_values
 
 HAND = 1e-6

@@ -10,7 +10,7 @@ import pytest
 
 from feedtherm.boundary import operating_point
 from feedtherm.boundary.heat import source_heats
-from feedtherm.system.schema import Lubricant
+from feedtherm.system.sources import Lubricant
 from feedtherm.system.variants import with_values
 
 

@@ -15,7 +15,7 @@ import pytest
 
 from feedtherm.boundary import operating_point
 from feedtherm.boundary.heat import source_heats
-from feedtherm.system.schema import BearingSource
+from feedtherm.system.sources import BearingSource
 
 # The paper bench's nut bearing (a 7010 DB pair, 300 N preload, 50 N radial) under the SKF model.
 NUT_PAIR_SKF = {

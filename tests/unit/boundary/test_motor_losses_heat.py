@@ -20,7 +20,7 @@ import pytest
 from feedtherm.boundary import operating_point
 from feedtherm.boundary.heat import source_heats
 from feedtherm.system.load import load_system
-from feedtherm.system.schema import MotorSource
+from feedtherm.system.sources import MotorSource
 from feedtherm.system.variants import with_values
 
 K_T, R_TT, T_F, D = 0.39, 5.70, 1.1e-2, 1.2e-5

@@ -17,7 +17,8 @@ from feedtherm.models.fem.readout import (
     slab_matrix,
     tet_volumes,
 )
-from feedtherm.system.schema import Box, Cylinder, Part, Surface
+from feedtherm.system.schema import Box, Cylinder, Part
+from feedtherm.system.surfaces import Surface
 
 
 def _box_mesh(x, y, z):

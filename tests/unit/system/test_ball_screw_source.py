@@ -9,7 +9,7 @@ import pytest
 from feedtherm.benches import bench
 from feedtherm.errors import DescriptionError
 from feedtherm.system.load import load_system
-from feedtherm.system.schema import BallScrewSource
+from feedtherm.system.sources import BallScrewSource
 
 EXAMPLE = bench("ballscrew_example").description.read_text(encoding="utf-8")
 CATALOGUE_NUT = '''[sources.ball_nut]

@@ -7,7 +7,7 @@ import pytest
 from feedtherm.benches import bench
 from feedtherm.errors import DescriptionError
 from feedtherm.system.load import load_system
-from feedtherm.system.schema import DatasheetMotorLosses, RatedMotorLosses
+from feedtherm.system.sources import DatasheetMotorLosses, RatedMotorLosses
 
 PAPER = bench("paper").description.read_text(encoding="utf-8")
 EFFICIENCY = 'efficiency = 0.85\ninto = { screw_motor = 1.0 }'

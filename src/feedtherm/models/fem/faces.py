@@ -19,7 +19,8 @@ import numpy as np
 
 from ...errors import ModelError
 from ...system.geometry import BOX_FACES
-from ...system.schema import Box, Cylinder, Part, Surface
+from ...system.schema import Box, Cylinder, Part
+from ...system.surfaces import Surface
 from .facets import Triangles
 
 __all__ = ["surface_facets", "curvature_sag"]
