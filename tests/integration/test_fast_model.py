@@ -6,7 +6,6 @@ import pytest
 from dataclasses import replace
 
 from feedtherm.models.fast.discretization import FastDiscretization
-from feedtherm.models.interface import AmbientCoupling
 from feedtherm.models.registry import ModelEntry, register_model, unregister_model
 from feedtherm.simulate import simulate
 from feedtherm.system.load import load_system

@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from .fields import FieldSeries
-from .render import SUPERSAMPLE, Surface, View, render_surface
+from .render import Surface, View, render_surface
 
 __all__ = [
     "write_field_images",

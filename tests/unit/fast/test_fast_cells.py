@@ -149,14 +149,12 @@ def test_exposed_area_of_the_front_housing_is_the_hand_count(paper, fast):
     bore = math.pi * 31**2
     housing = (110 * 95 - bore) + (110 * 95 - bore - 80 * 30) + 2 * 60 * 95 + 60 * 110
     bracket = 80 * 30 + 2 * 190 * 30 + (190 * 80 - 120 * 60)
-    bc = boundary_conditions(paper, "I", "physics")
     nodes, areas = fast.surface_exposure("front_housing", 0)
     assert areas.sum() == pytest.approx((housing + bracket) * 1e-6, rel=0.01)
     assert np.isin(nodes, fast.layout.part_nodes("front_housing")).all()
 
 
 def test_a_declared_area_is_kept(paper, fast):
-    bc = boundary_conditions(paper, "I", "physics")
     for name in ("base_top", "worktable_bottom"):
         assert fast.surface_exposure(name, 7)[1].sum() == pytest.approx(paper.surfaces[name].area, rel=1e-12)
 
@@ -165,13 +163,11 @@ def test_what_rides_on_the_screw_and_the_rails_covers_them(paper, fast):
     """Rails: faces +z, +-y of 2 x 800 mm (20 wide, 18 high) less the four carriages' bottoms
     on the rail tops, 60 x 20 mm each, wherever the group is. A declared area on the screw
     (the ball-screw example's) is spread over the exposed cells, not reduced again."""
-    bc = boundary_conditions(paper, "I", "physics")
     for k in (0, 13, 40):
         areas = fast.surface_exposure("guideways", k)[1]
         assert areas.sum() == pytest.approx(2 * 800 * (20 + 2 * 18) * 1e-6 - 4 * 60 * 20 * 1e-6, rel=1e-9)
     example = load_system("ballscrew_example").system
     model = discretize(example, "fast", ModelOptions())
-    bc = boundary_conditions(example, "v10", "physics")
     nodes, areas = model.surface_exposure("screw_shaft", 5)
     assert areas.sum() == pytest.approx(example.surfaces["screw_shaft"].area, rel=1e-12)
     screw = model.layout.screw

@@ -15,7 +15,6 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from ...boundary import BoundaryConditions
 from ...errors import ModelError
 from ...system.geometry import surface_area
 from .contacts import JointContact, fused_links, side, surface_samples
