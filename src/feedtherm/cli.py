@@ -117,26 +117,20 @@ def _require_paper_table(loaded, mode: str) -> None:
         raise FeedthermError(f"--mode paper: {loaded.origin} has no [paper] table of printed values")
 
 
-def _positive_number(text: str) -> float:
+def _positive_number(text: str, what: str = "number") -> float:
     """argparse type: a finite number > 0."""
     try:
         value = float(text)
     except ValueError:
         value = math.nan
     if not (math.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"must be a positive number, got {text!r}")
+        raise argparse.ArgumentTypeError(f"must be a positive {what}, got {text!r}")
     return value
 
 
 def _positive_seconds(text: str) -> float:
     """argparse type: a finite number of seconds > 0."""
-    try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
-    if not (math.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"must be a positive number of seconds, got {text!r}")
-    return value
+    return _positive_number(text, "number of seconds")
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:

@@ -9,12 +9,15 @@ from the registry, and :func:`~feedtherm.solution.pack.pack_solution`.
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass
 from typing import Callable
+
+import numpy as np
 
 from . import __version__
 from .constants import AMBIENT_SENSOR, KELVIN_OFFSET
 from .errors import FeedthermError
-from .models.integrator import Integrator
+from .models.integrator import Integrator, Segment
 from .models.interface import ThermalModel
 from .models.options import ModelOptions
 from .models.registry import build_model
@@ -107,22 +110,55 @@ def discretize(system: FeedSystem, model: str, options: ModelOptions | None = No
     return build_model(model, system, options or ModelOptions())
 
 
+@dataclass(frozen=True)
+class SteadySolve:
+    """The steady state of one condition, with the model and integrator that solved it.
+
+    A moving table gives the cycle-averaged state (``k`` None) read with the moving group
+    mid-stroke; a standstill gives the state at position 0.
+    """
+
+    model: ThermalModel
+    integrator: Integrator
+    segment: Segment
+    state: np.ndarray
+
+    @property
+    def k(self) -> int | None:
+        return None if self.segment.speed > 0 else 0
+
+    @property
+    def probe_position(self) -> int:
+        return len(self.model.positions) // 2 if self.k is None else 0
+
+    def values(self) -> dict[str, float]:
+        """Sensors [K], ``D`` [m] and the ambient sensor."""
+        values = dict(zip(self.model.probe_names, self.model.probe(self.state, self.probe_position)))
+        values[AMBIENT_SENSOR] = self.segment.bc.point.ambient
+        return values
+
+
+def steady_solve(loaded: LoadedSystem, condition: str, *, mode: str = "physics", single_drive: bool = False,
+                 model: str = "fast", mesh: str | None = None, options: ModelOptions | None = None) -> SteadySolve:
+    """Plan ``condition``, build the model and solve its steady state (no transient)."""
+    if condition not in loaded.system.conditions:
+        raise FeedthermError(f"no condition {condition!r} in {loaded.origin}")
+    plan = plan_run(loaded, condition=condition, mode=mode, model=model, single_drive=single_drive, mesh=mesh,
+                    options=options)
+    segment = plan.segments[0]
+    disc = plan.model.build(loaded.system, plan.options)
+    integrator = Integrator(disc, plan.options)
+    return SteadySolve(disc, integrator, segment, integrator.steady(0, segment.bc, None if segment.speed > 0 else 0))
+
+
 def steady_state(loaded: LoadedSystem, condition: str, *, mode: str = "physics", single_drive: bool = False,
                  model: str = "fast", options: ModelOptions | None = None) -> dict[str, float]:
     """Cycle-averaged steady state of a condition (no transient): sensors [K] and ``D`` [m].
 
     Cheap with the fast model (one sparse solve), for sensitivity studies and calibration.
     """
-    if condition not in loaded.system.conditions:
-        raise FeedthermError(f"no condition {condition!r} in {loaded.origin}")
-    plan = plan_run(loaded, condition=condition, mode=mode, model=model, single_drive=single_drive, options=options)
-    segment = plan.segments[0]
-    disc = plan.model.build(loaded.system, plan.options)
-    k = None if segment.speed > 0 else 0
-    state = Integrator(disc, plan.options).steady(0, segment.bc, k)
-    values = dict(zip(disc.probe_names, disc.probe(state, len(disc.positions) // 2 if k is None else k)))
-    values[AMBIENT_SENSOR] = segment.bc.point.ambient
-    return values
+    return steady_solve(loaded, condition, mode=mode, single_drive=single_drive, model=model,
+                        options=options).values()
 
 
 def provenance(loaded: LoadedSystem, mode: str) -> dict:
@@ -139,4 +175,4 @@ def provenance(loaded: LoadedSystem, mode: str) -> dict:
     }
 
 
-__all__ = ["simulate", "execute", "steady_state", "discretize", "provenance", "ModelOptions"]
+__all__ = ["simulate", "execute", "steady_state", "steady_solve", "SteadySolve", "discretize", "provenance", "ModelOptions"]

@@ -2,9 +2,9 @@
 
 Each case is a description file with a ``# requirement:`` line and its reference (MOOSE's
 way: what is verified is what users run).  Transient cases go through
-:func:`feedtherm.simulate.simulate`; steady cases through the plan, the registry's model and
-the integrator's steady solve, as :func:`feedtherm.simulate.steady_state` does, keeping the
-model so that a test can read heat flows from it.
+:func:`feedtherm.simulate.simulate`; steady cases through
+:func:`feedtherm.simulate.steady_solve` (what ``steady_state()`` runs), which keeps the model so
+that a test can read heat flows from it.
 """
 
 from __future__ import annotations
@@ -16,10 +16,9 @@ from pathlib import Path
 import numpy as np
 
 from feedtherm.boundary import BoundaryConditions
-from feedtherm.models.integrator import Integrator
 from feedtherm.models.interface import ThermalModel, cycle_weights
 from feedtherm.models.options import ModelOptions
-from feedtherm.plan import plan_run
+from feedtherm.simulate import steady_solve
 from feedtherm.system.load import LoadedSystem, load_system
 
 CASES = Path(__file__).parent / "cases"
@@ -53,12 +52,9 @@ class SteadyState:
 
 
 def solve_steady(loaded: LoadedSystem, condition: str, mesh: str, options: ModelOptions | None = None) -> SteadyState:
-    """The steady state of ``condition`` with the FE model at ``mesh`` density."""
-    plan = plan_run(loaded, condition=condition, model="fem", mesh=mesh, options=options)
-    model = plan.model.build(loaded.system, plan.options)
-    segment = plan.segments[0]
-    k = None if segment.speed > 0 else 0
-    return SteadyState(model, segment.bc, Integrator(model, plan.options).steady(0, segment.bc, k), k)
+    """The steady state of ``condition`` with the FE model at ``mesh`` density (as ``steady_state()`` solves it)."""
+    steady = steady_solve(loaded, condition, model="fem", mesh=mesh, options=options)
+    return SteadyState(steady.model, steady.segment.bc, steady.state, steady.k)
 
 
 def observed_order(errors, sizes) -> list[float]:

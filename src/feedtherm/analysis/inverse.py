@@ -30,9 +30,8 @@ from scipy.stats import norm
 
 from ..constants import AMBIENT_SENSOR, ELONGATION_PROBE, KELVIN_OFFSET
 from ..errors import FeedthermError
-from ..models.integrator import Integrator
 from ..models.interface import cycle_weights, weighted_sum
-from ..plan import plan_run
+from ..simulate import steady_solve
 from ..system.load import LoadedSystem
 from .measurements import MeasurementSet
 
@@ -144,16 +143,11 @@ def transfer(loaded: LoadedSystem, condition: str, groups: dict[str, tuple[str, 
     Within a group the watt is shared as the loss models share the group's heat (equally if they
     give none), and each source's share enters where that source's heat enters.
     """
-    plan = plan_run(loaded, condition=condition, mode=mode, model=model)
-    segment = plan.segments[0]
-    bc = segment.bc
-    disc = plan.model.build(loaded.system, plan.options)
-    integrator = Integrator(disc, plan.options)
-    moving = segment.speed > 0
-    positions = list(range(len(disc.positions))) if moving else [0]
-    weights = cycle_weights(len(disc.positions)) if moving else np.ones(1)
-    k_probe = len(disc.positions) // 2 if moving else 0
-    k = None if moving else 0
+    steady = steady_solve(loaded, condition, mode=mode, model=model)
+    disc, integrator, bc, k = steady.model, steady.integrator, steady.segment.bc, steady.k
+    k_probe = steady.probe_position
+    positions = list(range(len(disc.positions))) if k is None else [k]
+    weights = cycle_weights(len(disc.positions)) if k is None else np.ones(1)
     loads = integrator.loads(0, bc, k)
     names = disc.probe_names
     zero = disc.probe(np.zeros(disc.n_nodes), k_probe)

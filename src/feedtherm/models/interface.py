@@ -158,18 +158,22 @@ class ThermalModel(ABC):
 
     def ambient_links(self, bc: BoundaryConditions, k: int) -> np.ndarray:
         """Conductance [W/K] of every node to its surface's sink (convection + radiation)."""
-        return self._links(bc, k, sink=False)
+        return self._links(bc, k)[0]
 
     def ambient_coupling(self, bc: BoundaryConditions, k: int) -> AmbientCoupling:
         """The ambient operator of the step equations (diagonal for full-state models)."""
-        return AmbientCoupling.diagonal(self._links(bc, k, sink=False), self._links(bc, k, sink=True))
+        return AmbientCoupling.diagonal(*self._links(bc, k))
 
-    def _links(self, bc: BoundaryConditions, k: int, *, sink: bool) -> np.ndarray:
+    def _links(self, bc: BoundaryConditions, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """Node-to-sink conductances ``g`` [W/K] and their heat at the sink temperatures ``g·T_s`` [W]."""
         g = np.zeros(self.n_nodes)
+        sink_heat = np.zeros(self.n_nodes)
         for name, transfer in bc.surfaces.items():
             nodes, areas = self.surface_exposure(name, k)
-            np.add.at(g, nodes, transfer.total * areas * (transfer.sink if sink else 1.0))
-        return g
+            links = transfer.total * areas
+            np.add.at(g, nodes, links)
+            np.add.at(sink_heat, nodes, links * transfer.sink)
+        return g, sink_heat
 
     def heat_vector(self, bc: BoundaryConditions, k: int) -> np.ndarray:
         """Heat [W] into every state entry at position k, placed by :func:`heat_inputs`."""
