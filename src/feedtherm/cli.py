@@ -231,6 +231,7 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "calibration", args.mode)
     check_output_dir(out_dir)
     from .analysis.calibration import calibrate, cross_validate, resolve_parameters
+    from .analysis.consistency import check_consistency, operating_points
     from .analysis.validation import measurements_of
     from .outputs.calibration_files import print_calibration, write_calibration
 
@@ -238,12 +239,17 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     names = [n.strip() for n in args.params.split(",") if n.strip()]
     fit = [c.strip() for c in args.fit.split(",") if c.strip()]
     resolve_parameters(loaded, names)  # unknown names and missing bounds fail before any run
+    cal = loaded.system.calibration
+    consistency = check_consistency(data, operating_points(loaded.system),
+                                    sigma_t=cal.temperature_sigma if cal else 0.5,
+                                    sigma_d=(cal.elongation_sigma if cal else 2e-6) * 1e6)
+    options = {"mode": args.mode, "consistency": consistency, "equilibrium": not args.no_equilibrium}
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
-        result = calibrate(loaded, data, fit, names, mode=args.mode, progress=progress)
+        result = calibrate(loaded, data, fit, names, progress=progress, **options)
     cross = None
     if args.cross_validate:
         with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
-            cross = cross_validate(loaded, data, names, mode=args.mode, progress=progress)
+            cross = cross_validate(loaded, data, names, progress=progress, start=result.fitted, **options)
     write_calibration(loaded, result, out_dir, cross)
     print_calibration(result, out_dir, cross)
     return 0
@@ -398,6 +404,8 @@ def build_parser() -> argparse.ArgumentParser:
                            help="parameters declared under [calibration.parameters]")
     calibrate.add_argument("--cross-validate", action="store_true",
                            help="also leave each measured condition out in turn and predict it")
+    calibrate.add_argument("--no-equilibrium", action="store_true",
+                           help="fit the final values only, not the measured equilibrium times")
     calibrate.add_argument("--model", choices=("fast",), default="fast",
                            help="calibration runs the fast model (hundreds of runs)")
     _mode_argument(calibrate)

@@ -74,6 +74,43 @@ def test_cross_validation_predicts_each_left_out_condition(paper, tmp_path):
         assert max(abs(r.deviation) for r in result.held_out if r.unit == "C") < 0.5  # model-made data
 
 
+def test_held_out_predictions_fall_in_their_intervals_and_flagged_values_are_not_fitted(paper, tmp_path):
+    """Model-made data at I, II, IV (noise 0.1 K, 0.5 µm), the model's own equilibrium times
+    stated for them, and IV's elongation spoiled by 30 µm and flagged as inconsistent: the fit
+    must ignore the spoiled value (reporting it with its reason), fit the equilibrium times, and
+    predict the held-out condition inside its 95 % intervals."""
+    from feedtherm.analysis.calibration import EQUILIBRIUM_QUANTITY, _Model
+    from feedtherm.analysis.consistency import ConsistencyReport, Flag
+    from feedtherm.analysis.measurements import Measurement, MeasurementSet
+
+    names = ["screw_nut_preload"]
+    truth = apply_values(paper, names, [900.0])
+    data = synthetic_measurements(truth, tmp_path / "m.csv", ["I", "II", "IV"])
+    own = _Model(truth, [], "physics").finals([], ["I", "II"])
+    spoiled = [Measurement(r.condition, r.quantity, r.unit, r.measured + (30.0 if (r.condition, r.quantity) == ("IV", "D_um") else 0.0))
+               for r in data.rows]
+    stated = {c: own[c][EQUILIBRIUM_QUANTITY] for c in ("I", "II")}
+    data = MeasurementSet(spoiled, data.source, stated)
+    flags = ConsistencyReport([Flag("IV", "D_um", "elongation_law", "spoiled on purpose", 20.0)], None, [])
+    result = calibrate(paper, data, ["I", "IV"], names, consistency=flags)
+    assert [(r.condition, r.quantity, r.flag) for r in result.excluded] == [("IV", "D_um", "spoiled on purpose")]
+    assert abs(result.excluded[0].deviation + 30.0) < 2.0  # the fit did not bend towards the spoiled value
+    assert abs(result.fitted[0] - 900.0) < 3 * result.standard_errors[0]
+    fitted_eq = [r for r in result.residuals if r.quantity == EQUILIBRIUM_QUANTITY]
+    assert [r.condition for r in fitted_eq] == ["I"] and abs(fitted_eq[0].deviation) < 1.0  # minutes
+    held = result.held_out
+    assert {r.condition for r in held} == {"II"} and any(r.quantity == EQUILIBRIUM_QUANTITY for r in held)
+    assert all(r.interval is not None and r.interval > 0 for r in held)
+    outside = [(r.quantity, r.deviation, r.interval) for r in held if abs(r.deviation) > r.interval]
+    assert len(outside) <= 1, outside  # 95 % intervals: of 7 values, two outside has probability 4 %
+
+
+def apply_values(loaded, names, values):
+    from feedtherm.analysis.calibration import apply
+
+    return apply(loaded, resolve_parameters(loaded, names), values)
+
+
 @pytest.mark.parametrize(
     "args, fragment",
     [

@@ -3,11 +3,18 @@
 The parameters, their kinds and bounds are declared in the description's ``[calibration]``
 section.  The fit is bounded nonlinear least squares (scipy ``least_squares``, trust region
 reflective) on residuals ``(simulated - measured) / sigma`` of the final values of the fitted
-conditions, with ``sigma`` the declared temperature and elongation weights.  Each model
-evaluation is a full transient run of the fast model with the cycle-averaged motion.
+conditions, with ``sigma`` the declared temperature and elongation weights.  Where the
+measurements state equilibrium times, the simulated time to 95 % of the steady rise is fitted
+too (the transient information; weight ``equilibrium_sigma``).  Each model evaluation is a full
+transient run of the fast model with the cycle-averaged motion.
+
+Measured values that the consistency check (:mod:`feedtherm.analysis.consistency`) flags are
+left out of the fit and kept in the tables with their reason.
 
 What a calibration is worth is how it predicts conditions it was not fitted to: the result
-carries a held-out table, and :func:`cross_validate` leaves each condition out in turn.
+carries a held-out table with 95 % prediction intervals (the parameter covariance carried
+through the model's sensitivities, plus the measurement's own scatter), and
+:func:`cross_validate` leaves each condition out in turn.
 """
 
 from __future__ import annotations
@@ -20,15 +27,23 @@ from typing import Callable
 
 import numpy as np
 from scipy.optimize import least_squares
+from scipy.stats import t as student_t
 
 from ..errors import FeedthermError
 from ..simulate import simulate
+from ..solution.equilibrium import rise_time
 from ..system.load import LoadedSystem
 from ..system.quantities import to_base_si
 from ..system.references import closest
 from ..system.variants import get_path, with_values
+from .consistency import ConsistencyReport
 from .measurements import MeasurementSet
 from .validation_types import ELONGATION_QUANTITY
+
+#: The equilibrium time among the predicted quantities: time to 95 % of the steady rise [min].
+EQUILIBRIUM_QUANTITY = "t_eq"
+#: Two-sided 95 % coverage factor of a normal distribution.
+Z95 = 1.959964
 
 #: Condition number of the Jacobian above which the fit cannot separate the parameters.
 SINGULAR_CONDITION_NUMBER = 1e8
@@ -59,9 +74,11 @@ class FitParameter:
 class Prediction:
     condition: str
     quantity: str
-    unit: str
+    unit: str  # "C", "um" or "min"
     predicted: float
     measured: float
+    interval: float | None = None  # half-width of the 95 % prediction interval
+    flag: str = ""  # why the consistency check flags the measured value ("" if it does not)
 
     @property
     def deviation(self) -> float:
@@ -85,6 +102,7 @@ class CalibrationResult:
     measurement_source: str
     calibrated: LoadedSystem
     status: str = ""
+    excluded: list[Prediction] = field(default_factory=list)  # flagged values left out of the fit
     extra: dict = field(default_factory=dict)
 
 
@@ -140,7 +158,7 @@ def apply(loaded: LoadedSystem, parameters: list[FitParameter], x) -> LoadedSyst
 
 
 class _Model:
-    """Final values of conditions for parameter vectors, counting the runs."""
+    """Final values (and the time to 95 % of the steady rise) of conditions, counting the runs."""
 
     def __init__(self, loaded: LoadedSystem, parameters: list[FitParameter], mode: str):
         self.loaded, self.parameters, self.mode = loaded, parameters, mode
@@ -152,19 +170,49 @@ class _Model:
         for condition in conditions:
             run = simulate(variant, condition=condition, mode=self.mode, motion="averaged")
             self.runs += 1
-            out[condition] = {k: float(v) for k, v in run.summary_values("final").items()}
+            values = {k: float(v) for k, v in run.summary_values("final").items()}
+            initial = {name: float(series[0]) for name, series in run.sensors.items()}
+            sensors = {n: v for n, v in run.cycle_sensors.items() if n in initial}
+            values[EQUILIBRIUM_QUANTITY] = rise_time(run.cycle_times, sensors, initial, run.steady) / 60.0
+            out[condition] = values
         return out
 
 
-def _predictions(finals, data: MeasurementSet, conditions: list[str]) -> list[Prediction]:
-    return [Prediction(r.condition, r.quantity, r.unit, finals[r.condition][r.quantity], r.measured)
-            for c in conditions for r in data.for_condition(c)]
+@dataclass(frozen=True)
+class _Datum:
+    """One fitted or predicted value: a measurement row, or a stated equilibrium time."""
+
+    condition: str
+    quantity: str
+    unit: str
+    measured: float
+    flag: str = ""
+
+
+def _data(data: MeasurementSet, conditions: list[str], consistency: ConsistencyReport | None,
+          equilibrium: bool) -> list[_Datum]:
+    out = []
+    for c in conditions:
+        for r in data.for_condition(c):
+            flag = consistency.flag_for(c, r.quantity) if consistency else None
+            out.append(_Datum(c, r.quantity, r.unit, r.measured, flag.reason if flag else ""))
+        if equilibrium and c in data.equilibrium_min:
+            out.append(_Datum(c, EQUILIBRIUM_QUANTITY, "min", data.equilibrium_min[c]))
+    return out
+
+
+def _predictions(finals, rows: list[_Datum], intervals: dict | None = None) -> list[Prediction]:
+    return [Prediction(r.condition, r.quantity, r.unit, finals[r.condition][r.quantity], r.measured,
+                       None if intervals is None else intervals.get((r.condition, r.quantity)), r.flag)
+            for r in rows]
 
 
 def _sigma(loaded: LoadedSystem, unit: str) -> float:
     cal = loaded.system.calibration
     if unit == "um":
         return (cal.elongation_sigma if cal else 2e-6) * 1e6
+    if unit == "min":
+        return (cal.equilibrium_sigma if cal else 600.0) / 60.0
     return cal.temperature_sigma if cal else 0.5
 
 
@@ -172,8 +220,15 @@ def _sigma(loaded: LoadedSystem, unit: str) -> float:
 
 
 def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names: list[str], *,
-              mode: str = "physics", progress: Callable[[float], None] | None = None) -> CalibrationResult:
-    """Fit the parameters ``names`` to the conditions ``fit``; predict every other condition."""
+              mode: str = "physics", progress: Callable[[float], None] | None = None,
+              consistency: ConsistencyReport | None = None, equilibrium: bool = True,
+              start: np.ndarray | None = None) -> CalibrationResult:
+    """Fit the parameters ``names`` to the conditions ``fit``; predict every other condition.
+
+    ``consistency``: values it flags are left out of the fit (and reported with their reason).
+    ``equilibrium``: also fit the stated equilibrium times of the fitted conditions.
+    ``start``: the parameter values to start from (default: the description's, clipped to the bounds).
+    """
     started = time.perf_counter()
     measured = data.conditions()
     missing = [c for c in fit if c not in measured]
@@ -183,7 +238,8 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
     if unknown:
         raise FeedthermError(f"--fit: no condition {', '.join(unknown)} in {loaded.origin}")
     parameters = resolve_parameters(loaded, names)
-    rows = [r for c in fit for r in data.for_condition(c)]
+    fitted_data = _data(data, fit, consistency, equilibrium)
+    rows = [r for r in fitted_data if not r.flag]
     if len(rows) < len(parameters):
         raise FeedthermError(f"--fit: {len(rows)} measured values cannot determine {len(parameters)} parameters")
     model = _Model(loaded, parameters, mode)
@@ -196,26 +252,66 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
     def residuals(u):  # u: parameters scaled to [0, 1] within their bounds
         finals = model.finals(lower + u * span, fit)
         if progress is not None:
-            progress(min(0.95, model.runs / (len(fit) * (len(parameters) + 1) * 8)))
+            progress(min(0.9, model.runs / (len(fit) * (len(parameters) + 1) * 8)))
         return (np.array([finals[r.condition][r.quantity] for r in rows]) - target) / sigma
 
-    u0 = (np.array([p.start for p in parameters]) - lower) / span
-    result = least_squares(residuals, u0, bounds=(0.0, 1.0), diff_step=1e-3, x_scale=1.0, xtol=1e-6, ftol=1e-8)
+    x_start = np.array([p.start for p in parameters]) if start is None else np.clip(start, lower, upper)
+    u0 = (x_start - lower) / span
+    result = least_squares(residuals, u0, bounds=(0.0, 1.0), diff_step=1e-3, x_scale=1.0, xtol=1e-4, ftol=1e-6)
     x = lower + result.x * span
     se, corr, identifiable = _uncertainty(result.jac / span[None, :], result.fun, x, len(rows))
     at_bound = ["lower" if u <= 1e-6 else "upper" if u >= 1 - 1e-6 else "" for u in result.x]
-    finals = model.finals(x, measured)
     held_out = [c for c in measured if c not in fit and c in loaded.system.conditions]
+    every = _data(data, list(fit) + held_out, consistency, equilibrium)
+    finals, intervals = _prediction_intervals(model, x, lower, upper, every, result, loaded, len(rows))
     calibrated = apply(loaded, parameters, x)
     if progress is not None:
         progress(1.0)
+    fitted_rows = [r for r in every if r.condition in fit]
     return CalibrationResult(
         parameters=parameters, fitted=x, standard_errors=se, correlation=corr, identifiable=identifiable,
-        at_bound=at_bound,
-        fit_conditions=list(fit), residuals=_predictions(finals, data, fit), held_out=_predictions(finals, data, held_out),
+        at_bound=at_bound, fit_conditions=list(fit),
+        residuals=_predictions(finals, [r for r in fitted_rows if not r.flag], intervals),
+        held_out=_predictions(finals, [r for r in every if r.condition not in fit], intervals),
         cost=float(result.cost), model_runs=model.runs, wall_time_s=time.perf_counter() - started,
         measurement_source=data.source, calibrated=calibrated, status=result.message,
+        excluded=_predictions(finals, [r for r in fitted_rows if r.flag], intervals),
     )
+
+
+def _prediction_intervals(model: _Model, x, lower, upper, rows: list[_Datum], fit_result, loaded, m: int):
+    """Values at ``x`` of every condition in ``rows`` and the 95 % half-width of each.
+
+    Var = g·Cov·gᵀ + s²·σ²: ``g`` the value's sensitivity to the parameters (one-sided
+    differences of 1 % of each range, away from the nearer bound), ``Cov`` the parameter
+    covariance of the fit, ``σ`` the declared weight of a measurement of that kind and ``s²``
+    the residual variance per degree of freedom (1 when none is left), and the coverage factor
+    Student's t with those degrees of freedom (s² is itself estimated from few residuals): the
+    interval a new measurement at that condition should fall in if the model's misfit is like
+    the fit's.
+    """
+    conditions = list(dict.fromkeys(r.condition for r in rows))
+    base = model.finals(x, conditions)
+    span = upper - lower
+    jac = fit_result.jac / span[None, :]
+    dof = m - len(x)
+    s2 = float(fit_result.fun @ fit_result.fun) / dof if dof > 0 else 1.0
+    cov = s2 * np.linalg.pinv(jac.T @ jac)
+    gradients = {(r.condition, r.quantity): np.zeros(len(x)) for r in rows}
+    for j in range(len(x)):
+        h = 0.01 * span[j] * (1.0 if x[j] + 0.01 * span[j] <= upper[j] else -1.0)
+        shifted = x.copy()
+        shifted[j] += h
+        moved = model.finals(shifted, conditions)
+        for r in rows:
+            gradients[(r.condition, r.quantity)][j] = (moved[r.condition][r.quantity] - base[r.condition][r.quantity]) / h
+    coverage = float(student_t.ppf(0.975, dof)) if dof > 0 else Z95
+    intervals = {}
+    for key, g in gradients.items():
+        unit = next(r.unit for r in rows if (r.condition, r.quantity) == key)
+        variance = float(g @ cov @ g) + s2 * _sigma(loaded, unit) ** 2
+        intervals[key] = coverage * math.sqrt(max(variance, 0.0))
+    return base, intervals
 
 
 def _uncertainty(jac: np.ndarray, fun: np.ndarray, x: np.ndarray, m: int):
@@ -248,16 +344,23 @@ def _uncertainty(jac: np.ndarray, fun: np.ndarray, x: np.ndarray, m: int):
 
 
 def cross_validate(loaded: LoadedSystem, data: MeasurementSet, names: list[str], *, mode: str = "physics",
-                   progress: Callable[[float], None] | None = None) -> list[tuple[str, CalibrationResult]]:
-    """Leave each measured condition out in turn: fit on the rest, predict the one left out."""
+                   progress: Callable[[float], None] | None = None, consistency: ConsistencyReport | None = None,
+                   equilibrium: bool = True, start: np.ndarray | None = None) -> list[tuple[str, CalibrationResult]]:
+    """Leave each measured condition out in turn: fit on the rest, predict the one left out.
+
+    ``start``: where every fold's fit starts (a fit on all the conditions is a good start:
+    a fold differs from it by one condition's data).
+    """
     conditions = [c for c in data.conditions() if c in loaded.system.conditions]
     out = []
     for i, left_out in enumerate(conditions):
         fit = [c for c in conditions if c != left_out]
-        out.append((left_out, calibrate(loaded, data, fit, names, mode=mode)))
+        out.append((left_out, calibrate(loaded, data, fit, names, mode=mode, consistency=consistency,
+                                        equilibrium=equilibrium, start=start)))
         if progress is not None:
             progress((i + 1) / len(conditions))
     return out
 
 
-__all__ = ["calibrate", "cross_validate", "resolve_parameters", "CalibrationResult", "Prediction", "ELONGATION_QUANTITY"]
+__all__ = ["calibrate", "cross_validate", "resolve_parameters", "CalibrationResult", "Prediction", "ELONGATION_QUANTITY",
+           "EQUILIBRIUM_QUANTITY"]

@@ -22,7 +22,7 @@ from ..system.quantities import registry
 from ..system.variants import split_path
 from .files import staged_directory, write_json
 
-PREDICTION_HEADER = ["condition", "quantity", "unit", "predicted", "measured", "deviation"]
+PREDICTION_HEADER = ["condition", "quantity", "unit", "predicted", "measured", "deviation", "interval95", "flag"]
 #: Every file a calibration can write: crossval.csv only with cross-validation.
 CALIBRATION_FILES = ("calibrated.toml", "calibration.json", "heldout.csv", "crossval.csv")
 
@@ -79,7 +79,8 @@ def write_predictions(rows: list[Prediction], path: Path, first_column: str | No
         writer.writerow(([first_column] if first_column else []) + PREDICTION_HEADER)
         for row, label in rows:
             writer.writerow(([label] if first_column else []) + [row.condition, row.quantity, row.unit,
-                            f"{row.predicted:.4f}", f"{row.measured:.4g}", f"{row.deviation:.4f}"])
+                            f"{row.predicted:.4f}", f"{row.measured:.4g}", f"{row.deviation:.4f}",
+                            "" if row.interval is None else f"{row.interval:.4f}", row.flag])
 
 
 def calibration_summary(result: CalibrationResult) -> dict:
@@ -95,9 +96,12 @@ def calibration_summary(result: CalibrationResult) -> dict:
         },
         "correlation": {"parameters": names, "matrix": np.round(result.correlation, 4).tolist()},
         "residuals": [{"condition": r.condition, "quantity": r.quantity, "unit": r.unit, "simulated": r.predicted,
-                       "measured": r.measured, "residual": r.deviation} for r in result.residuals],
+                       "measured": r.measured, "residual": r.deviation, "interval95": r.interval} for r in result.residuals],
+        "excluded": [{"condition": r.condition, "quantity": r.quantity, "unit": r.unit, "simulated": r.predicted,
+                      "measured": r.measured, "deviation": r.deviation, "reason": r.flag} for r in result.excluded],
         "held_out": [{"condition": r.condition, "quantity": r.quantity, "unit": r.unit, "predicted": r.predicted,
-                      "measured": r.measured, "deviation": r.deviation} for r in result.held_out],
+                      "measured": r.measured, "deviation": r.deviation, "interval95": r.interval, "flag": r.flag or None}
+                     for r in result.held_out],
         "cost": result.cost,
         "model_runs": result.model_runs,
         "wall_time_s": result.wall_time_s,
@@ -127,18 +131,59 @@ def write_calibration(original: LoadedSystem, result: CalibrationResult, out_dir
     return [Path(out_dir) / n for n in names]
 
 
+def worst(rows: list[Prediction], unit: str, flagged: bool = False) -> Prediction | None:
+    """The largest |deviation| among ``rows`` of ``unit``; flagged values only if ``flagged``."""
+    return max((r for r in rows if r.unit == unit and bool(r.flag) == flagged), key=lambda r: abs(r.deviation),
+               default=None)
+
+
+def _worst_entry(row: Prediction | None) -> dict | None:
+    if row is None:
+        return None
+    return {"condition": row.condition, "quantity": row.quantity, "deviation": row.deviation,
+            "interval95": row.interval, **({"flag": row.flag} if row.flag else {})}
+
+
 def cross_summary(cross: list[tuple[str, CalibrationResult]]) -> dict:
     rows = [r for _, res in cross for r in res.held_out]
-    temps = [r for r in rows if r.unit == "C"]
-    elong = [r for r in rows if r.unit == "um"]
-    worst_t = max(temps, key=lambda r: abs(r.deviation)) if temps else None
-    worst_d = max(elong, key=lambda r: abs(r.deviation)) if elong else None
     return {
-        "largest_temperature_deviation_C": None if worst_t is None else {"condition": worst_t.condition, "quantity": worst_t.quantity, "deviation": worst_t.deviation},
-        "largest_elongation_deviation_um": None if worst_d is None else {"condition": worst_d.condition, "deviation": worst_d.deviation},
+        "largest_temperature_deviation_C": _worst_entry(worst(rows, "C")),
+        "largest_elongation_deviation_um": _worst_entry(worst(rows, "um")),
+        "largest_equilibrium_deviation_min": _worst_entry(worst(rows, "min")),
+        "flagged": [_worst_entry(r) for r in rows if r.flag],
         "fits": {left: {p.name: x for p, x in zip(res.parameters, res.fitted)} for left, res in cross},
         "at_bound": {left: {p.name: b for p, b in zip(res.parameters, res.at_bound) if b} for left, res in cross},
+        "model_runs": sum(res.model_runs for _, res in cross),
+        "wall_time_s": sum(res.wall_time_s for _, res in cross),
     }
+
+
+_UNITS = {"C": "K", "um": "µm", "min": "min"}
+
+
+def _largest(rows: list[Prediction]) -> str:
+    """Largest |deviation| per kind; a flagged value's apart, with the word flagged."""
+    parts = []
+    for unit, label in (("C", "ΔT"), ("um", "ΔD"), ("min", "Δt_eq")):
+        row = worst(rows, unit)
+        if row is not None:
+            parts.append(f"largest |{label}| {abs(row.deviation):.1f} {_UNITS[unit]} ({row.condition} {row.quantity})")
+        flagged = worst(rows, unit, flagged=True)
+        if flagged is not None:
+            parts.append(f"flagged {flagged.condition} {flagged.quantity} {flagged.deviation:+.1f} {_UNITS[unit]}")
+    return ", ".join(parts)
+
+
+def _prediction_table(rows: list[Prediction], title: str) -> Table:
+    table = Table(title=title, title_justify="left")
+    for column in ("condition", "quantity", "predicted", "measured", "deviation", "95 % interval", "flag"):
+        table.add_column(column)
+    for r in rows:
+        unit = _UNITS[r.unit] if r.unit != "C" else "°C"
+        interval = "" if r.interval is None else f"±{r.interval:.1f}"
+        table.add_row(r.condition, r.quantity, f"{r.predicted:.1f} {unit}", f"{r.measured:.1f}", f"{r.deviation:+.1f}",
+                      interval, "flagged" if r.flag else "")
+    return table
 
 
 def print_calibration(result: CalibrationResult, out_dir: Path, cross=None, console: Console | None = None) -> None:
@@ -155,17 +200,15 @@ def print_calibration(result: CalibrationResult, out_dir: Path, cross=None, cons
     console.print(table)
     for title, rows in (("fit residuals", result.residuals), ("held-out predictions", result.held_out)):
         if rows:
-            worst_t = max((r for r in rows if r.unit == "C"), key=lambda r: abs(r.deviation), default=None)
-            worst_d = max((r for r in rows if r.unit == "um"), key=lambda r: abs(r.deviation), default=None)
-            parts = []
-            if worst_t:
-                parts.append(f"largest |ΔT| {abs(worst_t.deviation):.1f} K ({worst_t.condition} {worst_t.quantity})")
-            if worst_d:
-                parts.append(f"largest |ΔD| {abs(worst_d.deviation):.1f} µm ({worst_d.condition})")
-            console.print(f"{title}: " + ", ".join(parts))
+            console.print(f"{title}: " + _largest(rows))
+    if result.held_out:
+        console.print(_prediction_table(result.held_out, "held-out predictions (95 % prediction intervals)"))
+    for row in [*result.excluded, *(r for r in result.held_out if r.flag)]:
+        console.print(f"flagged by the consistency check, not fitted: {row.condition} {row.quantity} "
+                      f"(deviation {row.deviation:+.1f} {_UNITS[row.unit]}): {row.flag}")
     if cross:
-        s = cross_summary(cross)
-        t, d = s["largest_temperature_deviation_C"], s["largest_elongation_deviation_um"]
-        console.print(f"leave-one-condition-out: largest held-out |ΔT| {abs(t['deviation']):.1f} K ({t['condition']} {t['quantity']}), "
-                      f"|ΔD| {abs(d['deviation']):.1f} µm ({d['condition']}); the paper's in-sample figures: 2.1 K, 6.2 µm")
+        rows = [r for _, res in cross for r in res.held_out]
+        console.print("leave-one-condition-out, held-out: " + _largest(rows)
+                      + f" ({sum(res.model_runs for _, res in cross)} model runs, "
+                        f"{sum(res.wall_time_s for _, res in cross):.0f} s); the paper's in-sample figures: 2.1 K, 6.2 µm")
     console.print(f"wrote {out_dir}")

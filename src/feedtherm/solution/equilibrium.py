@@ -52,3 +52,43 @@ def _trailing_range(times: np.ndarray, values: np.ndarray) -> np.ndarray:
         window = values[start:i + 1]
         out[i] = window.max() - window.min()
     return out
+
+
+def rise_time(times: np.ndarray, series: dict[str, np.ndarray], initial: dict[str, float],
+              steady: dict[str, float], fraction: float = RISE_FRACTION) -> float:
+    """Time [s] at which the slowest sensor has risen by ``fraction`` of its steady rise.
+
+    The first criterion of :func:`equilibrium_time` as a continuous quantity, for fitting: the
+    crossing is interpolated linearly between samples, and a sensor that has not crossed by
+    the end of the run is extrapolated with the exponential decay of its remaining rise over
+    the last two samples, ``1 - r(t) ∝ exp(-t/τ)``.  ``inf`` if a sensor's remaining rise does
+    not decay.  Sensors whose steady rise is below ``MIN_RISE_K`` are exempt (0 if all are).
+
+    >>> t = np.arange(0.0, 3001.0, 100.0)
+    >>> round(rise_time(t, {"a": 1 - np.exp(-t / 1000)}, {"a": 0.0}, {"a": 1.0}), 1)  # 1000 ln 20 = 2995.7
+    2995.9
+    >>> round(rise_time(t[:11], {"a": 1 - np.exp(-t[:11] / 1000)}, {"a": 0.0}, {"a": 1.0}), 1)  # extrapolated
+    2995.7
+    """
+    times = np.asarray(times, dtype=float)
+    slowest = 0.0
+    for name, values in series.items():
+        rise_steady = steady[name] - initial[name]
+        if abs(rise_steady) < MIN_RISE_K:
+            continue
+        r = (np.asarray(values, dtype=float) - initial[name]) / rise_steady
+        hits = np.nonzero(r >= fraction)[0]
+        if hits.size:
+            i = hits[0]
+            if i == 0:
+                t = times[0]
+            else:
+                t = times[i - 1] + (fraction - r[i - 1]) / (r[i] - r[i - 1]) * (times[i] - times[i - 1])
+        else:
+            g_a, g_b = 1.0 - r[-2], 1.0 - r[-1]
+            if not 0.0 < g_b < g_a:
+                return float("inf")
+            tau = (times[-1] - times[-2]) / np.log(g_a / g_b)
+            t = times[-1] + tau * np.log(g_b / (1.0 - fraction))
+        slowest = max(slowest, float(t))
+    return slowest

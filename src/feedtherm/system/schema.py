@@ -17,6 +17,7 @@ from typing import Annotated, Literal
 from pydantic import (
     Field,
     field_validator,
+    model_serializer,
     model_validator,
 )
 
@@ -252,6 +253,16 @@ class Calibration(Strict):
     parameters: dict[str, CalibrationParameter]
     temperature_sigma: PosTemperatureDifference = 0.5  # weights of the residuals
     elongation_sigma: PosLength = 2e-6
+    equilibrium_sigma: PosDuration = 600.0  # of a stated equilibrium time [s]
+
+    @model_serializer(mode="wrap")
+    def _omit_the_default_equilibrium_sigma(self, handler):
+        # Left out at its default, so that descriptions written before it existed keep their
+        # serialised form and hash (the benches' frozen provenance).
+        data = handler(self)
+        if isinstance(data, dict) and data.get("equilibrium_sigma") == 600.0:
+            del data["equilibrium_sigma"]
+        return data
 
 
 # --------------------------------------------------------------------------- provenance
