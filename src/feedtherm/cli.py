@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 import time
 from pathlib import Path
@@ -128,6 +129,17 @@ def _positive_number(text: str, what: str = "number") -> float:
     return value
 
 
+def _positive_int(text: str) -> int:
+    """argparse type: a whole number > 0."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"must be a positive whole number, got {text!r}")
+    return value
+
+
 def _positive_seconds(text: str) -> float:
     """argparse type: a finite number of seconds > 0."""
     return _positive_number(text, "number of seconds")
@@ -243,7 +255,8 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     consistency = check_consistency(data, operating_points(loaded.system),
                                     sigma_t=cal.temperature_sigma if cal else 0.5,
                                     sigma_d=(cal.elongation_sigma if cal else 2e-6) * 1e6)
-    options = {"mode": args.mode, "consistency": consistency, "equilibrium": not args.no_equilibrium}
+    options = {"mode": args.mode, "consistency": consistency, "equilibrium": not args.no_equilibrium,
+               "workers": args.workers}
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
         result = calibrate(loaded, data, fit, names, progress=progress, **options)
     cross = None
@@ -404,6 +417,8 @@ def build_parser() -> argparse.ArgumentParser:
                            help="parameters declared under [calibration.parameters]")
     calibrate.add_argument("--cross-validate", action="store_true",
                            help="also leave each measured condition out in turn and predict it")
+    calibrate.add_argument("--workers", type=_positive_int, default=os.cpu_count() or 1, metavar="N",
+                           help="processes running the conditions side by side (default: the CPU count)")
     calibrate.add_argument("--no-equilibrium", action="store_true",
                            help="fit the final values only, not the measured equilibrium times")
     calibrate.add_argument("--model", choices=("fast",), default="fast",

@@ -147,3 +147,15 @@ def test_a_parameter_pushed_to_its_bound_is_flagged(paper, tmp_path):
     result = calibrate(paper, read_measurements(str(path), sensors=SENSORS), ["I"], ["screw_nut_preload"])
     assert result.at_bound == ["upper"]
     assert result.fitted[0] == pytest.approx(3000.0)
+
+
+def test_parallel_conditions_give_the_serial_values(paper):
+    """workers > 1 runs the conditions of an evaluation in processes: same numbers, same count."""
+    from feedtherm.analysis.calibration import _Model
+
+    params = resolve_parameters(paper, ["screw_nut_preload"])
+    with _Model(paper, params, "physics", workers=1) as serial, _Model(paper, params, "physics", workers=2) as parallel:
+        a = serial.finals([700.0], ["I", "III"])
+        b = parallel.finals([700.0], ["I", "III"])
+        assert serial.runs == parallel.runs == 2
+    assert a == b

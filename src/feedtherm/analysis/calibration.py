@@ -20,8 +20,10 @@ through the model's sensitivities, plus the measurement's own scatter), and
 from __future__ import annotations
 
 import math
+import multiprocessing as mp
 import re
 import time
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -157,25 +159,47 @@ def apply(loaded: LoadedSystem, parameters: list[FitParameter], x) -> LoadedSyst
 # ---------------------------------------------------------------------------- model
 
 
-class _Model:
-    """Final values (and the time to 95 % of the steady rise) of conditions, counting the runs."""
+def _final_values(loaded: LoadedSystem, condition: str, mode: str) -> dict[str, float]:
+    """One condition's final values and its time to 95 % of the steady rise [min]."""
+    run = simulate(loaded, condition=condition, mode=mode, motion="averaged")
+    values = {k: float(v) for k, v in run.summary_values("final").items()}
+    initial = {name: float(series[0]) for name, series in run.sensors.items()}
+    sensors = {n: v for n, v in run.cycle_sensors.items() if n in initial}
+    values[EQUILIBRIUM_QUANTITY] = rise_time(run.cycle_times, sensors, initial, run.steady) / 60.0
+    return values
 
-    def __init__(self, loaded: LoadedSystem, parameters: list[FitParameter], mode: str):
+
+class _Model:
+    """Final values (and the time to 95 % of the steady rise) of conditions, counting the runs.
+
+    With ``workers`` > 1 the conditions of one evaluation run in parallel processes (the runs
+    are independent; a least-squares step needs all of them before it can go on).
+    """
+
+    def __init__(self, loaded: LoadedSystem, parameters: list[FitParameter], mode: str, workers: int = 1):
         self.loaded, self.parameters, self.mode = loaded, parameters, mode
         self.runs = 0
+        self.workers = max(1, workers)
+        self._pool: ProcessPoolExecutor | None = None
+
+    def __enter__(self) -> "_Model":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        if self._pool is not None:
+            self._pool.shutdown()
+            self._pool = None
 
     def finals(self, x, conditions: list[str]) -> dict[str, dict[str, float]]:
         variant = apply(self.loaded, self.parameters, x)
-        out = {}
-        for condition in conditions:
-            run = simulate(variant, condition=condition, mode=self.mode, motion="averaged")
-            self.runs += 1
-            values = {k: float(v) for k, v in run.summary_values("final").items()}
-            initial = {name: float(series[0]) for name, series in run.sensors.items()}
-            sensors = {n: v for n, v in run.cycle_sensors.items() if n in initial}
-            values[EQUILIBRIUM_QUANTITY] = rise_time(run.cycle_times, sensors, initial, run.steady) / 60.0
-            out[condition] = values
-        return out
+        self.runs += len(conditions)
+        if self.workers == 1 or len(conditions) == 1:
+            return {c: _final_values(variant, c, self.mode) for c in conditions}
+        if self._pool is None:
+            context = mp.get_context("fork" if "fork" in mp.get_all_start_methods() else "spawn")
+            self._pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=context)
+        futures = {c: self._pool.submit(_final_values, variant, c, self.mode) for c in conditions}
+        return {c: f.result() for c, f in futures.items()}
 
 
 @dataclass(frozen=True)
@@ -222,12 +246,13 @@ def _sigma(loaded: LoadedSystem, unit: str) -> float:
 def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names: list[str], *,
               mode: str = "physics", progress: Callable[[float], None] | None = None,
               consistency: ConsistencyReport | None = None, equilibrium: bool = True,
-              start: np.ndarray | None = None) -> CalibrationResult:
+              start: np.ndarray | None = None, workers: int = 1) -> CalibrationResult:
     """Fit the parameters ``names`` to the conditions ``fit``; predict every other condition.
 
     ``consistency``: values it flags are left out of the fit (and reported with their reason).
     ``equilibrium``: also fit the stated equilibrium times of the fitted conditions.
     ``start``: the parameter values to start from (default: the description's, clipped to the bounds).
+    ``workers``: processes that run the conditions of one evaluation side by side.
     """
     started = time.perf_counter()
     measured = data.conditions()
@@ -242,7 +267,12 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
     rows = [r for r in fitted_data if not r.flag]
     if len(rows) < len(parameters):
         raise FeedthermError(f"--fit: {len(rows)} measured values cannot determine {len(parameters)} parameters")
-    model = _Model(loaded, parameters, mode)
+    with _Model(loaded, parameters, mode, workers) as model:
+        return _fit(loaded, data, fit, parameters, model, rows, measured, consistency, equilibrium, start, progress,
+                    started)
+
+
+def _fit(loaded, data, fit, parameters, model, rows, measured, consistency, equilibrium, start, progress, started):
     sigma = np.array([_sigma(loaded, r.unit) for r in rows])
     target = np.array([r.measured for r in rows])
     lower = np.array([p.lower for p in parameters])
@@ -345,7 +375,8 @@ def _uncertainty(jac: np.ndarray, fun: np.ndarray, x: np.ndarray, m: int):
 
 def cross_validate(loaded: LoadedSystem, data: MeasurementSet, names: list[str], *, mode: str = "physics",
                    progress: Callable[[float], None] | None = None, consistency: ConsistencyReport | None = None,
-                   equilibrium: bool = True, start: np.ndarray | None = None) -> list[tuple[str, CalibrationResult]]:
+                   equilibrium: bool = True, start: np.ndarray | None = None,
+                   workers: int = 1) -> list[tuple[str, CalibrationResult]]:
     """Leave each measured condition out in turn: fit on the rest, predict the one left out.
 
     ``start``: where every fold's fit starts (a fit on all the conditions is a good start:
@@ -356,7 +387,7 @@ def cross_validate(loaded: LoadedSystem, data: MeasurementSet, names: list[str],
     for i, left_out in enumerate(conditions):
         fit = [c for c in conditions if c != left_out]
         out.append((left_out, calibrate(loaded, data, fit, names, mode=mode, consistency=consistency,
-                                        equilibrium=equilibrium, start=start)))
+                                        equilibrium=equilibrium, start=start, workers=workers)))
         if progress is not None:
             progress((i + 1) / len(conditions))
     return out
