@@ -226,9 +226,12 @@ def cmd_validate(args: argparse.Namespace) -> int:
     from .outputs.validation_files import print_validation, write_validation
 
     measurements_of(loaded, args.measured)  # bad measurement files fail before any run
+    from .outputs.calibration_files import read_calibration_summary
+
+    calibration = read_calibration_summary(Path(args.calibration)) if args.calibration else None
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
         validation = validate(loaded, mode=args.mode, model=args.model, mesh=args.mesh, measured=args.measured,
-                              progress=progress)
+                              progress=progress, calibration=calibration)
     write_validation(validation, out_dir)
     print_validation(validation, out_dir)
     return 0
@@ -381,6 +384,9 @@ def build_parser() -> argparse.ArgumentParser:
     validate.add_argument("--mesh", choices=MESHES, default="coarse", help="FE mesh density (with --model fem)")
     _mode_argument(validate)
     _measured_argument(validate)
+    validate.add_argument("--calibration", metavar="DIR",
+                          help="output folder of `feedtherm calibrate --cross-validate`: its held-out figures "
+                               "go into the report's headline")
     _out_argument(validate, "out/<system>_validation_<mode>")
     validate.set_defaults(func=cmd_validate)
 

@@ -159,3 +159,39 @@ def test_parallel_conditions_give_the_serial_values(paper):
         b = parallel.finals([700.0], ["I", "III"])
         assert serial.runs == parallel.runs == 2
     assert a == b
+
+
+@pytest.mark.parametrize("content, fragment", [
+    (None, "calibration.json not found"),
+    ("{not json", "is not readable JSON"),
+    ('{"fit_conditions": ["I"]}', "lacks parameters, held_out"),
+])
+def test_validate_with_a_bad_calibration_folder_is_one_line(tmp_path, content, fragment):
+    folder = tmp_path / "cal"
+    folder.mkdir()
+    if content is not None:
+        (folder / "calibration.json").write_text(content)
+    out = tmp_path / "out"
+    result = subprocess.run([sys.executable, "-m", "feedtherm", "validate", "--calibration", str(folder),
+                             "--out", str(out)], capture_output=True, text=True, timeout=300)
+    assert result.returncode == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and fragment in lines[0] and "Traceback" not in result.stderr, result.stderr
+    assert not out.exists()
+
+
+def test_a_calibration_folder_reaches_the_validation_headline(paper, tmp_path):
+    """calibrate writes calibration.json with the cross-validation; validate --calibration reads it back."""
+    from feedtherm.outputs.calibration_files import read_calibration_summary
+
+    data = synthetic_measurements(paper, tmp_path / "m.csv", ["I", "II"])
+    result = calibrate(paper, data, ["I"], ["screw_nut_preload"])
+    folds = cross_validate(paper, data, ["screw_nut_preload"], start=result.fitted)
+    write_calibration(paper, result, tmp_path / "cal", folds)
+    summary = read_calibration_summary(tmp_path / "cal")
+    assert summary["fit_conditions"] == ["I"]
+    assert {r["condition"] for r in summary["held_out"]} == {"II"}
+    assert all(r["interval95"] > 0 for r in summary["held_out"])
+    cross = summary["cross_validation"]
+    assert cross["largest_temperature_deviation_C"]["condition"] in ("I", "II")
+    assert cross["model_runs"] == sum(r.model_runs for _, r in folds)

@@ -47,7 +47,11 @@ def test_heat_physics_mode_prints_computed_values_beside_the_papers():
     data = json.loads(run("heat", "--condition", "I", "--json").stdout)
     assert data["mode"] == "physics"
     assert data["heat_W"]["front_bearing"] != pytest.approx(4.95)  # computed, not copied
-    assert all(v > 0 for v in data["radiation_W_per_m2K"].values())
+    from feedtherm.system.load import load_system
+
+    surfaces = load_system("paper").system.surfaces
+    # a surface radiates exactly when it has an emissivity (base_bottom: a covered face, 0)
+    assert all((v > 0) == (surfaces[name].emissivity > 0) for name, v in data["radiation_W_per_m2K"].items())
 
 
 def test_check_flags_condition_I_only():

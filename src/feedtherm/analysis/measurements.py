@@ -26,7 +26,9 @@ from ..errors import DescriptionError
 
 HEADER = ["condition", "quantity", "unit", "measured"]
 OPTIONAL = "reference_simulated"
-UNITS = {"D_um": "um"}  # every other quantity is a temperature in C
+#: The screw elongation among the measured quantities; every other quantity is a temperature.
+ELONGATION_QUANTITY = "D_um"
+UNITS = {ELONGATION_QUANTITY: "um"}  # every other quantity is a temperature in C
 
 
 @dataclass(frozen=True)

@@ -14,6 +14,8 @@ from ..errors import FeedthermError
 from ..simulate import provenance, simulate
 from ..system.checks import check_system
 from ..system.load import LoadedSystem
+from .consistency import check_consistency, operating_points
+from .inverse import Noise, infer_conditions
 from .measurements import MeasurementSet, measurement_spec, read_measurements
 from .sensitivity import sensitivities
 from .validation_types import ELONGATION_QUANTITY, Comparison, Validation
@@ -35,14 +37,20 @@ def measurements_of(loaded: LoadedSystem, measured: str | None) -> MeasurementSe
 
 
 def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast", mesh: str | None = None,
-             measured: str | None = None, progress: Callable[[float], None] | None = None) -> Validation:
-    """Run every measured condition of ``loaded`` and compare it with its measurements."""
+             measured: str | None = None, progress: Callable[[float], None] | None = None,
+             calibration: dict | None = None) -> Validation:
+    """Run every measured condition of ``loaded`` and compare it with its measurements.
+
+    Also checks the measurements' own consistency, infers the heat of every source from each
+    condition's measurements (the fast model's transfer matrix), and carries ``calibration``
+    (a ``calibration.json`` of ``feedtherm calibrate --cross-validate``) into the headline.
+    """
     started = time.perf_counter()
     system = loaded.system
     data = measurements_of(loaded, measured)
     conditions = data.conditions()
     dual = system.kinematics.drive == "dual"
-    steps = len(conditions) * (2 if dual else 1) + 1
+    steps = len(conditions) * (2 if dual else 1) + 2
     done = 0
 
     def tick():
@@ -67,6 +75,13 @@ def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast"
     reference = system.paper.reference_condition if system.paper else conditions[0]
     ranking = sensitivities(loaded, reference, mode=mode)
     tick()
+    weights = system.calibration
+    sigma_t = weights.temperature_sigma if weights else 0.5
+    sigma_d = weights.elongation_sigma if weights else 2e-6
+    consistency = check_consistency(data, operating_points(system), sigma_t=sigma_t, sigma_d=sigma_d * 1e6)
+    inferred = infer_conditions(loaded, data, [c for c in conditions if c in system.conditions],
+                                noise=Noise(sigma_t, sigma_d), mode=mode)
+    tick()
     return Validation(
         system_name=system.meta.name,
         mode=mode,
@@ -84,6 +99,9 @@ def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast"
         provenance=provenance(loaded, mode),
         measurement_source=data.source,
         wall_time_s=time.perf_counter() - started,
+        consistency=consistency,
+        inferred=inferred,
+        calibration=calibration,
     )
 
 

@@ -5,9 +5,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..solution import Solution
+from .consistency import ConsistencyReport
+from .inverse import Inference
+from .measurements import ELONGATION_QUANTITY  # noqa: F401 (re-exported for the report and CLI)
 
 TEMPERATURE_QUANTITIES = ("T1", "T2", "T3", "T4", "T5")
-ELONGATION_QUANTITY = "D_um"
 
 
 @dataclass(frozen=True)
@@ -65,6 +67,9 @@ class Validation:
     provenance: dict = field(default_factory=dict)
     measurement_source: str = ""
     wall_time_s: float = 0.0
+    consistency: ConsistencyReport | None = None  # the measurements' own consistency check
+    inferred: list[Inference] = field(default_factory=list)  # heats inferred from each condition's measurements
+    calibration: dict | None = None  # calibration.json of a `feedtherm calibrate --cross-validate` run
 
     def largest(self, kind: str) -> Comparison:
         """The comparison with the largest |deviation| among temperatures or elongations."""

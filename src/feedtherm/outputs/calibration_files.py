@@ -17,6 +17,7 @@ from rich.console import Console
 from rich.table import Table
 
 from ..analysis.calibration import CalibrationResult, Prediction
+from ..errors import FeedthermError
 from ..system.load import LoadedSystem, read_text
 from ..system.quantities import registry
 from ..system.variants import split_path
@@ -25,6 +26,23 @@ from .files import staged_directory, write_json
 PREDICTION_HEADER = ["condition", "quantity", "unit", "predicted", "measured", "deviation", "interval95", "flag"]
 #: Every file a calibration can write: crossval.csv only with cross-validation.
 CALIBRATION_FILES = ("calibrated.toml", "calibration.json", "heldout.csv", "crossval.csv")
+
+
+def read_calibration_summary(folder: Path) -> dict:
+    """calibration.json of a calibration's output folder; one-line errors naming what is wrong."""
+    import json
+
+    path = Path(folder) / "calibration.json"
+    if not path.is_file():
+        raise FeedthermError(f"--calibration: {path} not found (give the output folder of `feedtherm calibrate`)")
+    try:
+        summary = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        raise FeedthermError(f"--calibration: {path} is not readable JSON ({exc})") from None
+    missing = [key for key in ("fit_conditions", "parameters", "held_out") if key not in (summary if isinstance(summary, dict) else {})]
+    if missing:
+        raise FeedthermError(f"--calibration: {path} lacks {', '.join(missing)}; is it a calibration.json?")
+    return summary
 
 
 def calibrated_toml(original: LoadedSystem, result: CalibrationResult) -> str:

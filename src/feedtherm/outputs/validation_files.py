@@ -55,6 +55,15 @@ def validation_summary(validation: Validation) -> dict:
         "stated_equilibrium_time_min": validation.measured_equilibrium_min,
         "energy_balance_error": {c: s.energy.relative_error for c, s in validation.solutions.items()},
         "measurements": validation.measurement_source,
+        "flagged_measurements": [{"condition": f.condition, "quantity": f.quantity, "check": f.check, "reason": f.reason}
+                                 for f in (validation.consistency.flags if validation.consistency else [])],
+        "inferred_heat_W": {i.condition: {e.group: {"loss_models": e.loss_model, "inferred": e.inferred,
+                                                    "interval95": [e.low, e.high], "from_data": e.resolution}
+                                          for e in i.estimates} for i in validation.inferred},
+        "calibration": None if validation.calibration is None else {
+            "fit_conditions": validation.calibration.get("fit_conditions"),
+            "held_out": validation.calibration.get("held_out"),
+            "cross_validation": validation.calibration.get("cross_validation")},
         "wall_time_s": validation.wall_time_s,
         "provenance": validation.provenance,
     }
@@ -77,4 +86,12 @@ def print_validation(validation: Validation, out_dir: Path, console: Console | N
     t, d = validation.largest("temperature"), validation.largest("elongation")
     console.print(f"largest |deviation|: temperature {abs(t.deviation):.1f} K ({t.condition} {t.quantity}), "
                   f"elongation {abs(d.deviation):.1f} µm ({d.condition}); the paper reports 2.1 K and 6.2 µm for its own model")
+    for flag in (validation.consistency.flags if validation.consistency else []):
+        console.print(f"flagged measurement {flag.condition} {flag.quantity}: {flag.reason}")
+    if validation.calibration and validation.calibration.get("cross_validation"):
+        cross = validation.calibration["cross_validation"]
+        t, d = cross.get("largest_temperature_deviation_C"), cross.get("largest_elongation_deviation_um")
+        if t and d:
+            console.print(f"calibrated, leave-one-condition-out: temperature {abs(t['deviation']):.1f} K "
+                          f"({t['condition']} {t['quantity']}), elongation {abs(d['deviation']):.1f} µm ({d['condition']})")
     console.print(f"wrote {out_dir}/validation.csv, validation.json, report.html ({validation.wall_time_s:.1f} s)")

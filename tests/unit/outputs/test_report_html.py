@@ -149,8 +149,9 @@ def test_every_text_from_the_validation_is_escaped(rendered):
 
 def test_sections_in_order_and_no_external_resources(rendered):
     ids = re.findall(r'<section id="([^"]+)"', rendered)
-    assert ids == ["deviations", "sensor-curves", "screw-field", "equilibrium", "trends", "dual-single",
-                   "heat-budget", "sensitivity", "inconsistencies", "calibrated", "assumptions"]
+    assert ids == ["headline", "deviations", "sensor-curves", "screw-field", "equilibrium", "trends", "dual-single",
+                   "heat-budget", "inferred-heat", "consistency", "sensitivity", "inconsistencies", "calibrated",
+                   "assumptions"]
     assert "generated 2024-05-01 00:00 UTC" in rendered
     assert not re.search(r"(src|href)\s*=\s*[\"']?(https?:|//)", rendered)
 
@@ -248,3 +249,47 @@ def test_a_long_sensitivity_ranking_is_complete_with_its_tail_folded(monkeypatch
     assert shown.count("<code>p.") == context.TABLE_ROWS and folded.count("<code>p.") == 5
     assert "<summary>The other 5 parameters</summary>" in folded
     assert shown.index("<code>p.34</code>") < shown.index("<code>p.33</code>")  # largest first
+
+
+def test_headline_puts_physics_held_out_leave_one_out_and_the_paper_side_by_side():
+    from feedtherm.analysis.consistency import ConsistencyReport, ElongationLaw, Flag
+    from feedtherm.outputs.report.fidelity import consistency_section, headline_section
+
+    base = synthetic_validation()
+    flagged_d = next(c for c in base.comparisons if c.condition == "II" and c.quantity == "D_um")
+    flag = Flag("II", "D_um", "elongation_law", "off the line <by far>", 12.0)
+    calibration = {
+        "fit_conditions": ["I"],
+        "parameters": {"screw_nut_preload": {"fitted": 812.0, "standard_error": 40.0, "at_bound": None}},
+        "held_out": [
+            {"condition": "II", "quantity": "T3", "unit": "C", "predicted": 40.0, "measured": 38.7, "deviation": 1.3},
+            {"condition": "II", "quantity": "D_um", "unit": "um", "predicted": 60.0, "measured": 30.0, "deviation": 30.0,
+             "flag": "off the line"},
+            {"condition": "II", "quantity": "t_eq", "unit": "min", "predicted": 130.0, "measured": 100.0, "deviation": 30.0},
+        ],
+        "cross_validation": {
+            "largest_temperature_deviation_C": {"condition": "I", "quantity": "T1", "deviation": -2.4},
+            "largest_elongation_deviation_um": {"condition": "I", "quantity": "D_um", "deviation": 5.5},
+            "largest_equilibrium_deviation_min": {"condition": "II", "quantity": "t_eq", "deviation": -12.0},
+        },
+    }
+    law = ElongationLaw(2.9, -57.0, ["I"], 0.8, ["T1", "T2"])
+    validation = synthetic_validation(consistency=ConsistencyReport([flag], law, []), calibration=calibration)
+    html = headline_section(validation)
+    # the held-out row leaves the flagged elongation out of its maximum: none is left
+    assert "calibrated on I, predicting II (held out)" in html
+    assert "1.3 (II T3)" in html and "30.0 (II t_eq)" in html and "30.0 (II D)" not in html
+    assert "2.4 (I T1)" in html and "5.5 (I D)" in html and "12.0 (II t_eq)" in html
+    assert "2.1" in html and "6.2" in html  # the paper's in-sample figures
+    assert "screw_nut_preload = 812 ± 40" in html
+    # the flagged value is listed with its reason (escaped) and this model's deviation
+    assert "off the line &lt;by far&gt;" in html and f"{flagged_d.deviation:+.1f} µm" in html
+    section = consistency_section(validation)
+    assert "D = -57.0 µm + 2.90 µm/K" in section and "elongation_law" in section
+
+
+def test_headline_without_a_calibration_says_how_to_get_one():
+    from feedtherm.outputs.report.fidelity import headline_section
+
+    html = headline_section(synthetic_validation())
+    assert "No calibration was given" in html and "--calibration" in html

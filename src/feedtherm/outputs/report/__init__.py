@@ -5,14 +5,16 @@ into one page with its images embedded as base64 PNG and its CSS inline: no exte
 no JavaScript.  It reads only the Validation (and the paper's Table 5 and 6 for the
 speeds and the names of the measuring points).  Sections, in order (docs/report.md):
 
-1. title and summary · 2. deviation tables · 3. sensor curves (Fig. 10) · 4. screw field
-(Fig. 11) · 5. equilibrium time · 6. final values against speed and ambient · 7. dual against
-single drive · 8. heat budget · 9. sensitivity ranking · 10. the paper's inconsistencies ·
-11. calibrated values · 12. assumptions and provenance.
+1. title and summary · 2. headline: predictive accuracy (physics mode, held out, leave-one-out,
+the paper's in-sample) · 3. deviation tables · 4. sensor curves (Fig. 10) · 5. screw field
+(Fig. 11) · 6. equilibrium time · 7. final values against speed and ambient · 8. dual against
+single drive · 9. heat budget · 10. inferred heat per source · 11. measurement consistency ·
+12. sensitivity ranking · 13. the paper's inconsistencies · 14. calibrated values ·
+15. assumptions and provenance.
 
 Modules: ``html`` (escaping builders and the page), ``figures`` (the PNGs), ``data`` (shared
-numbers), and one module per group of sections (``comparison``, ``transients``, ``operating``,
-``context``).
+numbers), and one module per group of sections (``comparison``, ``fidelity``, ``transients``,
+``operating``, ``context``).
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ from ...analysis.validation_types import Validation
 from ...errors import FeedthermError
 from .comparison import deviations_section, title_section
 from .context import assumptions_section, calibrated_section, inconsistencies_section, sensitivity_section
+from .fidelity import consistency_section, headline_section, inferred_heat_section
 from .html import page
 from .operating import dual_single_section, heat_budget_section, trends_section
 from .transients import equilibrium_section, screw_field_section, sensor_curves_section
@@ -34,6 +37,7 @@ from .transients import equilibrium_section, screw_field_section, sensor_curves_
 REPORT_HTML = "report.html"
 
 _SECTIONS = (
+    headline_section,
     deviations_section,
     sensor_curves_section,
     screw_field_section,
@@ -41,6 +45,8 @@ _SECTIONS = (
     trends_section,
     dual_single_section,
     heat_budget_section,
+    inferred_heat_section,
+    consistency_section,
     sensitivity_section,
     inconsistencies_section,
     calibrated_section,

@@ -9,6 +9,7 @@ from . import data
 from .html import Cell, esc, grid, heading, number, paragraph, paragraph_html, section, table
 
 SECTIONS = (
+    ("headline", "Headline: predictive accuracy"),
     ("deviations", "Deviation from the measurements"),
     ("sensor-curves", "Sensor curves per condition (Fig. 10)"),
     ("screw-field", "Screw temperature over time and position (Fig. 11)"),
@@ -16,6 +17,8 @@ SECTIONS = (
     ("trends", "Final values against speed and ambient"),
     ("dual-single", "Dual drive against single drive"),
     ("heat-budget", "Heat budget per source"),
+    ("inferred-heat", "Inferred heat per source"),
+    ("consistency", "Measurement consistency"),
     ("sensitivity", "Sensitivity ranking"),
     ("inconsistencies", "Inconsistencies in the paper's data"),
     ("calibrated", "Calibrated values"),

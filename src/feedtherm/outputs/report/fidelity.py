@@ -1,0 +1,181 @@
+"""Sections on predictive accuracy: the headline, the inferred heats, the measurements' consistency.
+
+The headline puts side by side what a user needs to judge the model: the model as described
+(nothing fitted), the model calibrated on some conditions and judged on the others (held out,
+and leave-one-condition-out), and the paper's own in-sample deviations.  A measured value the
+consistency check flags is reported apart, with its reason, never dropped.
+"""
+
+from __future__ import annotations
+
+from ...analysis.validation_types import Comparison, Validation
+from .html import Cell, bullets, heading, number, paragraph, section, table
+
+UNITS = {"C": "K", "um": "µm", "min": "min"}
+PAPER_IN_SAMPLE = {"C": 2.1, "um": 6.2}  # the paper's abstract and conclusion 1
+
+
+def _flagged(validation: Validation) -> set[tuple[str, str]]:
+    return validation.consistency.excluded() if validation.consistency else set()
+
+
+def _worst_comparison(rows: list[Comparison], unit: str, flagged: set) -> Comparison | None:
+    rows = [r for r in rows if r.unit == unit and (r.condition, r.quantity) not in flagged]
+    return max(rows, key=lambda r: abs(r.deviation), default=None)
+
+
+def _worst_entry(rows: list[dict], unit: str) -> dict | None:
+    rows = [r for r in rows if r["unit"] == unit and not r.get("flag")]
+    return max(rows, key=lambda r: abs(r["deviation"]), default=None)
+
+
+def _cell(value: float | None, where: str) -> Cell | str:
+    if value is None:
+        return "—"
+    return Cell(f"{abs(value):.1f} ({where})" if where else f"{abs(value):.1f}", "num")
+
+
+def _physics_row(validation: Validation, flagged: set) -> list:
+    cells = [f"this model, {validation.mode} mode, nothing fitted"]
+    for unit in ("C", "um"):
+        row = _worst_comparison(validation.comparisons, unit, flagged)
+        cells.append(_cell(None if row is None else row.deviation,
+                           "" if row is None else f"{row.condition} {row.quantity if unit == 'C' else 'D'}"))
+    cells.append(_equilibrium_cell(validation))
+    return cells
+
+
+def _equilibrium_cell(validation: Validation) -> Cell | str:
+    worst, where = None, ""
+    for condition, minutes in validation.measured_equilibrium_min.items():
+        run = validation.solutions.get(condition)
+        if run is None:
+            continue
+        simulated = run.equilibrium_time
+        deviation = float("inf") if simulated is None else simulated / 60.0 - minutes
+        if worst is None or abs(deviation) > abs(worst):
+            worst, where = deviation, condition
+    if worst is None:
+        return "—"
+    if worst == float("inf"):
+        return Cell(f"not reached in the run ({where})", "text")
+    return _cell(worst, where)
+
+
+def _calibration_rows(calibration: dict) -> list[list]:
+    rows = []
+    fit = ", ".join(calibration.get("fit_conditions", []))
+    held = calibration.get("held_out", [])
+    if held:
+        predicted = ", ".join(dict.fromkeys(r["condition"] for r in held))
+        rows.append([f"calibrated on {fit}, predicting {predicted} (held out)"]
+                    + [_entry_cell(_worst_entry(held, unit)) for unit in ("C", "um", "min")])
+    cross = calibration.get("cross_validation")
+    if cross:
+        cells = ["calibrated, leave-one-condition-out (each condition predicted by a fit to the others)"]
+        for key in ("largest_temperature_deviation_C", "largest_elongation_deviation_um",
+                    "largest_equilibrium_deviation_min"):
+            entry = cross.get(key)
+            cells.append(_entry_cell(entry))
+        rows.append(cells)
+    return rows
+
+
+def _entry_cell(entry: dict | None) -> Cell | str:
+    if entry is None:
+        return "—"
+    quantity = "D" if entry["quantity"] == "D_um" else entry["quantity"]
+    return _cell(entry["deviation"], f"{entry['condition']} {quantity}")
+
+
+def headline_section(validation: Validation) -> str:
+    title = "Headline: predictive accuracy"
+    flagged = _flagged(validation)
+    rows = [_physics_row(validation, flagged)]
+    if validation.calibration:
+        rows += _calibration_rows(validation.calibration)
+    rows.append(["the paper's ANSYS model, in sample (Tables 6–7)", _cell(PAPER_IN_SAMPLE["C"], ""),
+                 _cell(PAPER_IN_SAMPLE["um"], ""), "—"])
+    body = paragraph(
+        "Largest |simulated − measured| over the conditions and points of each row. Held-out rows judge a "
+        "calibration on conditions it was not fitted to: the only figures that say how the model will do on "
+        "a new operating point. Measured values the consistency check flags are left out of these maxima and "
+        "listed below with their deviation.")
+    body += table(["", "temperature [K]", "elongation [µm]", "equilibrium time [min]"], rows)
+    if validation.calibration:
+        parameters = validation.calibration.get("parameters", {})
+        listed = ", ".join(f"{name} = {p['fitted']:.4g} ± {p['standard_error']:.2g}" + (" (at a bound)" if p.get("at_bound") else "")
+                           for name, p in parameters.items())
+        body += paragraph(f"Calibrated parameters (fit on {', '.join(validation.calibration.get('fit_conditions', []))}): "
+                          f"{listed}.", css_class="note")
+    else:
+        body += paragraph("No calibration was given: run `feedtherm calibrate <system> --fit I,II,IV --params … "
+                          "--cross-validate`, then `feedtherm validate <system> --calibration <its output folder>` "
+                          "(`make validate` does both).", css_class="note")
+    body += _flag_lines(validation)
+    return section("headline", title, body)
+
+
+def _flag_lines(validation: Validation) -> str:
+    if not validation.consistency or not validation.consistency.flags:
+        return ""
+    by_key = {(c.condition, c.quantity): c for c in validation.comparisons}
+    items = []
+    for flag in validation.consistency.flags:
+        row = by_key.get((flag.condition, flag.quantity))
+        deviation = f"; this model deviates by {row.deviation:+.1f} {UNITS[row.unit]}" if row else ""
+        items.append(f"{flag.condition} {flag.quantity} (flagged): {flag.reason}{deviation}.")
+    return heading("Flagged measurements") + bullets(items)
+
+
+def consistency_section(validation: Validation) -> str:
+    title = "Measurement consistency"
+    report = validation.consistency
+    if report is None:
+        return section("consistency", title, paragraph("The measurements were not checked."))
+    body = paragraph(
+        "From the measurements alone, no model: (1) across conditions the elongation must follow the measured "
+        "temperatures along one affine law D = a + s·T̄ (linear thermoelasticity, a fixed reference "
+        "temperature, one screw); a condition off the line through the others is flagged; (2) a faster drive at "
+        "the same ambient is not cooler; (3) an ambient shift at the same speeds moves the rises above ambient "
+        "only a little. Tolerances: 3 standard uncertainties of the declared measurement uncertainties.")
+    if report.law is not None:
+        law = report.law
+        body += paragraph(
+            f"Elongation law through {', '.join(law.conditions)}: D = {law.intercept_um:.1f} µm + "
+            f"{law.slope_um_per_k:.2f} µm/K · T̄ (T̄ the mean of {', '.join(law.proxy)}), largest residual "
+            f"{law.max_residual_um:.1f} µm.")
+    if report.flags:
+        body += table(["condition", "quantity", "check", "reason"],
+                      [[f.condition, f.quantity, f.check, Cell(f.reason, "text small")] for f in report.flags])
+    else:
+        body += paragraph("Nothing flagged.")
+    if report.notes:
+        body += bullets(report.notes)
+    return section("consistency", title, body)
+
+
+def inferred_heat_section(validation: Validation) -> str:
+    title = "Inferred heat per source"
+    if not validation.inferred:
+        return section("inferred-heat", title, paragraph("No heats were inferred."))
+    body = paragraph(
+        "Which heats explain each condition's measured temperatures and elongation: non-negative least squares "
+        "with the model's own steady transfer matrix and the loss models' heats as a prior (docs/inverse.md; "
+        "`feedtherm infer`). \"From data\" is the share of the estimate the measurements determine (the rest "
+        "comes from the prior). A loss model far outside the interval of a well-resolved source is the loss "
+        "model to doubt.")
+    blocks = []
+    for inference in validation.inferred:
+        rows = [[e.group, number(e.loss_model), number(e.inferred) + (" (at 0)" if e.at_bound else ""),
+                 f"{e.low:.1f} – {e.high:.1f}", f"{100 * e.resolution:.0f} %"] for e in inference.estimates]
+        blocks.append(heading(f"Condition {inference.condition}: χ² {inference.chi2:.1f} over "
+                              f"{len(inference.observations)} measurements", 4)
+                      + table(["source", "loss models [W]", "inferred [W]", "95 % interval [W]", "from data"], rows))
+        if inference.not_told_apart:
+            pairs = "; ".join(f"{a} and {b} ({r:+.2f})" for a, b, r in inference.not_told_apart)
+            blocks.append(paragraph(f"Not told apart by these sensors: {pairs}.", css_class="note"))
+    return section("inferred-heat", title, body + "".join(blocks))
+
+
+__all__ = ["headline_section", "consistency_section", "inferred_heat_section"]
