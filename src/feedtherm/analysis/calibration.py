@@ -287,7 +287,7 @@ def _fit(loaded, data, fit, parameters, model, rows, measured, consistency, equi
 
     x_start = np.array([p.start for p in parameters]) if start is None else np.clip(start, lower, upper)
     u0 = (x_start - lower) / span
-    result = least_squares(residuals, u0, bounds=(0.0, 1.0), diff_step=1e-3, x_scale=1.0, xtol=1e-4, ftol=1e-6)
+    result = least_squares(residuals, u0, bounds=(0.0, 1.0), diff_step=1e-3, x_scale=1.0, xtol=1e-3, ftol=1e-4)
     x = lower + result.x * span
     se, corr, identifiable = _uncertainty(result.jac / span[None, :], result.fun, x, len(rows))
     at_bound = ["lower" if u <= 1e-6 else "upper" if u >= 1 - 1e-6 else "" for u in result.x]

@@ -222,7 +222,7 @@ def print_calibration(result: CalibrationResult, out_dir: Path, cross=None, cons
     if result.held_out:
         console.print(_prediction_table(result.held_out, "held-out predictions (95 % prediction intervals)"))
     for row in [*result.excluded, *(r for r in result.held_out if r.flag)]:
-        console.print(f"flagged by the consistency check, not fitted: {row.condition} {row.quantity} "
+        console.print(f"flagged by the consistency check (not fitted, not in the maxima): {row.condition} {row.quantity} "
                       f"(deviation {row.deviation:+.1f} {_UNITS[row.unit]}): {row.flag}")
     if cross:
         rows = [r for _, res in cross for r in res.held_out]
