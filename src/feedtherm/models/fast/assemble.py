@@ -9,7 +9,10 @@ built once.
 
 from __future__ import annotations
 
+import hashlib
+import json
 import math
+from collections import OrderedDict
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -35,6 +38,42 @@ class Edges:
         self.g.extend(np.broadcast_to(np.atleast_1d(g), np.atleast_1d(a).shape).tolist())
 
 
+#: The position-dependent geometry (where the contacts are, which faces are exposed) of the last
+#: few descriptions, by the digest of what decides it.  Calibration, sweeps and sensitivity
+#: studies rebuild the model for values that move no face (a contact resistance, a heat, a CHTC):
+#: they find their contacts here instead of sampling the faces again.
+_GEOMETRY: OrderedDict[str, dict] = OrderedDict()
+_GEOMETRY_ENTRIES = 4
+#: What a surface or a joint has that does not decide the geometry.
+_NOT_GEOMETRY = {"surfaces": ("convection", "emissivity", "chtc_factor", "sink_temperature", "description"),
+                 "joints": ("tcr", "description")}
+
+
+def geometry_digest(layout: Layout) -> str:
+    """sha256 of everything the contacts and exposed areas depend on: parts, materials, joints
+    and surfaces without their thermal values, kinematics, and the layout's cells and positions."""
+    data = layout.system.model_dump(mode="json", include={"parts", "materials", "joints", "surfaces", "kinematics"})
+    for key, fields in _NOT_GEOMETRY.items():
+        items = data[key].values() if isinstance(data[key], dict) else data[key]
+        for item in items:
+            for name in fields:
+                item.pop(name, None)
+    data["layout"] = {"n_nodes": layout.n_nodes, "positions": np.asarray(layout.positions).tolist(),
+                      "cell_size": layout.cell_size}
+    return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()
+
+
+def _geometry_cache(layout: Layout) -> dict:
+    digest = geometry_digest(layout)
+    if digest in _GEOMETRY:
+        _GEOMETRY.move_to_end(digest)
+    else:
+        _GEOMETRY[digest] = {"sides": {}, "contacts": {}, "surfaces": {}}
+        while len(_GEOMETRY) > _GEOMETRY_ENTRIES:
+            _GEOMETRY.popitem(last=False)
+    return _GEOMETRY[digest]
+
+
 def laplacian(n: int, edges: Edges) -> sp.csr_matrix:
     """Symmetric conductance matrix of the edge list (row sums zero)."""
     a, b, g = np.asarray(edges.a, int), np.asarray(edges.b, int), np.asarray(edges.g, float)
@@ -51,10 +90,17 @@ class Network:
         self.layout = layout
         self.system = layout.system
         self._check_joints()
-        self.sides = {name: side(cells, layout.cell_size) for name, cells in layout.cells.items()}
+        cache = _geometry_cache(layout)
+        sides = cache["sides"]
+        for name, cells in layout.cells.items():
+            if name not in sides:
+                sides[name] = side(cells, layout.cell_size)
+        self.sides = {name: sides[name] for name in layout.cells}
         conductivity = {name: self._material(name).conductivity for name in self.system.parts}
         surface_length = {name: self._surface_resistance_length(body) for name, body in layout.bodies.items()}
-        self.contacts = [JointContact(layout, joint, self.sides, conductivity, surface_length) for joint in self.system.joints]
+        self.contacts = [JointContact(layout, joint, self.sides, conductivity, surface_length,
+                                      cache["contacts"].setdefault(i, {}))
+                         for i, joint in enumerate(self.system.joints)]
         fixed = Edges()
         for body in layout.bodies.values():
             self._body_conduction(body, fixed)
@@ -68,7 +114,7 @@ class Network:
             if not contact.joint.sliding:
                 fixed.add(*contact.links(0))
         self.fixed = laplacian(layout.n_nodes, fixed)
-        self._surface_cache: dict[tuple[str, int], tuple[np.ndarray, np.ndarray]] = {}
+        self._surface_cache: dict[tuple[str, int], tuple[np.ndarray, np.ndarray]] = cache["surfaces"]
 
     # ------------------------------------------------------------------ structure
     def _check_joints(self) -> None:

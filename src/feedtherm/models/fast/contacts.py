@@ -92,15 +92,22 @@ def fused_links(sd: Side) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def aggregate(na, nb, area, ra, rb, r_contact: float):
     """Conductances [W/K] between node pairs from per-sample areas and specific resistances."""
+    a, b, A, Ra, Rb = pair_sums(na, nb, area, ra, rb)
+    return a, b, A / (r_contact + Ra + Rb)
+
+
+def pair_sums(na, nb, area, ra, rb):
+    """Per node pair: the nodes, the contact area [m²] and its area-weighted specific
+    resistances [m²K/W] on either side (everything of :func:`aggregate` but the contact's own)."""
     na, nb = np.asarray(na, int), np.asarray(nb, int)
     if na.size == 0:
-        return na, nb, np.zeros(0)
+        return na, nb, np.zeros(0), np.zeros(0), np.zeros(0)
     pairs, inverse = np.unique(np.stack([na, nb], axis=1), axis=0, return_inverse=True)
     inverse = inverse.ravel()
     A = np.bincount(inverse, weights=area)
     Ra = np.bincount(inverse, weights=area * ra) / A
     Rb = np.bincount(inverse, weights=area * rb) / A
-    return pairs[:, 0], pairs[:, 1], A / (r_contact + Ra + Rb)
+    return pairs[:, 0], pairs[:, 1], A, Ra, Rb
 
 
 def spread_along(edges: np.ndarray, x: np.ndarray, extent: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -127,7 +134,7 @@ class JointContact:
     """The contact of one joint, sampled on one side; the other side a cell part or an axial body."""
 
     def __init__(self, layout: Layout, joint: Joint, sides: dict[str, Side], conductivity: dict[str, float],
-                 surface_length: dict[str, float]):
+                 surface_length: dict[str, float], cache: dict[int, dict] | None = None):
         self.layout = layout
         self.joint = joint
         a, b = joint.between
@@ -137,7 +144,7 @@ class JointContact:
         self.surface_length = surface_length  # conduction length [m] from an axial body's node to its surface
         parts = layout.system.parts
         self.shift_sign = float(parts[self.sampled].moving) - float(parts[self.other].moving)
-        self._cache: dict[int, dict] = {}
+        self._cache: dict[int, dict] = {} if cache is None else cache  # geometry only: no resistance in it
 
     def key(self, k: int) -> int:
         return k if self.shift_sign != 0.0 else 0
@@ -221,7 +228,10 @@ class JointContact:
         if area <= 0.0:
             return self._nearest_link()
         r_eff = self.joint.tcr * area / self.joint.area
-        return aggregate(c["sampled_nodes"], c["other_nodes"], c["areas"], c["sampled_r"], c["other_r"], r_eff)
+        if "pair_sums" not in c:  # geometry: kept with the contact, the resistance is not
+            c["pair_sums"] = pair_sums(c["sampled_nodes"], c["other_nodes"], c["areas"], c["sampled_r"], c["other_r"])
+        a, b, A, Ra, Rb = c["pair_sums"]
+        return a, b, A / (r_eff + Ra + Rb)
 
     def share(self, part: str, k: int) -> tuple[np.ndarray, np.ndarray]:
         """Nodes of ``part`` (a side of this joint) at the contact and their shares of its area."""
