@@ -180,7 +180,11 @@ PRELOAD = "sources.screw_nut.preload"
 
 
 def finals_with_preload(paper, preload, condition):
-    run = simulate(with_values(paper, {PRELOAD: preload}), condition=condition, motion="averaged")
+    """The final values as calibration computes them: cycle-averaged, its 60 s steps."""
+    from feedtherm.analysis.calibration import CALIBRATION_OPTIONS, CALIBRATION_STEP_S
+
+    run = simulate(with_values(paper, {PRELOAD: preload}), condition=condition, motion="averaged",
+                   options=CALIBRATION_OPTIONS, sample_interval=CALIBRATION_STEP_S)
     return run.summary_values("final")
 
 
