@@ -18,7 +18,7 @@ import resource
 import time
 
 from feedtherm.analysis.calibration import calibrate, cross_validate
-from feedtherm.analysis.consistency import check_consistency, operating_points
+from feedtherm.analysis.consistency import check_description_measurements
 from feedtherm.analysis.validation import measurements_of
 from feedtherm.outputs.calibration_files import worst
 from feedtherm.system.load import load_system
@@ -49,7 +49,7 @@ def main() -> None:
     fit = args.fit.split(",")
 
     started = time.perf_counter()
-    consistency = check_consistency(data, operating_points(loaded.system))
+    consistency = check_description_measurements(loaded.system, data)
     options = {"consistency": consistency, "workers": args.workers}
     result = calibrate(loaded, data, fit, names, **options)
     first = time.perf_counter() - started

@@ -246,7 +246,7 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "calibration", args.mode)
     check_output_dir(out_dir)
     from .analysis.calibration import calibrate, cross_validate, resolve_parameters
-    from .analysis.consistency import check_consistency, operating_points
+    from .analysis.consistency import check_description_measurements
     from .analysis.validation import measurements_of
     from .outputs.calibration_files import print_calibration, write_calibration
 
@@ -254,10 +254,7 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     names = [n.strip() for n in args.params.split(",") if n.strip()]
     fit = [c.strip() for c in args.fit.split(",") if c.strip()]
     resolve_parameters(loaded, names)  # unknown names and missing bounds fail before any run
-    cal = loaded.system.calibration
-    consistency = check_consistency(data, operating_points(loaded.system),
-                                    sigma_t=cal.temperature_sigma if cal else 0.5,
-                                    sigma_d=(cal.elongation_sigma if cal else 2e-6) * 1e6)
+    consistency = check_description_measurements(loaded.system, data)
     options = {"mode": args.mode, "consistency": consistency, "equilibrium": not args.no_equilibrium,
                "workers": args.workers}
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:

@@ -280,48 +280,44 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
     if len(rows) < len(parameters):
         raise FeedthermError(f"--fit: {len(rows)} measured values cannot determine {len(parameters)} parameters")
     with _Model(loaded, parameters, mode, workers) as model:
-        return _fit(loaded, data, fit, parameters, model, rows, measured, consistency, equilibrium, start, progress,
-                    started)
+        sigma = np.array([_sigma(loaded, r.unit) for r in rows])
+        target = np.array([r.measured for r in rows])
+        lower = np.array([p.lower for p in parameters])
+        upper = np.array([p.upper for p in parameters])
+        span = upper - lower
 
+        def residuals(u):  # u: parameters scaled to [0, 1] within their bounds
+            finals = model.finals(lower + u * span, fit)
+            if progress is not None:
+                progress(min(0.9, model.runs / (len(fit) * (len(parameters) + 1) * 8)))
+            return (np.array([finals[r.condition][r.quantity] for r in rows]) - target) / sigma
 
-def _fit(loaded, data, fit, parameters, model, rows, measured, consistency, equilibrium, start, progress, started):
-    sigma = np.array([_sigma(loaded, r.unit) for r in rows])
-    target = np.array([r.measured for r in rows])
-    lower = np.array([p.lower for p in parameters])
-    upper = np.array([p.upper for p in parameters])
-    span = upper - lower
-
-    def residuals(u):  # u: parameters scaled to [0, 1] within their bounds
-        finals = model.finals(lower + u * span, fit)
+        x_start = np.array([p.start for p in parameters]) if start is None else np.clip(start, lower, upper)
+        u0 = (x_start - lower) / span
+        result = least_squares(residuals, u0, bounds=(0.0, 1.0), diff_step=1e-3, x_scale=1.0, xtol=1e-3, ftol=1e-4)
+        x = lower + result.x * span
+        se, corr, identifiable, cov, s2, dof = _uncertainty(result.jac / span[None, :], result.fun, x, len(rows))
+        at_bound = ["lower" if u <= 1e-6 else "upper" if u >= 1 - 1e-6 else "" for u in result.x]
+        held_out = [c for c in measured if c not in fit and c in loaded.system.conditions]
+        every = _data(data, list(fit) + held_out, consistency, equilibrium)
+        finals, intervals = _prediction_intervals(model, x, lower, upper, every, cov, s2, dof, loaded)
+        calibrated = apply(loaded, parameters, x)
         if progress is not None:
-            progress(min(0.9, model.runs / (len(fit) * (len(parameters) + 1) * 8)))
-        return (np.array([finals[r.condition][r.quantity] for r in rows]) - target) / sigma
-
-    x_start = np.array([p.start for p in parameters]) if start is None else np.clip(start, lower, upper)
-    u0 = (x_start - lower) / span
-    result = least_squares(residuals, u0, bounds=(0.0, 1.0), diff_step=1e-3, x_scale=1.0, xtol=1e-3, ftol=1e-4)
-    x = lower + result.x * span
-    se, corr, identifiable = _uncertainty(result.jac / span[None, :], result.fun, x, len(rows))
-    at_bound = ["lower" if u <= 1e-6 else "upper" if u >= 1 - 1e-6 else "" for u in result.x]
-    held_out = [c for c in measured if c not in fit and c in loaded.system.conditions]
-    every = _data(data, list(fit) + held_out, consistency, equilibrium)
-    finals, intervals = _prediction_intervals(model, x, lower, upper, every, result, loaded, len(rows))
-    calibrated = apply(loaded, parameters, x)
-    if progress is not None:
-        progress(1.0)
-    fitted_rows = [r for r in every if r.condition in fit]
-    return CalibrationResult(
-        parameters=parameters, fitted=x, standard_errors=se, correlation=corr, identifiable=identifiable,
-        at_bound=at_bound, fit_conditions=list(fit),
-        residuals=_predictions(finals, [r for r in fitted_rows if not r.flag], intervals),
-        held_out=_predictions(finals, [r for r in every if r.condition not in fit], intervals),
-        cost=float(result.cost), model_runs=model.runs, wall_time_s=time.perf_counter() - started,
-        measurement_source=data.source, calibrated=calibrated, status=result.message,
-        excluded=_predictions(finals, [r for r in fitted_rows if r.flag], intervals),
-    )
+            progress(1.0)
+        fitted_rows = [r for r in every if r.condition in fit]
+        return CalibrationResult(
+            parameters=parameters, fitted=x, standard_errors=se, correlation=corr, identifiable=identifiable,
+            at_bound=at_bound, fit_conditions=list(fit),
+            residuals=_predictions(finals, [r for r in fitted_rows if not r.flag], intervals),
+            held_out=_predictions(finals, [r for r in every if r.condition not in fit], intervals),
+            cost=float(result.cost), model_runs=model.runs, wall_time_s=time.perf_counter() - started,
+            measurement_source=data.source, calibrated=calibrated, status=result.message,
+            excluded=_predictions(finals, [r for r in fitted_rows if r.flag], intervals),
+        )
 
 
-def _prediction_intervals(model: _Model, x, lower, upper, rows: list[_Datum], fit_result, loaded, m: int):
+def _prediction_intervals(model: _Model, x, lower, upper, rows: list[_Datum], cov: np.ndarray, s2: float, dof: int,
+                          loaded: LoadedSystem):
     """Values at ``x`` of every condition in ``rows`` and the 95 % half-width of each.
 
     Var = g·Cov·gᵀ + s²·σ²: ``g`` the value's sensitivity to the parameters (one-sided
@@ -335,10 +331,6 @@ def _prediction_intervals(model: _Model, x, lower, upper, rows: list[_Datum], fi
     conditions = list(dict.fromkeys(r.condition for r in rows))
     base = model.finals(x, conditions)
     span = upper - lower
-    jac = fit_result.jac / span[None, :]
-    dof = m - len(x)
-    s2 = float(fit_result.fun @ fit_result.fun) / dof if dof > 0 else 1.0
-    cov = s2 * np.linalg.pinv(jac.T @ jac)
     gradients = {(r.condition, r.quantity): np.zeros(len(x)) for r in rows}
     for j in range(len(x)):
         h = 0.01 * span[j] * (1.0 if x[j] + 0.01 * span[j] <= upper[j] else -1.0)
@@ -357,7 +349,8 @@ def _prediction_intervals(model: _Model, x, lower, upper, rows: list[_Datum], fi
 
 
 def _uncertainty(jac: np.ndarray, fun: np.ndarray, x: np.ndarray, m: int):
-    """Standard errors, correlation and identifiability from the Jacobian at the optimum.
+    """Standard errors, correlation and identifiability from the Jacobian at the optimum, and
+    the covariance, residual variance and degrees of freedom they come from.
 
     cov = s² (JᵀJ)⁻¹ with s² = Σr² / (m − n), the residual variance of the weighted fit
     (1 when there are no degrees of freedom left).
@@ -382,7 +375,7 @@ def _uncertainty(jac: np.ndarray, fun: np.ndarray, x: np.ndarray, m: int):
             reasons.append("not identifiable: the measurements do not depend on it")
         else:
             reasons.append("")
-    return se, corr, reasons
+    return se, corr, reasons, cov, s2, dof
 
 
 def cross_validate(loaded: LoadedSystem, data: MeasurementSet, names: list[str], *, mode: str = "physics",

@@ -221,10 +221,19 @@ def _ambient_shift(values, points, sigma_t, coverage):
     return flags
 
 
+def check_description_measurements(system, data: MeasurementSet) -> ConsistencyReport:
+    """:func:`check_consistency` at a description's operating points, with the uncertainties its
+    ``[calibration]`` declares (0.5 K and 2 µm when it declares none)."""
+    weights = system.calibration
+    return check_consistency(data, operating_points(system),
+                             sigma_t=weights.temperature_sigma if weights else 0.5,
+                             sigma_d=(weights.elongation_sigma if weights else 2e-6) * 1e6)
+
+
 def operating_points(system) -> dict[str, OperatingPoint]:
     """The stated operating point of every condition of a description."""
     return {name: OperatingPoint(c.screw_speed * RPM_PER_RAD_S, c.nut_speed * RPM_PER_RAD_S, c.ambient - KELVIN_OFFSET)
             for name, c in system.conditions.items()}
 
 
-__all__ = ["check_consistency", "operating_points", "ConsistencyReport", "ElongationLaw", "Flag", "OperatingPoint"]
+__all__ = ["check_consistency", "check_description_measurements", "operating_points", "ConsistencyReport", "ElongationLaw", "Flag", "OperatingPoint"]

@@ -14,7 +14,7 @@ from ..errors import FeedthermError
 from ..simulate import provenance, simulate
 from ..system.checks import check_system
 from ..system.load import LoadedSystem
-from .consistency import check_consistency, operating_points
+from .consistency import check_description_measurements
 from .inverse import Noise, infer_conditions
 from .measurements import MeasurementSet, measurement_spec, read_measurements
 from .sensitivity import sensitivities
@@ -76,11 +76,10 @@ def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast"
     ranking = sensitivities(loaded, reference, mode=mode)
     tick()
     weights = system.calibration
-    sigma_t = weights.temperature_sigma if weights else 0.5
-    sigma_d = weights.elongation_sigma if weights else 2e-6
-    consistency = check_consistency(data, operating_points(system), sigma_t=sigma_t, sigma_d=sigma_d * 1e6)
+    consistency = check_description_measurements(system, data)
     inferred = infer_conditions(loaded, data, [c for c in conditions if c in system.conditions],
-                                noise=Noise(sigma_t, sigma_d), mode=mode)
+                                noise=Noise(weights.temperature_sigma if weights else 0.5,
+                                            weights.elongation_sigma if weights else 2e-6), mode=mode)
     tick()
     return Validation(
         system_name=system.meta.name,

@@ -176,7 +176,8 @@ def cross_summary(cross: list[tuple[str, CalibrationResult]]) -> dict:
     }
 
 
-_UNITS = {"C": "K", "um": "µm", "min": "min"}
+#: The symbol a deviation of each measured unit is written in.
+UNIT_SYMBOLS = {"C": "K", "um": "µm", "min": "min"}
 
 
 def _largest(rows: list[Prediction]) -> str:
@@ -185,10 +186,10 @@ def _largest(rows: list[Prediction]) -> str:
     for unit, label in (("C", "ΔT"), ("um", "ΔD"), ("min", "Δt_eq")):
         row = worst(rows, unit)
         if row is not None:
-            parts.append(f"largest |{label}| {abs(row.deviation):.1f} {_UNITS[unit]} ({row.condition} {row.quantity})")
+            parts.append(f"largest |{label}| {abs(row.deviation):.1f} {UNIT_SYMBOLS[unit]} ({row.condition} {row.quantity})")
         flagged = worst(rows, unit, flagged=True)
         if flagged is not None:
-            parts.append(f"flagged {flagged.condition} {flagged.quantity} {flagged.deviation:+.1f} {_UNITS[unit]}")
+            parts.append(f"flagged {flagged.condition} {flagged.quantity} {flagged.deviation:+.1f} {UNIT_SYMBOLS[unit]}")
     return ", ".join(parts)
 
 
@@ -197,7 +198,7 @@ def _prediction_table(rows: list[Prediction], title: str) -> Table:
     for column in ("condition", "quantity", "predicted", "measured", "deviation", "95 % interval", "flag"):
         table.add_column(column)
     for r in rows:
-        unit = _UNITS[r.unit] if r.unit != "C" else "°C"
+        unit = UNIT_SYMBOLS[r.unit] if r.unit != "C" else "°C"
         interval = "" if r.interval is None else f"±{r.interval:.1f}"
         table.add_row(r.condition, r.quantity, f"{r.predicted:.1f} {unit}", f"{r.measured:.1f}", f"{r.deviation:+.1f}",
                       interval, "flagged" if r.flag else "")
@@ -223,7 +224,7 @@ def print_calibration(result: CalibrationResult, out_dir: Path, cross=None, cons
         console.print(_prediction_table(result.held_out, "held-out predictions (95 % prediction intervals)"))
     for row in [*result.excluded, *(r for r in result.held_out if r.flag)]:
         console.print(f"flagged by the consistency check (not fitted, not in the maxima): {row.condition} {row.quantity} "
-                      f"(deviation {row.deviation:+.1f} {_UNITS[row.unit]}): {row.flag}")
+                      f"(deviation {row.deviation:+.1f} {UNIT_SYMBOLS[row.unit]}): {row.flag}")
     if cross:
         rows = [r for _, res in cross for r in res.held_out]
         console.print("leave-one-condition-out, held-out: " + _largest(rows)

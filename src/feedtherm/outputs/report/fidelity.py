@@ -9,9 +9,9 @@ consistency check flags is reported apart, with its reason, never dropped.
 from __future__ import annotations
 
 from ...analysis.validation_types import Comparison, Validation
+from ..calibration_files import UNIT_SYMBOLS
 from .html import Cell, bullets, heading, number, paragraph, section, table
 
-UNITS = {"C": "K", "um": "µm", "min": "min"}
 PAPER_IN_SAMPLE = {"C": 2.1, "um": 6.2}  # the paper's abstract and conclusion 1
 
 
@@ -123,7 +123,7 @@ def _flag_lines(validation: Validation) -> str:
     items = []
     for flag in validation.consistency.flags:
         row = by_key.get((flag.condition, flag.quantity))
-        deviation = f"; this model deviates by {row.deviation:+.1f} {UNITS[row.unit]}" if row else ""
+        deviation = f"; this model deviates by {row.deviation:+.1f} {UNIT_SYMBOLS[row.unit]}" if row else ""
         items.append(f"{flag.condition} {flag.quantity} (flagged): {flag.reason}{deviation}.")
     return heading("Flagged measurements") + bullets(items)
 
