@@ -11,16 +11,17 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from .boundary import MODES, boundary_conditions_at
+from .boundary import MODES, BoundaryConditions, LocalTemperatures, boundary_conditions_at
 from .boundary.operating import OperatingPoint
 from .constants import RPM_PER_RAD_S
-from .errors import FeedthermError, ModelError
+from .errors import FeedthermError
+from .models.coupling import Coupling
 from .models.integrator import Segment
 from .models.options import ModelOptions
 from .models.registry import ModelEntry, model_entry
 from .system.duty_cycle import read_duty_cycle_csv
 from .system.load import LoadedSystem
-from .system.schema import DEFAULT_DURATION_S, DutySegment
+from .system.schema import DEFAULT_DURATION_S, DutySegment, FeedSystem
 
 MESHES = ("coarse", "medium", "fine")
 SOLVERS = ("auto", "direct", "cg")
@@ -45,6 +46,22 @@ class RunPlan:
     @property
     def end(self) -> float:
         return self.segments[-1].t1
+
+    @property
+    def coupling(self) -> Coupling | None:
+        """How the boundary conditions follow the temperatures; None when they are frozen."""
+        return coupling_of(self.loaded.system, self.mode, self.options)
+
+
+def coupling_of(system: FeedSystem, mode: str, options: ModelOptions) -> Coupling | None:
+    """The description's coupling: None for ``temperatures.coupling = "frozen"``."""
+    if system.temperatures.coupling == "frozen":
+        return None
+
+    def evaluate(base: BoundaryConditions, temperatures: LocalTemperatures) -> BoundaryConditions:
+        return boundary_conditions_at(system, base.point, mode, label=base.condition, temperatures=temperatures)
+
+    return Coupling(evaluate, options.coupling_tolerance)
 
 
 def plan_run(loaded: LoadedSystem, *, condition: str | None = None, cycle: str | None = None,
@@ -81,9 +98,6 @@ def _check_arguments(loaded, mode, model, duration, sample_interval, motion, mes
         raise FeedthermError(f"--sample-interval: must be positive, got {sample_interval!r} s")
     if start not in STARTS:
         raise FeedthermError(f"start must be 'initial' or 'steady', got {start!r}")
-    if system.temperatures.temperature_dependent_chtc:
-        raise ModelError("temperatures.temperature_dependent_chtc = true: the models take CHTCs frozen "
-                         "at convection_delta_t (the paper's assumption 3); set it to false")
     return entry
 
 

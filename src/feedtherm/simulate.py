@@ -75,7 +75,7 @@ def execute(plan: RunPlan, progress: Callable[[float], None] | None = None,
     system = plan.loaded.system
     segments = plan.segments
     disc = model if model is not None else plan.model.build(system, plan.options)
-    integrator = Integrator(disc, plan.options)
+    integrator = Integrator(disc, plan.options, plan.coupling)
     if plan.start == "steady":
         first = segments[0]
         T0 = integrator.steady(0, first.bc, None if first.speed > 0 else 0)
@@ -98,6 +98,7 @@ def execute(plan: RunPlan, progress: Callable[[float], None] | None = None,
         "nut_rpm": last.nut_rpm,
         "ambient_C": last.ambient - KELVIN_OFFSET,
         "warnings": sorted({w for seg in segments for w in seg.bc.warnings}),
+        "coupling": system.temperatures.coupling,
         "provenance": provenance(plan.loaded, plan.mode),
     }
     solution = pack_solution(system, integrator, segments, trace, T0, times, info)
@@ -147,7 +148,7 @@ def steady_solve(loaded: LoadedSystem, condition: str, *, mode: str = "physics",
                     options=options)
     segment = plan.segments[0]
     disc = plan.model.build(loaded.system, plan.options)
-    integrator = Integrator(disc, plan.options)
+    integrator = Integrator(disc, plan.options, plan.coupling)
     return SteadySolve(disc, integrator, segment, integrator.steady(0, segment.bc, None if segment.speed > 0 else 0))
 
 

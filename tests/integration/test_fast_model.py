@@ -146,16 +146,3 @@ def test_cycle_averaged_motion_agrees_with_the_resolved_motion(paper, run_i):
         assert averaged.final[name] == pytest.approx(run_i.final[name], abs=tolerance), name
         assert averaged.steady[name] == pytest.approx(run_i.steady[name], abs=1e-9), name
     assert abs(averaged.energy.relative_error) < 1e-4
-
-
-def test_temperature_dependent_chtcs_are_refused_not_ignored(paper, tmp_path):
-    from feedtherm.benches import bench
-    from feedtherm.errors import ModelError
-    from feedtherm.system.load import validate_data
-    import tomllib
-
-    text = bench("paper").description.read_text(encoding="utf-8")
-    data = tomllib.loads(text)
-    data["temperatures"]["temperature_dependent_chtc"] = True
-    with pytest.raises(ModelError, match="temperature_dependent_chtc"):
-        simulate(validate_data(data, "variant"), condition="I", duration=60.0)

@@ -141,10 +141,13 @@ def transfer(loaded: LoadedSystem, condition: str, groups: dict[str, tuple[str, 
     """The steady response of ``condition``'s observations to 1 W of each group (cycle-averaged motion).
 
     Within a group the watt is shared as the loss models share the group's heat (equally if they
-    give none), and each source's share enters where that source's heat enters.
+    give none), and each source's share enters where that source's heat enters.  The
+    coefficients are those of the model's own steady state (evaluated there under
+    ``temperatures.coupling = "nonlinear"``, frozen otherwise).
     """
     steady = steady_solve(loaded, condition, mode=mode, model=model)
-    disc, integrator, bc, k = steady.model, steady.integrator, steady.segment.bc, steady.k
+    disc, integrator, k = steady.model, steady.integrator, steady.k
+    bc = integrator.steady_boundary_conditions(0, steady.segment.bc, steady.state)
     k_probe = steady.probe_position
     positions = list(range(len(disc.positions))) if k is None else [k]
     weights = cycle_weights(len(disc.positions)) if k is None else np.ones(1)

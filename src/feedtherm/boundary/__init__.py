@@ -10,9 +10,11 @@ This is where the paper's Tables 1-3 come from (``feedtherm heat`` prints them).
     conditions by the physics ratio (see :mod:`.paper`); uncovered values from the
     physics; radiation off.
 
-CHTCs are frozen for a run at the declared surface-to-air temperature difference (the
-paper's assumption 3); :func:`surface_transfer` evaluates them at any surface temperature
-for models that ask for temperature-dependent coefficients.
+By default CHTCs and lubricant viscosities are frozen for a run at the declared
+surface-to-air temperature difference (the paper's assumption 3).  Given the surfaces' and
+sources' own temperatures (:class:`~.temperatures.LocalTemperatures`, read from the state by
+a model under ``temperatures.coupling = "nonlinear"``), every coefficient and every heat that
+depends on temperature is evaluated there instead.
 """
 
 from __future__ import annotations
@@ -29,6 +31,7 @@ from .heat import SourceHeat, source_heats
 from .operating import OperatingPoint, operating_point
 from .paper import scaled
 from .surfaces import SurfaceTransfer, surface_transfer
+from .temperatures import LocalTemperatures
 
 Mode = Literal["physics", "paper"]
 MODES: tuple[str, ...] = ("physics", "paper")
@@ -58,6 +61,7 @@ class BoundaryConditions:
     paper_heat: dict[str, float]  # source -> printed value at the reference condition [W]
     paper_chtc: dict[str, float]  # surface -> printed value at the reference condition
     warnings: list[str]
+    temperatures: LocalTemperatures | None = None  # where they were evaluated (None: frozen)
 
     @property
     def total_heat(self) -> float:
@@ -70,18 +74,25 @@ def boundary_conditions(system: FeedSystem, condition: str, mode: Mode = "physic
 
 
 def boundary_conditions_at(
-    system: FeedSystem, point: OperatingPoint, mode: Mode = "physics", *, label: str = ""
+    system: FeedSystem, point: OperatingPoint, mode: Mode = "physics", *, label: str = "",
+    temperatures: LocalTemperatures | None = None,
 ) -> BoundaryConditions:
-    """Boundary conditions at any operating point (a duty-cycle segment, a standstill, ...)."""
+    """Boundary conditions at any operating point (a duty-cycle segment, a standstill, ...).
+
+    ``temperatures``: the surfaces' and sources' own temperatures; None takes them all at the
+    frozen temperature (:func:`frozen_surface_temperature`).
+    """
     if mode not in MODES:
         raise ValueError(f"mode must be one of {', '.join(MODES)}, got {mode!r}")
     caught: list[str] = []
-    heats, surfaces = _physics(system, point, with_radiation=(mode == "physics"), caught=caught)
+    heats, surfaces = _physics(system, point, with_radiation=(mode == "physics"), caught=caught,
+                               temperatures=temperatures)
     paper_heat, paper_chtc = _printed(system)
     if mode == "paper":
         heats, surfaces = _paper(system, point, heats, surfaces)
     joints = [JointConductance(tuple(j.between), j.tcr, j.area, j.sliding) for j in system.joints]
-    return BoundaryConditions(label, mode, point, heats, surfaces, joints, paper_heat, paper_chtc, caught)
+    return BoundaryConditions(label, mode, point, heats, surfaces, joints, paper_heat, paper_chtc, caught,
+                              temperatures)
 
 
 def frozen_surface_temperature(system: FeedSystem, point: OperatingPoint) -> float:
@@ -89,16 +100,19 @@ def frozen_surface_temperature(system: FeedSystem, point: OperatingPoint) -> flo
     return point.ambient + system.temperatures.convection_delta_t
 
 
-def _physics(system: FeedSystem, point: OperatingPoint, *, with_radiation: bool, caught: list[str] | None = None):
+def _physics(system: FeedSystem, point: OperatingPoint, *, with_radiation: bool, caught: list[str] | None = None,
+             temperatures: LocalTemperatures | None = None):
     """Physics-mode heats and surface transfer; range warnings go to ``caught``, labelled."""
     sink = [] if caught is None else caught
-    t_surface = frozen_surface_temperature(system, point)
+    frozen = frozen_surface_temperature(system, point)
+    local = temperatures or LocalTemperatures()
     with _collect("sources", sink):
-        heats = source_heats(system, point)
+        heats = source_heats(system, point, local.sources)
     surfaces = {}
     for name in system.surfaces:
         with _collect(f"surfaces.{name}", sink):
-            surfaces[name] = surface_transfer(system, name, point, t_surface, with_radiation=with_radiation)
+            surfaces[name] = surface_transfer(system, name, point, local.surfaces.get(name, frozen),
+                                              with_radiation=with_radiation)
     return heats, surfaces
 
 
@@ -152,6 +166,7 @@ def _paper(system: FeedSystem, point: OperatingPoint, heats, surfaces):
 __all__ = [
     "BoundaryConditions",
     "JointConductance",
+    "LocalTemperatures",
     "MODES",
     "OperatingPoint",
     "SourceHeat",

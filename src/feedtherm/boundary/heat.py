@@ -7,6 +7,7 @@ delivers the friction torques of everything on its shaft.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from ..physics import (
@@ -51,16 +52,25 @@ def _sign(x: float) -> float:
     return math.copysign(1.0, x) if x != 0.0 else 0.0
 
 
-def source_heats(system: FeedSystem, point: OperatingPoint) -> dict[str, SourceHeat]:
-    """Heat of every declared source at ``point`` (physics mode), keyed by source name."""
+def source_heats(system: FeedSystem, point: OperatingPoint,
+                 temperatures: Mapping[str, float] | None = None) -> dict[str, SourceHeat]:
+    """Heat of every declared source at ``point`` (physics mode), keyed by source name.
+
+    ``temperatures`` [K]: each source's own temperature (where its heat enters), at which its
+    lubricant's viscosity and its motor winding's resistance are taken; a source left out is
+    taken at the frozen temperature of the CHTCs, ambient + ``convection_delta_t``.
+    """
     sources = system.sources
     heats: dict[str, SourceHeat] = {}
     # torque each motor must deliver on its shaft, accumulated from the friction elements
     shaft_torque = {"screw": 0.0, "nut": 0.0}
     axial_force = 0.0
-    # Lubricants are taken at the temperature the frozen CHTCs use (ambient plus the declared
-    # rise, boundary.frozen_surface_temperature) until the loss models iterate with temperature.
     frozen_temperature = point.ambient + system.temperatures.convection_delta_t
+    local = dict(temperatures or {})
+
+    def temperature(name: str) -> float:
+        return local.get(name, frozen_temperature)
+
     for name, src in sources.items():
         if isinstance(src, GuidewaySource):
             force = guideways.friction_force_guideway(
@@ -74,26 +84,27 @@ def source_heats(system: FeedSystem, point: OperatingPoint) -> dict[str, SourceH
             )
     for name, src in sources.items():
         if isinstance(src, SlidingScrewSource):
-            heats[name] = _sliding_screw(name, src, point, axial_force, shaft_torque)
+            heats[name] = _sliding_screw(name, src, point, axial_force, shaft_torque, temperature(name))
         elif isinstance(src, BallScrewSource):
             heats[name] = _ball_screw(name, src, point, axial_force, shaft_torque)
         elif isinstance(src, BearingSource):
-            heats[name] = _bearing(name, src, point, shaft_torque, frozen_temperature)
+            heats[name] = _bearing(name, src, point, shaft_torque, temperature(name))
         elif isinstance(src, TorqueSource):
             heats[name] = _torque(name, src, point, axial_force, shaft_torque)
         elif isinstance(src, FixedSource):
             heats[name] = SourceHeat(name, src.power, dict(src.into), 0.0)
     for name, src in sources.items():
         if isinstance(src, MotorSource):
-            heats[name] = _motor(name, src, point, shaft_torque[src.shaft])
+            heats[name] = _motor(name, src, point, shaft_torque[src.shaft], temperature(name))
     return {name: heats[name] for name in sources}  # declaration order
 
 
-def _sliding_screw(name, src: SlidingScrewSource, point, axial_force, shaft_torque) -> SourceHeat:
+def _sliding_screw(name, src: SlidingScrewSource, point, axial_force, shaft_torque, temperature) -> SourceHeat:
     force = axial_force + src.external_axial_load
+    eta = src.grease_viscosity_at(temperature)
     torque = screw_nut.torque_screw_nut_sliding(
         force, src.preload, src.pitch_diameter, point.lead, src.friction_coefficient,
-        src.flank_half_angle, src.grease_viscosity, src.grease_gap, src.engaged_length,
+        src.flank_half_angle, eta, src.grease_gap, src.engaged_length,
         point.relative_rpm,
     )
     # The screw also pushes the table: the ideal torque F*lead/(2 pi) is work, not heat.
@@ -104,7 +115,7 @@ def _sliding_screw(name, src: SlidingScrewSource, point, axial_force, shaft_torq
     power = screw_nut.heat_screw_nut(torque.total, point.screw_rpm, point.nut_rpm)
     return SourceHeat(name, power, dict(src.into), point.relative_rpm, {
         "axial_load_N": force, "load_torque_Nm": torque.load, "preload_torque_Nm": torque.preload,
-        "grease_torque_Nm": torque.grease, "friction_torque_Nm": torque.total,
+        "grease_viscosity_Pa_s": eta, "grease_torque_Nm": torque.grease, "friction_torque_Nm": torque.total,
     })
 
 
@@ -227,7 +238,7 @@ def _torque(name, src: TorqueSource, point, axial_force, shaft_torque) -> Source
     return SourceHeat(name, heat_friction(src.torque, n), dict(src.into), n, {"friction_torque_Nm": src.torque})
 
 
-def _motor(name, src: MotorSource, point, load_torque) -> SourceHeat:
+def _motor(name, src: MotorSource, point, load_torque, temperature) -> SourceHeat:
     n = point.shaft_rpm(src.shaft)
     torque = load_torque + src.extra_torque * _sign(n)
     output = torque * n * 2.0 * math.pi / 60.0  # > 0 driving, < 0 braking (generating)
@@ -237,8 +248,9 @@ def _motor(name, src: MotorSource, point, load_torque) -> SourceHeat:
         # braking motor's shaft power goes back to the amplifier's DC bus, not into the motor.
         losses = src.losses
         if isinstance(losses, DatasheetMotorLosses):
-            copper = servo_motor.heat_motor_copper(torque, losses.torque_constant, losses.terminal_resistance)
-            details["current_A"] = abs(torque) / losses.torque_constant
+            resistance = losses.resistance_at(temperature)
+            copper = servo_motor.heat_motor_copper(torque, losses.torque_constant, resistance)
+            details.update(current_A=abs(torque) / losses.torque_constant, terminal_resistance_ohm=resistance)
         else:
             copper = servo_motor.heat_motor_copper_rated(torque, losses.rated_torque, losses.rated_copper_loss)
         no_load = servo_motor.heat_motor_no_load(n, losses.friction_torque, losses.viscous_damping)

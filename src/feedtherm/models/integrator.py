@@ -24,8 +24,9 @@ import scipy.sparse as sp
 import scipy.linalg
 from scipy.sparse.linalg import cg, splu
 
-from ..boundary import BoundaryConditions
+from ..boundary import BoundaryConditions, LocalTemperatures
 from ..errors import ModelError
+from .coupling import LINK_REFACTOR, STEADY_ITERATIONS, STEADY_TOLERANCE, Coupling, TemperatureReadout
 from .interface import AmbientCoupling, Operator, ThermalModel, cycle_weights, weighted_sum
 from .options import ModelOptions
 
@@ -64,6 +65,8 @@ class Trace:
     time_step: float = 0.0  # the (first moving segment's) step [s]
     final_state: np.ndarray | None = None
     final_position: int = 0
+    final_bc: BoundaryConditions | None = None  # the last step's (coupled: the last evaluation)
+    coupling_updates: int = 0  # evaluations of the boundary conditions at the state (coupled runs)
 
 
 class PositionPath:
@@ -116,6 +119,11 @@ def operator_sum(*operators: Operator) -> Operator:
     return sum((sp.diags(op) if np.ndim(op) == 1 else op) for op in operators).tocsr()
 
 
+def _apply(op: Operator, v: np.ndarray) -> np.ndarray:
+    """``op v``, with a 1-D ``op`` a diagonal."""
+    return op * v if np.ndim(op) == 1 else op @ v
+
+
 def jacobi(A: sp.spmatrix) -> sp.linalg.LinearOperator:
     """The Jacobi (diagonal) preconditioner of ``A``.
 
@@ -149,13 +157,19 @@ class Loads:
 
 
 class Integrator:
-    def __init__(self, model: ThermalModel, options: ModelOptions):
+    """Implicit Euler over a plan's segments; with a :class:`~.coupling.Coupling`, the
+    boundary conditions follow the temperatures (module notes of :mod:`.coupling`)."""
+
+    def __init__(self, model: ThermalModel, options: ModelOptions, coupling: Coupling | None = None):
         self.model = model
         self.options = options
+        self.coupling = coupling
+        self._readout: TemperatureReadout | None = None
         self._lu = {}  # (step-matrix key, dt) → LU factors (direct solver)
         self._cg = {}  # (step-matrix key, dt) → (matrix, preconditioner) (conjugate gradients)
-        self._loads = {}
-        self._matrix_keys = {}  # (segment, position) → key of its step matrix (without C/dt)
+        self._conductance = {}  # position (None: cycle average) → conduction operator
+        self._loads = {}  # (segment, boundary conditions' id, position) → (boundary conditions, Loads)
+        self._matrix_keys = {}  # same keys → key of the step matrix (without C/dt)
         solver = options.solver
         self.dense = isinstance(model.conductance(0), np.ndarray)
         self.direct = self.dense or solver == "direct" or (solver == "auto" and model.n_nodes <= DIRECT_SOLVER_LIMIT)
@@ -170,20 +184,35 @@ class Integrator:
         return _DenseLU(A) if isinstance(A, np.ndarray) else factorize(A)
 
     # -------------------------------------------------------------- cached pieces
-    def loads(self, seg_id: int, bc: BoundaryConditions, k: int | None) -> Loads:
-        """The operators at position k; ``k = None`` gives the cycle average over all positions."""
-        key = (seg_id, k)
-        if key not in self._loads:
+    def conductance(self, k: int | None) -> Operator:
+        """Conduction and contacts at position k (None: the cycle average); no boundary condition enters."""
+        if k not in self._conductance:
             if k is None:
                 w = cycle_weights(len(self.model.positions))
-                parts = [self.loads(seg_id, bc, j) for j in range(len(w))]
-                self._loads[key] = Loads(weighted_sum(w, [p.conductance for p in parts]),
-                                         AmbientCoupling.averaged(w, [p.ambient for p in parts]),
-                                         weighted_sum(w, [p.heat for p in parts]))
+                self._conductance[k] = weighted_sum(w, [self.conductance(j) for j in range(len(w))])
             else:
-                m = self.model
-                self._loads[key] = Loads(m.conductance(k), m.ambient_coupling(bc, k), m.heat_vector(bc, k))
-        return self._loads[key]
+                self._conductance[k] = self.model.conductance(k)
+        return self._conductance[k]
+
+    def loads(self, seg_id: int, bc: BoundaryConditions, k: int | None) -> Loads:
+        """The operators at position k; ``k = None`` gives the cycle average over all positions."""
+        key = (seg_id, id(bc), k)
+        if key not in self._loads:
+            m = self.model
+            loads = Loads(self.conductance(k), m.ambient_coupling(bc, k), m.heat_vector(bc, k))
+            self._loads[key] = (bc, loads)  # holding bc keeps its id from being reused
+        return self._loads[key][1]
+
+    def _forget(self, seg_id: int, bc: BoundaryConditions) -> None:
+        """Drop what was cached for boundary conditions a coupled run has left behind."""
+        keys = [key for key in self._loads if key[:2] == (seg_id, id(bc))]
+        stale = {self._matrix_keys.pop(key) for key in keys if key in self._matrix_keys}
+        for key in keys:
+            del self._loads[key]
+        stale -= set(self._matrix_keys.values())
+        for cache in (self._lu, self._cg):
+            for key in [key for key in cache if key[0] in stale or key[1:3] == (seg_id, id(bc))]:
+                del cache[key]
 
     def solve(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float, rhs: np.ndarray,
               guess: np.ndarray) -> np.ndarray:
@@ -208,9 +237,10 @@ class Integrator:
         Segments with the same links share one factorisation: a duty cycle that returns to an
         operating point, or one whose ambient changes but not its coefficients.
         """
-        if (seg_id, k) not in self._matrix_keys:
-            self._matrix_keys[(seg_id, k)] = (k, _digest(self.loads(seg_id, bc, k).ambient.matrix))
-        return self._matrix_keys[(seg_id, k)]
+        key = (seg_id, id(bc), k)
+        if key not in self._matrix_keys:
+            self._matrix_keys[key] = (k, _digest(self.loads(seg_id, bc, k).ambient.matrix))
+        return self._matrix_keys[key]
 
     def _step_matrix(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float) -> Operator:
         loads = self.loads(seg_id, bc, k)
@@ -221,14 +251,74 @@ class Integrator:
         """The steady state of segment ``seg_id`` at position k (None: the cycle average).
 
         ``rhs`` replaces the heat and sink terms: the steady response to any load (the inverse
-        estimation's transfer matrix is made of such responses, one factorisation for all).
+        estimation's transfer matrix is made of such responses, one factorisation for all),
+        at the boundary conditions ``bc`` as given.  Without ``rhs`` a coupled integrator
+        iterates the boundary conditions with the state to a fixed point.
         """
+        if rhs is not None or self.coupling is None:
+            return self._steady_linear(seg_id, bc, k, rhs)
+        state = self._steady_linear(seg_id, bc, k, None)
+        current = factorised = bc
+        change = math.inf
+        for _ in range(STEADY_ITERATIONS):
+            current, factorised = self._reevaluate(seg_id, bc, self.readout(state), current, factorised)
+            loads = self.loads(seg_id, current, k)
+            load = loads.heat + loads.ambient.source
+            if factorised is not current:
+                load = load - _apply(loads.ambient.matrix - self.loads(seg_id, factorised, k).ambient.matrix, state)
+            new = self._steady_linear(seg_id, factorised, k, load)
+            change = float(np.max(np.abs(new - state)))
+            state = new
+            if change <= STEADY_TOLERANCE:
+                break
+        else:
+            raise ModelError(f"temperatures.coupling = nonlinear: the steady state did not converge in "
+                             f"{STEADY_ITERATIONS} iterations (last change {change:.3g} K)")
+        for stale in {id(current): current, id(factorised): factorised}.values():
+            if stale is not bc:
+                self._forget(seg_id, stale)
+        return state
+
+    def steady_boundary_conditions(self, seg_id: int, bc: BoundaryConditions, state: np.ndarray) -> BoundaryConditions:
+        """The boundary conditions a (coupled) state was solved with: ``bc`` itself when frozen."""
+        return bc if self.coupling is None else self.coupling.evaluate(bc, self.readout(state))
+
+    def _reevaluate(self, seg_id: int, base: BoundaryConditions, now: LocalTemperatures,
+                    bc: BoundaryConditions, factorised: BoundaryConditions) -> tuple[BoundaryConditions, BoundaryConditions]:
+        """Boundary conditions at the reading ``now``, and the ones to factorise the steps with.
+
+        The step matrix is refactorised only once a node's link to its sink has moved by more
+        than :data:`~.coupling.LINK_REFACTOR` of its factorised value; until then the steps
+        take the difference on the right-hand side at the state of the step's start (stable,
+        as the difference is a fraction of the implicit links).
+        """
+        evaluated = self.coupling.evaluate(base, now)
+        if bc is not factorised:
+            self._forget(seg_id, bc)
+        if self._links_moved(factorised, evaluated):
+            self._forget(seg_id, factorised)
+            factorised = evaluated
+        return evaluated, factorised
+
+    def _links_moved(self, old: BoundaryConditions, new: BoundaryConditions) -> bool:
+        if self.dense:  # a projected model: no per-node links to compare
+            return True
+        g_old, g_new = self.model.ambient_links(old, None), self.model.ambient_links(new, None)
+        return bool(np.any(np.abs(g_new - g_old) > LINK_REFACTOR * g_old))
+
+    def readout(self, state: np.ndarray) -> LocalTemperatures:
+        """The surfaces' and sources' temperatures of ``state`` (:class:`~.coupling.TemperatureReadout`)."""
+        if self._readout is None:
+            self._readout = TemperatureReadout(self.model)
+        return self._readout(state)
+
+    def _steady_linear(self, seg_id: int, bc: BoundaryConditions, k: int | None, rhs: np.ndarray | None) -> np.ndarray:
         loads = self.loads(seg_id, bc, k)
         A = operator_sum(loads.conductance, loads.ambient.matrix)
         if rhs is None:
             rhs = loads.heat + loads.ambient.source
         if self.direct:
-            key = ("steady", seg_id, k)
+            key = ("steady", seg_id, id(bc), k)
             if key not in self._lu:
                 self._lu[key] = self._factorize(A)
             return self._lu[key].solve(rhs)
@@ -255,24 +345,45 @@ class Integrator:
         capacity_times = (lambda v: C * v) if np.ndim(C) == 1 else (lambda v: C @ v)
         last_report = -1.0
         T_old, dt_old = None, None  # the previous state, for the solver's starting guess
+        coupled = self.coupling is not None
+        period = 2.0 * path.K  # grid cells of one reciprocation cycle
         for seg_id, seg in enumerate(segments):
             moving = seg.speed > 0.0
+            resolved = moving and not averaged
             dt_nominal, cells_per_step = self._step(seg)
             if moving and trace.time_step == 0.0:
                 trace.time_step = dt_nominal
+            bc = factorised = seg.bc  # latest evaluation; the one the step matrix was factorised with
+            reading, checked = None, path.u
             while t < seg.t1 - 1e-9:
+                # A coupled reading is checked every step, or once per cycle while the group
+                # reciprocates (so its swing within a cycle does not count as a change).
+                if coupled and (reading is None or not resolved or path.u - checked >= period):
+                    checked, now = path.u, self.readout(T)
+                    if reading is None or now.largest_change(reading) > self.coupling.tolerance:
+                        bc, factorised = self._reevaluate(seg_id, seg.bc, now, bc, factorised)
+                        reading = now
+                        trace.coupling_updates += 1
                 dt = min(dt_nominal, seg.t1 - t)
                 if moving:
                     path.advance(cells_per_step * dt / dt_nominal)
                 k = None if (averaged and moving) else path.k
-                loads = self.loads(seg_id, seg.bc, k)
+                loads = self.loads(seg_id, bc, k)
                 guess = T if T_old is None else T + (T - T_old) * (dt / dt_old)
                 rhs = capacity_times(T) / dt + loads.heat + loads.ambient.source
-                T_new = self.solve(seg_id, seg.bc, k, dt, rhs, guess)
+                if factorised is bc:
+                    T_new = self.solve(seg_id, bc, k, dt, rhs, guess)
+                    lost = loads.ambient.heat_lost(T_new)
+                else:  # the links' change since the factorisation, taken at the step's start state
+                    ref = self.loads(seg_id, factorised, k).ambient
+                    rhs -= _apply(loads.ambient.matrix - ref.matrix, T)
+                    T_new = self.solve(seg_id, factorised, k, dt, rhs, guess)
+                    lost = loads.ambient.heat_lost(T) + float(ref.load @ (T_new - T))
                 t_new = t + dt
-                # energy account: heat in from the boundary conditions, losses from the surfaces
-                trace.heat_in += seg.bc.total_heat * dt
-                trace.heat_lost += loads.ambient.heat_lost(T_new) * dt
+                # energy account: heat in from the boundary conditions, losses from the surfaces,
+                # both as the step's equations had them
+                trace.heat_in += bc.total_heat * dt
+                trace.heat_lost += lost * dt
                 # the moving sensors sit where the group is; averaged motion smears it over the stroke
                 k_probe = len(m.positions) // 2 if (averaged and moving) else path.k
                 while next_sample is not None and next_sample <= t_new + 1e-9:
@@ -291,6 +402,7 @@ class Integrator:
                 if progress is not None and t - last_report >= 0.01 * (t_end - segments[0].t0):
                     progress((t - segments[0].t0) / (t_end - segments[0].t0))
                     last_report = t
+            trace.final_bc = bc
         trace.final_state = T
         trace.final_position = path.k
         return trace

@@ -55,13 +55,6 @@ class AmbientCoupling:
         """Node-to-sink conductances ``g`` [W/K] and ``g·T_s`` [W] of a full-state model."""
         return cls(links, links, sink_heat, float(sink_heat.sum()))
 
-    @classmethod
-    def averaged(cls, weights: np.ndarray, couplings: list["AmbientCoupling"]) -> "AmbientCoupling":
-        return cls(weighted_sum(weights, [c.matrix for c in couplings]),
-                   weighted_sum(weights, [c.load for c in couplings]),
-                   weighted_sum(weights, [c.source for c in couplings]),
-                   float(sum(w * c.source_total for w, c in zip(weights, couplings))))
-
 
 @dataclass(frozen=True)
 class HeatInput:
@@ -80,13 +73,33 @@ class HeatInput:
 
 def heat_inputs(system: FeedSystem, bc: BoundaryConditions) -> list[HeatInput]:
     """Every (source, part) share of heat at ``bc``, with where it enters (see :class:`HeatInput`)."""
+    return [HeatInput(h.source, h.part, bc.heats[h.source].power * h.power, h.over_contact_with)
+            for h in source_shares(system)]
+
+
+def source_shares(system: FeedSystem) -> list[HeatInput]:
+    """As :func:`heat_inputs`, with ``power`` the share of the source's heat (a source's shares add to 1)."""
     joined = {frozenset(j.between) for j in system.joints}
     out = []
-    for name, heat in bc.heats.items():
-        for part, share in heat.into.items():
-            partner = next((p for p in heat.into if p != part and frozenset((p, part)) in joined), None)
-            out.append(HeatInput(name, part, heat.power * share, partner))
+    for name, source in system.sources.items():
+        for part, share in source.into.items():
+            partner = next((p for p in source.into if p != part and frozenset((p, part)) in joined), None)
+            out.append(HeatInput(name, part, share, partner))
     return out
+
+
+@dataclass(frozen=True)
+class BoundaryBasis:
+    """Geometry of the boundary conditions at one position (see :meth:`ThermalModel.boundary_basis`).
+
+    ``exposure[i, n]``: exposed area [m²] of surface ``surfaces[i]`` at node n;
+    ``distribution[j, n]``: fraction of source ``sources[j]``'s heat entering node n.
+    """
+
+    surfaces: list[str]
+    sources: list[str]
+    exposure: sp.csr_matrix
+    distribution: sp.csr_matrix
 
 
 def cycle_weights(n_positions: int) -> np.ndarray:
@@ -156,32 +169,61 @@ class ThermalModel(ABC):
     def heat_distribution(self, heat: HeatInput, k: int) -> np.ndarray:
         """Fractions (summing to 1) of one :class:`HeatInput` over the state, at position k."""
 
-    def ambient_links(self, bc: BoundaryConditions, k: int) -> np.ndarray:
+    def ambient_links(self, bc: BoundaryConditions, k: int | None) -> np.ndarray:
         """Conductance [W/K] of every node to its surface's sink (convection + radiation)."""
         return self._links(bc, k)[0]
 
-    def ambient_coupling(self, bc: BoundaryConditions, k: int) -> AmbientCoupling:
-        """The ambient operator of the step equations (diagonal for full-state models)."""
+    def ambient_coupling(self, bc: BoundaryConditions, k: int | None) -> AmbientCoupling:
+        """The ambient operator of the step equations at position k (None: the cycle average)."""
         return AmbientCoupling.diagonal(*self._links(bc, k))
 
-    def _links(self, bc: BoundaryConditions, k: int) -> tuple[np.ndarray, np.ndarray]:
+    def _links(self, bc: BoundaryConditions, k: int | None) -> tuple[np.ndarray, np.ndarray]:
         """Node-to-sink conductances ``g`` [W/K] and their heat at the sink temperatures ``g·T_s`` [W]."""
-        g = np.zeros(self.n_nodes)
-        sink_heat = np.zeros(self.n_nodes)
-        for name, transfer in bc.surfaces.items():
-            nodes, areas = self.surface_exposure(name, k)
-            links = transfer.total * areas
-            np.add.at(g, nodes, links)
-            np.add.at(sink_heat, nodes, links * transfer.sink)
-        return g, sink_heat
+        basis = self.boundary_basis(k)
+        transfer = [bc.surfaces.get(name) for name in basis.surfaces]  # a surface left out exchanges nothing
+        h = np.array([0.0 if t is None else t.total for t in transfer])
+        sinks = np.array([0.0 if t is None else t.sink for t in transfer])
+        return basis.exposure.T @ h, basis.exposure.T @ (h * sinks)
 
-    def heat_vector(self, bc: BoundaryConditions, k: int) -> np.ndarray:
-        """Heat [W] into every state entry at position k, placed by :func:`heat_inputs`."""
-        q = np.zeros(self.n_nodes)
-        for heat in heat_inputs(self.system, bc):
-            if heat.power != 0.0:
-                q += heat.power * self.heat_distribution(heat, k)
-        return q
+    def heat_vector(self, bc: BoundaryConditions, k: int | None) -> np.ndarray:
+        """Heat [W] into every state entry at position k (None: the cycle average), placed by :func:`heat_inputs`."""
+        basis = self.boundary_basis(k)
+        heats = [bc.heats.get(name) for name in basis.sources]  # a source left out gives nothing
+        return basis.distribution.T @ np.array([0.0 if h is None else h.power for h in heats])
+
+    def boundary_basis(self, k: int | None) -> "BoundaryBasis":
+        """Where each surface exchanges heat and each source's heat enters, at position k.
+
+        ``k = None`` gives the cycle average.  These depend on the geometry alone, so they are
+        built once per position; boundary conditions then weigh them by their coefficients
+        and heats, which keeps re-evaluating coefficients (the nonlinear coupling) cheap.
+        """
+        cache = self.__dict__.setdefault("_boundary_bases", {})
+        if k not in cache:
+            system = self.system
+            if k is None:
+                w = cycle_weights(len(self.positions))
+                bases = [self.boundary_basis(j) for j in range(len(w))]
+                cache[k] = BoundaryBasis(bases[0].surfaces, bases[0].sources,
+                                         weighted_sum(w, [b.exposure for b in bases]),
+                                         weighted_sum(w, [b.distribution for b in bases]))
+            else:
+                rows, cols, vals = [], [], []
+                for i, name in enumerate(system.surfaces):
+                    nodes, areas = self.surface_exposure(name, k)
+                    rows.append(np.full(len(nodes), i))
+                    cols.append(np.asarray(nodes))
+                    vals.append(np.asarray(areas, dtype=float))
+                exposure = sp.csr_matrix((np.concatenate(vals) if vals else np.zeros(0),
+                                          (np.concatenate(rows) if rows else np.zeros(0, int),
+                                           np.concatenate(cols) if cols else np.zeros(0, int))),
+                                         shape=(len(system.surfaces), self.n_nodes))
+                names = list(system.sources)
+                dense = np.zeros((len(names), self.n_nodes))
+                for share in source_shares(system):
+                    dense[names.index(share.source)] += share.power * self.heat_distribution(share, k)
+                cache[k] = BoundaryBasis(list(system.surfaces), names, exposure, sp.csr_matrix(dense))
+        return cache[k]
 
     # ------------------------------------------------------------------ states
     def uniform_state(self, temperature: float) -> np.ndarray:

@@ -24,3 +24,5 @@ class ModelOptions:
     averaged_step: float = 10.0  # [s] time step of the cycle-averaged motion
     solver: Literal["auto", "direct", "cg"] = "auto"  # cached LU per position, or conjugate gradients
     snapshot_interval: float = 600.0  # [s] full-field snapshots kept for field output (FE)
+    # nonlinear coupling (temperatures.coupling = "nonlinear")
+    coupling_tolerance: float = 0.5  # [K] largest lag of a surface's or source's temperature before re-evaluation

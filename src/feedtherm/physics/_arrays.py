@@ -5,6 +5,8 @@ The modules import them under short private names (``_out``, ``_finite``).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 
@@ -17,6 +19,6 @@ def scalar_or_array(value):
 def finite(value, label, unit):
     """``value`` as a float array; ValueError naming ``label`` and ``unit`` if not finite."""
     arr = np.asarray(value, dtype=float)
-    if np.any(~np.isfinite(arr)):
+    if not (math.isfinite(float(arr)) if arr.ndim == 0 else bool(np.all(np.isfinite(arr)))):
         raise ValueError(f"{label} must be finite {unit}, got {value!r}")
     return arr

@@ -49,7 +49,12 @@ def coulomb_mu(correlation: str, mu) -> np.ndarray:
 # ------------------------------------------------------------------------ convection
 def finite_array(x, name, *, positive=False):
     a = np.asarray(x, dtype=float)
-    if np.any(~np.isfinite(a)) or np.any(a <= 0.0 if positive else a < 0.0):
+    if a.ndim == 0:  # the common scalar case, without numpy's reductions
+        v = float(a)
+        bad = not math.isfinite(v) or (v <= 0.0 if positive else v < 0.0)
+    else:
+        bad = bool(np.any(~np.isfinite(a)) or np.any(a <= 0.0 if positive else a < 0.0))
+    if bad:
         raise ValueError(f"{name} must be finite and {'>' if positive else '>='} 0, got {x!r}")
     return a
 

@@ -213,6 +213,57 @@ def heat_motor_no_load(n_rpm, friction_torque, viscous_damping):
     return _out((t_f + damping * omega) * omega)
 
 
+#: Inferred zero-resistance temperature of annealed copper, [°C] (IEC 60034-1, §8.6.2.3.1).
+COPPER_INFERRED_ZERO_C = 235.0
+
+
+def resistance_winding_copper(resistance_ref, temperature_ref, temperature):
+    r"""Resistance of a copper winding at another temperature.
+
+    .. math:: R(T) = R_{ref}\,\frac{235 + \vartheta}{235 + \vartheta_{ref}},
+              \qquad \vartheta = T - 273.15\ \mathrm{K}
+
+    Parameters
+    ----------
+    resistance_ref : float or array_like
+        The resistance at ``temperature_ref``, [Ω] (a data sheet's R_tt, stated cold at
+        20 °C or 25 °C, or hot).
+    temperature_ref, temperature : float or array_like
+        Winding temperatures, [K].
+
+    Returns
+    -------
+    float or ndarray
+        R at ``temperature``, [Ω].
+
+    Notes
+    -----
+    The linear law of annealed copper, whose resistance extrapolates to zero at −235 °C
+    (α = 1/(235 + 20) = 3.92e-3 1/K at 20 °C), as IEC 60034-1 prescribes for the
+    resistance method of measuring a winding's temperature rise [1]_. Valid from −50 to
+    250 °C, the range of winding insulation classes (class H: 180 °C hot spot).
+
+    References
+    ----------
+    .. [1] IEC 60034-1:2017, Rotating electrical machines — Rating and performance, §8.6.2.3.1.
+
+    Examples
+    --------
+    A winding of 5.70 Ω at 20 °C, at 60 °C: 5.70·(235 + 60)/(235 + 20) = 5.70·295/255 = 6.5941 Ω.
+
+    >>> round(resistance_winding_copper(5.70, 293.15, 333.15), 4)
+    6.5941
+    """
+    r_ref = _positive(resistance_ref, "resistance_ref", "[Ω]")
+    theta_ref = _finite(temperature_ref, "temperature_ref", "[K]") - 273.15
+    theta = _finite(temperature, "temperature", "[K]") - 273.15
+    for label, value in (("temperature_ref", theta_ref), ("temperature", theta)):
+        if np.any(value <= -COPPER_INFERRED_ZERO_C):
+            raise ValueError(f"{label} must be above -235 degC, the copper's inferred zero of resistance")
+        check_range("resistance_winding_copper", label + " [degC]", value, -50.0, 250.0)
+    return _out(r_ref * (COPPER_INFERRED_ZERO_C + theta) / (COPPER_INFERRED_ZERO_C + theta_ref))
+
+
 def _positive(value, label, unit):
     arr = _finite(value, label, unit)
     if np.any(arr <= 0.0):

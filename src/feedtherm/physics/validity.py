@@ -46,7 +46,10 @@ def check_range(correlation: str, quantity: str, value, low: float, high: float)
     arr = np.asarray(value, dtype=float)
     if arr.size == 0:
         return
-    vmin, vmax = float(np.min(arr)), float(np.max(arr))
+    if arr.ndim == 0:  # the common scalar case, without numpy's reductions
+        vmin = vmax = float(arr)
+    else:
+        vmin, vmax = float(np.min(arr)), float(np.max(arr))
     if vmin < low or vmax > high:
         shown = f"{vmin:.4g}" if vmin == vmax else f"{vmin:.4g}..{vmax:.4g}"
         warnings.warn(

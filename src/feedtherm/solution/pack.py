@@ -50,6 +50,10 @@ def pack_solution(system: FeedSystem, integrator: Integrator, segments: list[Seg
     last = segments[-1]
     k_steady = None if last.speed > 0 else trace.final_position
     steady_state = integrator.steady(len(segments) - 1, last.bc, k_steady)
+    if integrator.coupling is not None:
+        info = {**info, "coupling_updates": trace.coupling_updates}
+    final_bc = trace.final_bc or last.bc
+    info = {**info, "heat_W": {name: heat.power for name, heat in final_bc.heats.items()}}
     steady_values = model.probe(steady_state, len(model.positions) // 2 if k_steady is None else k_steady)
     initial = dict(zip(names, model.probe(initial_state, 0)))
     final = dict(zip(names, final_values))

@@ -154,10 +154,18 @@ class Elongation(Strict):
 
 
 class Temperatures(Strict):
+    """Initial and reference temperatures, and how temperature-dependent values are taken.
+
+    ``coupling = "frozen"`` (the paper's assumption 3): every CHTC, radiative coefficient,
+    lubricant viscosity and winding resistance is taken once, at ambient +
+    ``convection_delta_t``.  ``"nonlinear"``: the models evaluate them at each surface's and
+    each source's simulated temperature and iterate with it, in transient and steady runs.
+    """
+
     initial: Literal["ambient"] | Temperature = "ambient"
     reference: Temperature  # of the elongation (zero-strain temperature)
     convection_delta_t: PosTemperatureDifference  # frozen CHTCs are taken at this rise
-    temperature_dependent_chtc: bool = False
+    coupling: Literal["frozen", "nonlinear"] = "frozen"
 
 
 class Condition(Strict):

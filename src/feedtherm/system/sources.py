@@ -17,6 +17,7 @@ from ..physics.lubricant import (
     kinematic_viscosity_iso_vg,
     kinematic_viscosity_lubricant,
 )
+from ..physics.servo_motor import resistance_winding_copper
 from .base import Strict
 from .quantities import (
     Fraction,
@@ -24,6 +25,8 @@ from .quantities import (
     NonNegForce,
     NonNegRotationalDamping,
     NonNegTorque,
+    PosDensity,
+    Temperature,
     PosDimensionless,
     PosDynamicViscosity,
     PosForce,
@@ -227,9 +230,18 @@ class DatasheetMotorLosses(Strict):
 
     model: Literal["datasheet"]
     torque_constant: PosTorqueConstant  # k_T, torque per A r.m.s. [N m/A]
-    terminal_resistance: PosResistance  # R_tt, between two terminals ("phase to phase"), hot [ohm]
+    terminal_resistance: PosResistance  # R_tt, between two terminals ("phase to phase") [ohm], hot unless resistance_temperature says
     friction_torque: NonNegTorque  # T_F, speed-independent drag (friction, hysteresis) [N m]
     viscous_damping: NonNegRotationalDamping  # D, drag per angular speed (viscous, eddy current) [N m s/rad]
+    # The winding temperature at which the data sheet states R_tt; given, R_tt follows the motor's
+    # temperature (copper, IEC 60034-1); left out, R_tt is used as stated at every temperature.
+    resistance_temperature: Temperature | None = None
+
+    def resistance_at(self, temperature: float) -> float:
+        """R_tt [ohm] with the winding at ``temperature`` [K]."""
+        if self.resistance_temperature is None:
+            return self.terminal_resistance
+        return float(resistance_winding_copper(self.terminal_resistance, self.resistance_temperature, temperature))
 
 
 class RatedMotorLosses(Strict):
@@ -288,15 +300,51 @@ class GuidewaySource(_Source):
 
 
 class SlidingScrewSource(_Source):
+    """A sliding (trapezoidal) screw-nut pair: flank friction, preload and the grease's shear.
+
+    The grease shears at ``grease_viscosity`` (a fixed η) or at its base oil's viscosity at
+    the thread's temperature, η = ρ ν(T) from ``grease`` (an ISO VG grade) and
+    ``grease_density``: at the thread's shear rates (10³–10⁴ 1/s) a grease thins towards its
+    base oil.
+    """
+
     model: Literal["sliding_screw"]
     pitch_diameter: PosLength
     flank_half_angle: NonNegAngle  # half the thread angle: 15 deg for a Tr (ISO 2904) thread
     friction_coefficient: Annotated[float, Field(gt=0.0, le=0.5)]
     preload: NonNegForce = 0.0
     external_axial_load: NonNegForce = 0.0
-    grease_viscosity: PosDynamicViscosity
+    grease_viscosity: PosDynamicViscosity | None = None  # fixed η [Pa s]
+    grease: Lubricant | None = None  # or the base oil's grade, evaluated at the thread's temperature
+    grease_density: PosDensity | None = None  # of the base oil [kg/m^3], with ``grease``
     grease_gap: PosLength
     engaged_length: PosLength
+
+    @model_validator(mode="after")
+    def _one_grease(self) -> "SlidingScrewSource":
+        if (self.grease_viscosity is None) == (self.grease is None):
+            raise ValueError('grease_viscosity or grease: give one (grease_viscosity = "1 Pa*s", or grease = '
+                             '{ grade = "ISO VG 100", viscosity_100C = "11 mm^2/s" } with grease_density)')
+        if (self.grease is None) != (self.grease_density is None):
+            raise ValueError("grease_density: give it with grease, and only with grease")
+        return self
+
+    def grease_viscosity_at(self, temperature: float) -> float:
+        """The grease's dynamic viscosity η [Pa s] at ``temperature`` [K]."""
+        if self.grease is None:
+            return self.grease_viscosity
+        return self.grease_density * self.grease.viscosity_at(temperature)
+
+    @model_serializer(mode="wrap")
+    def _omit_the_unused_grease(self, handler):
+        # The grease form not chosen is left out (a description written before it existed
+        # keeps its serialised form and hash).
+        data = handler(self)
+        if isinstance(data, dict):
+            for key in ("grease_viscosity", "grease", "grease_density"):
+                if key in data and data[key] is None:
+                    del data[key]
+        return data
 
 
 class BallScrewSource(_Source):

@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 
 from feedtherm.physics.servo_motor import (
+    resistance_winding_copper,
     heat_motor_copper,
     heat_motor_copper_rated,
     heat_motor_no_load,
@@ -119,3 +120,21 @@ def test_no_load_loss_from_a_measured_loss_and_its_hysteresis_share():
 def test_bad_arguments_are_named(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+def test_winding_resistance_reproduces_the_iec_resistance_method():
+    # IEC 60034-1 §8.6.2.3.1 by hand: a winding of R1 = 2.0 Ω cold at θ1 = 20 °C that measures
+    # R2 = 2.4 Ω hot is at θ2 = (R2/R1)(235 + θ1) − 235 = 1.2·255 − 235 = 71 °C; going the other
+    # way, R(71 °C) = 2.0·(235 + 71)/(235 + 20) = 2.0·306/255 = 2.4 Ω.
+    assert resistance_winding_copper(2.0, 293.15, 344.15) == pytest.approx(2.4, rel=1e-12)
+    # copper's 20 °C coefficient 1/255 = 3.92e-3 1/K: +1 K at 20 °C adds 0.392 %
+    assert resistance_winding_copper(1.0, 293.15, 294.15) == pytest.approx(1.0 + 1.0 / 255.0, rel=1e-12)
+    np.testing.assert_allclose(resistance_winding_copper(5.7, 293.15, np.array([293.15, 333.15])),
+                               [5.7, 5.7 * 295.0 / 255.0], rtol=1e-12)
+
+
+def test_winding_resistance_refuses_temperatures_below_the_inferred_zero_and_warns_outside_its_range():
+    with pytest.raises(ValueError, match="temperature must be above -235 degC"):
+        resistance_winding_copper(1.0, 293.15, 30.0)
+    with pytest.warns(CorrelationRangeWarning, match="resistance_winding_copper"):
+        resistance_winding_copper(1.0, 293.15, 573.15)

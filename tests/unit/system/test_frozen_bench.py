@@ -11,7 +11,9 @@ from feedtherm.system.load import load_system
 # Changed through a declared, reviewed change of the assumption set (issue 12): the base plate's
 # underside, adiabatic before, stands on a bed at room temperature (surfaces.base_bottom and its
 # [[provenance]] entry), and calibration may fit that conductance (calibration.parameters.foundation).
-FROZEN_SHA256 = "602ac68ef57082f8bc59a070617537632358880fdb50de4f3371bbcb692fb408"
+# Then the text of one [[provenance]] entry only: temperature_dependent_chtc became temperatures.coupling
+# (values unchanged).
+FROZEN_SHA256 = "dbf3be961e37cbaf21b95218849c8e02912e7bf55572f862faf7c08ed5ccf6e5"
 
 
 def test_paper_bench_is_frozen():

@@ -1,0 +1,26 @@
+"""The temperatures at which temperature-dependent boundary conditions are evaluated.
+
+Frozen boundary conditions (the paper's assumption 3) take every surface and every
+lubricant at one declared temperature, ambient + ``temperatures.convection_delta_t``.
+Under ``temperatures.coupling = "nonlinear"`` the models read each surface's and each
+source's own temperature from the state and the boundary conditions are evaluated there
+(:class:`LocalTemperatures`): convection and radiation coefficients at the surface's mean
+temperature, lubricant viscosities at the temperature where the source's heat enters.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+@dataclass(frozen=True)
+class LocalTemperatures:
+    """Temperatures [K] of surfaces and sources, by name; a name left out takes the frozen value."""
+
+    surfaces: dict[str, float] = field(default_factory=dict)
+    sources: dict[str, float] = field(default_factory=dict)
+
+    def largest_change(self, other: "LocalTemperatures") -> float:
+        """Largest difference [K] between two readings of the same names."""
+        pairs = [(self.surfaces, other.surfaces), (self.sources, other.sources)]
+        return max((abs(mine[name] - theirs[name]) for mine, theirs in pairs for name in mine), default=0.0)

@@ -1,0 +1,71 @@
+"""Boundary conditions that follow the temperatures: the models' nonlinear coupling.
+
+Under ``temperatures.coupling = "nonlinear"`` the CHTCs, radiative coefficients, lubricant
+viscosities and winding resistances are evaluated at the simulated temperatures.  The
+integrator reads them from the state with a :class:`TemperatureReadout` and re-evaluates the
+boundary conditions (:class:`Coupling`) whenever a reading has moved by more than the
+coupling tolerance since the last evaluation, so a step uses coefficients lagged by at most
+that much; steady states iterate to a fixed point.  Each step's heat and losses are the
+ones its equations used, so the energy account still closes.
+
+What a surface's temperature is: the area-weighted mean of its exposed nodes; a source's:
+the mean of the state weighted by where its heat enters (a bearing's seat, a motor's
+volume, the thread's contact).  Both are averaged over the moving group's positions with
+the cycle weights, so a reading does not jump as the nut travels.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..boundary import BoundaryConditions
+from ..boundary.temperatures import LocalTemperatures
+from .interface import ThermalModel
+
+#: Default largest lag [K] of a coupled reading behind the state before re-evaluation.
+COUPLING_TOLERANCE = 0.5
+#: Relative change of a node's link to its sink above which a coupled run refactorises its steps.
+LINK_REFACTOR = 0.2
+#: A coupled steady state has converged when no node moves by more than this [K].
+STEADY_TOLERANCE = 1e-4
+STEADY_ITERATIONS = 100
+
+
+@dataclass(frozen=True)
+class Coupling:
+    """How boundary conditions follow the temperatures.
+
+    ``evaluate(base, temperatures)`` gives the boundary conditions of ``base``'s operating
+    point evaluated at ``temperatures``; ``tolerance`` [K] is the largest lag of a reading.
+    """
+
+    evaluate: Callable[[BoundaryConditions, LocalTemperatures], BoundaryConditions]
+    tolerance: float = COUPLING_TOLERANCE
+
+    def __post_init__(self):
+        if not self.tolerance > 0.0:
+            raise ValueError(f"coupling tolerance must be positive [K], got {self.tolerance!r}")
+
+
+class TemperatureReadout:
+    """The surfaces' and sources' temperatures [K] of a state (see the module notes)."""
+
+    def __init__(self, model: ThermalModel):
+        basis = model.boundary_basis(None)
+        weights = sp.vstack([basis.exposure, basis.distribution]).tocsr()
+        totals = np.asarray(weights.sum(axis=1)).ravel()
+        # a surface never exposed, or a source with no place to enter, keeps the frozen value
+        used = totals > 0.0
+        self._names = [("surface", n) for n in basis.surfaces] + [("source", n) for n in basis.sources]
+        self._names = [name for name, keep in zip(self._names, used) if keep]
+        self._weights = sp.diags(1.0 / totals[used]) @ weights[used]
+
+    def __call__(self, state: np.ndarray) -> LocalTemperatures:
+        values = self._weights @ state
+        surfaces = {n: float(v) for (kind, n), v in zip(self._names, values) if kind == "surface"}
+        sources = {n: float(v) for (kind, n), v in zip(self._names, values) if kind == "source"}
+        return LocalTemperatures(surfaces, sources)

@@ -1,0 +1,119 @@
+"""The nonlinear coupling: coefficients and heats that follow the simulated temperatures.
+
+A variant of the paper bench with ``temperatures.coupling = "nonlinear"`` and its bearings on an
+ISO VG 100 oil (so their heat depends on temperature too).  What must hold: the energy balance
+closes on every run, a long transient ends at the coupled steady state, the steady state is a
+fixed point of the coupling, the coupling tolerance converges, and the coupled values move the
+way the laws say (natural convection grows with the surface's rise, oil thins as it warms).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from feedtherm.boundary import boundary_conditions
+from feedtherm.models.options import ModelOptions
+from feedtherm.simulate import simulate, steady_solve
+from feedtherm.system.load import parse_toml, read_text, validate_data
+
+SENSORS = ["T1", "T2", "T3", "T4", "T5"]
+
+
+def variant(coupling):
+    text, origin = read_text("paper")
+    data = parse_toml(text, origin)
+    data["temperatures"]["coupling"] = coupling
+    for source in data["sources"].values():
+        if source.get("model") == "bearing":
+            source.pop("lubricant_viscosity", None)
+            source["lubricant"] = {"grade": "ISO VG 100", "viscosity_100C": "11 mm^2/s"}
+    return validate_data(data, f"paper ({coupling})")
+
+
+@pytest.fixture(scope="module")
+def coupled():
+    return variant("nonlinear")
+
+
+@pytest.fixture(scope="module")
+def frozen():
+    return variant("frozen")
+
+
+@pytest.mark.parametrize("condition, motion", [("I", "resolved"), ("V", "averaged")])
+def test_a_coupled_run_closes_its_energy_balance(coupled, condition, motion):
+    run = simulate(coupled, condition=condition, motion=motion)
+    assert run.info["coupling"] == "nonlinear"
+    assert run.info["coupling_updates"] > 5  # the coefficients did move with the temperatures
+    assert abs(run.energy.relative_error) < 1e-4
+
+
+def test_a_long_coupled_transient_ends_at_the_coupled_steady_state(coupled):
+    steady = steady_solve(coupled, "V").values()
+    run = simulate(coupled, condition="V", motion="averaged", duration=40 * 3600.0, sample_interval=600.0)
+    for name in SENSORS:
+        assert run.final[name] == pytest.approx(steady[name], abs=0.1), name
+    assert run.final["D"] == pytest.approx(steady["D"], abs=0.5e-6)
+    # the run's own steady value is the coupled one
+    assert run.steady["T4"] == pytest.approx(steady["T4"], abs=1e-3)
+
+
+def test_the_coupled_steady_state_is_a_fixed_point(coupled):
+    solved = steady_solve(coupled, "III")
+    integrator = solved.integrator
+    bc = integrator.steady_boundary_conditions(0, solved.segment.bc, solved.state)
+    # solving once more with the boundary conditions evaluated at the solution changes nothing
+    loads = integrator.loads(0, bc, solved.k)
+    again = integrator.steady(0, bc, solved.k, rhs=loads.heat + loads.ambient.source)
+    assert np.max(np.abs(again - solved.state)) < 1e-3
+    # the coefficients are those of the surfaces' own temperatures, not the frozen 10 K rise
+    frozen = boundary_conditions(coupled.system, "III")
+    reading = integrator.readout(solved.state)
+    hot, cool = max(reading.surfaces, key=reading.surfaces.get), min(reading.surfaces, key=reading.surfaces.get)
+    assert reading.surfaces[hot] - 293.15 > 10.0 > reading.surfaces[cool] - 293.15
+    for name in ("front_bearing", "nut_bearing"):
+        warm = reading.sources[name] > 303.15
+        nu, nu_frozen = (b.heats[name].details["lubricant_viscosity_m2_per_s"] for b in (bc, frozen))
+        assert (nu < nu_frozen) == warm, name
+
+
+def test_the_coupling_tolerance_converges(coupled):
+    runs = {tol: simulate(coupled, condition="III", motion="averaged", options=ModelOptions(coupling_tolerance=tol))
+            for tol in (0.5, 0.05)}
+    for name in SENSORS:
+        assert runs[0.5].final[name] == pytest.approx(runs[0.05].final[name], abs=0.05), name
+    assert runs[0.5].final["D"] == pytest.approx(runs[0.05].final["D"], abs=0.2e-6)
+    assert runs[0.05].info["coupling_updates"] > runs[0.5].info["coupling_updates"]
+
+
+def test_coupling_changes_the_answer_the_way_the_laws_say(coupled, frozen):
+    """At III the bench runs hotter than the frozen 10 K rise: the natural convection of its hot
+    surfaces is stronger and its bearings' oil thinner than frozen, so it ends cooler."""
+    hot = {c: steady_solve(c_, "III").values() for c, c_ in (("coupled", coupled), ("frozen", frozen))}
+    assert hot["coupled"]["T4"] < hot["frozen"]["T4"]
+    assert hot["coupled"]["D"] < hot["frozen"]["D"]
+
+
+@pytest.fixture(scope="module")
+def fe_cache(tmp_path_factory):
+    pytest.importorskip("gmsh")
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv("FEEDTHERM_CACHE", str(tmp_path_factory.mktemp("feedtherm-cache")))
+        yield
+
+
+@pytest.mark.parametrize("condition", ["I", "V"])
+def test_the_coupled_fe_model_agrees_with_the_coupled_fast_model(coupled, fe_cache, condition):
+    """The FE acceptance (|ΔT| < 1 K at T1–T5, |ΔD| < 2 µm, medium mesh), with the coupling on in both."""
+    fem = steady_solve(coupled, condition, model="fem", mesh="medium").values()
+    fast = steady_solve(coupled, condition).values()
+    diff = {n: fem[n] - fast[n] for n in [*SENSORS, "D"]}
+    assert all(abs(diff[n]) < 1.0 for n in SENSORS), diff
+    assert abs(diff["D"]) < 2e-6, diff
+
+
+def test_a_coupled_fe_run_closes_its_energy_balance(coupled, fe_cache):
+    run = simulate(coupled, condition="V", model="fem", mesh="coarse", motion="averaged", duration=3600.0)
+    assert run.info["coupling_updates"] > 5
+    assert abs(run.energy.relative_error) < 1e-4
