@@ -20,24 +20,19 @@ def still_and_draughty(paper):
     return boundary_conditions(paper.system, "I"), boundary_conditions(draughty.system, "I"), draughty.system
 
 
-def test_a_plate_gets_parallel_flow_on_its_natural_length(still_and_draughty):
+@pytest.mark.parametrize("name, flow", [
+    ("nut_housing", "plate"),  # a moving plate: parallel flow on its natural length
+    ("screw_shaft", "cross flow"),  # the rotating screw: cross flow on its diameter
+])
+def test_the_draught_mixes_in_on_the_surface_s_own_length(still_and_draughty, name, flow):
     still, draughty, system = still_and_draughty
-    surface = system.surfaces["nut_housing"]  # a moving plate
+    conv = system.surfaces[name].convection
     t_film = film_temperature(still.point.ambient + 10.0, still.point.ambient)
-    room = convection.h_flat_plate_laminar_average(surface.convection.natural_length, U, t_film)
-    h_still = still.surfaces["nut_housing"].convection
-    assert draughty.surfaces["nut_housing"].convection == pytest.approx((h_still**3 + room**3) ** (1 / 3), rel=1e-12)
-    assert "room air at 0.2 m/s (plate)" in draughty.surfaces["nut_housing"].correlation
-
-
-def test_a_cylinder_gets_cross_flow_on_its_diameter(still_and_draughty):
-    still, draughty, system = still_and_draughty
-    surface = system.surfaces["screw_shaft"]  # the rotating screw
-    t_film = film_temperature(still.point.ambient + 10.0, still.point.ambient)
-    room = convection.h_cylinder_crossflow(surface.convection.diameter, U, t_film)
-    h_still = still.surfaces["screw_shaft"].convection
-    assert draughty.surfaces["screw_shaft"].convection == pytest.approx((h_still**3 + room**3) ** (1 / 3), rel=1e-12)
-    assert "(cross flow)" in draughty.surfaces["screw_shaft"].correlation
+    room = (convection.h_flat_plate_laminar_average(conv.natural_length, U, t_film) if flow == "plate"
+            else convection.h_cylinder_crossflow(conv.diameter, U, t_film))
+    h_still = still.surfaces[name].convection
+    assert draughty.surfaces[name].convection == pytest.approx((h_still**3 + room**3) ** (1 / 3), rel=1e-12)
+    assert f"room air at 0.2 m/s ({flow})" in draughty.surfaces[name].correlation
 
 
 def test_a_declared_coefficient_and_still_air_are_left_alone(still_and_draughty, paper):
