@@ -49,6 +49,14 @@ def test_a_coupled_run_closes_its_energy_balance(coupled, condition, motion):
     assert abs(run.energy.relative_error) < 1e-4
 
 
+def test_a_coupled_duty_cycle_re_evaluates_each_segment_and_closes_its_balance(coupled):
+    """Motion, then standstill: each segment starts from its own evaluation (its operating point)."""
+    run = simulate(coupled, cycle="I_then_standstill", motion="averaged")
+    assert run.info["coupling_updates"] > len(coupled.system.duty_cycles["I_then_standstill"].segments)
+    assert abs(run.energy.relative_error) < 1e-4
+    assert run.info["heat_W"]["screw_motor"] == 0.0  # the last segment stands still
+
+
 def test_a_long_coupled_transient_ends_at_the_coupled_steady_state(coupled):
     steady = steady_solve(coupled, "V").values()
     run = simulate(coupled, condition="V", motion="averaged", duration=40 * 3600.0, sample_interval=600.0)

@@ -425,6 +425,10 @@ class Integrator:
                     progress((t - segments[0].t0) / (t_end - segments[0].t0))
                     last_report = t
             trace.final_bc = bc
+            if coupled:  # a coupled segment's evaluations are not met again: free their factorisations
+                for stale in {id(bc): bc, id(factorised): factorised}.values():
+                    if stale is not seg.bc:
+                        self._forget(seg_id, stale)
         trace.final_state = T
         trace.final_position = path.k
         return trace
