@@ -49,6 +49,14 @@ def test_a_coupled_run_closes_its_energy_balance(coupled, condition, motion):
     assert abs(run.energy.relative_error) < 1e-4
 
 
+def test_a_coupled_duty_cycle_re_evaluates_each_segment_and_closes_its_balance(coupled):
+    """Motion, then standstill: each segment starts from its own evaluation (its operating point)."""
+    run = simulate(coupled, cycle="I_then_standstill", motion="averaged")
+    assert run.info["coupling_updates"] > len(coupled.system.duty_cycles["I_then_standstill"].segments)
+    assert abs(run.energy.relative_error) < 1e-4
+    assert run.info["heat_W"]["screw_motor"] == 0.0  # the last segment stands still
+
+
 def test_a_long_coupled_transient_ends_at_the_coupled_steady_state(coupled):
     steady = steady_solve(coupled, "V").values()
     run = simulate(coupled, condition="V", motion="averaged", duration=40 * 3600.0, sample_interval=600.0)
@@ -117,3 +125,42 @@ def test_a_coupled_fe_run_closes_its_energy_balance(coupled, fe_cache):
     run = simulate(coupled, condition="V", model="fem", mesh="coarse", motion="averaged", duration=3600.0)
     assert run.info["coupling_updates"] > 5
     assert abs(run.energy.relative_error) < 1e-4
+
+
+def strongly_coupled(coupled):
+    """Copper windings whose resistance follows their temperature (IEC 60034-1) under a 3000 N
+    thread preload: the circulating torque, ~9 N·m, makes kilowatts that grow by 1/(235 + θ) per
+    kelvin, which plain Picard steps overshoot."""
+    from feedtherm.system.sources import MotorSource
+    from feedtherm.system.variants import with_values
+
+    changes = {"sources.screw_nut.preload": 3000.0}
+    for name in ("screw_motor", "nut_motor"):
+        motor = coupled.system.sources[name]
+        changes[f"sources.{name}"] = MotorSource.model_validate({
+            "model": "motor", "shaft": motor.shaft, "into": dict(motor.into),
+            "losses": {"model": "datasheet", "torque_constant": "0.39 N*m/A", "terminal_resistance": "5.70 ohm",
+                       "resistance_temperature": "20 degC", "friction_torque": "0.02 N*m",
+                       "viscous_damping": "2e-5 N*m*s/rad"}})
+    return with_values(coupled, changes)
+
+
+def test_a_strong_coupling_converges_with_relaxed_steps(coupled):
+    solved = steady_solve(strongly_coupled(coupled), "I")
+    integrator = solved.integrator
+    bc = integrator.steady_boundary_conditions(0, solved.segment.bc, solved.state)
+    loads = integrator.loads(0, bc, solved.k)
+    again = integrator.steady(0, bc, solved.k, rhs=loads.heat + loads.ambient.source)
+    assert np.max(np.abs(again - solved.state)) < 1e-2  # a fixed point, to the iteration's tolerance
+    assert bc.heats["screw_motor"].details["terminal_resistance_ohm"] > 5.70 * 1.2  # hot windings
+
+
+def test_a_diverging_steady_iteration_is_reported(coupled, monkeypatch):
+    """Without relaxed steps the same iteration diverges: reported in one line, never iterated forever."""
+    from feedtherm.errors import ModelError
+    import feedtherm.models.integrator as integrator
+
+    monkeypatch.setattr(integrator, "MIN_RELAXATION", 1.0)
+    monkeypatch.setattr(integrator, "RUNAWAY_ITERATIONS", 2)
+    with pytest.raises(ModelError, match="the steady iteration diverges"):
+        steady_solve(strongly_coupled(coupled), "I")

@@ -64,8 +64,18 @@ class FitParameter:
 
     @property
     def start(self) -> float:
+        """The declared value, or, where that lies on or beyond a bound, a tenth of the range inside.
+
+        A value declared at a bound (a still room's air speed, 0) may have no slope there
+        (forced convection mixes in as u^(3/2)), and a fit started on it would never move.
+        """
         x0 = self.originals[0] if self.kind == "value" else 1.0
-        return float(min(max(x0, self.lower), self.upper))
+        inset = 0.1 * (self.upper - self.lower)
+        if x0 <= self.lower:
+            return float(self.lower + inset)
+        if x0 >= self.upper:
+            return float(self.upper - inset)
+        return float(x0)
 
     def values(self, x: float) -> dict[str, float]:
         """The description values this parameter sets when it equals ``x``."""

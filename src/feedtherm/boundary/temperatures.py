@@ -24,3 +24,15 @@ class LocalTemperatures:
         """Largest difference [K] between two readings of the same names."""
         pairs = [(self.surfaces, other.surfaces), (self.sources, other.sources)]
         return max((abs(mine[name] - theirs[name]) for mine, theirs in pairs for name in mine), default=0.0)
+
+    def toward(self, other: "LocalTemperatures", fraction: float) -> "LocalTemperatures":
+        """The reading ``fraction`` of the way from this one to ``other`` (same names)."""
+        def blend(mine, theirs):
+            return {name: mine[name] + fraction * (theirs[name] - mine[name]) for name in mine}
+        return LocalTemperatures(blend(self.surfaces, other.surfaces), blend(self.sources, other.sources))
+
+    def hottest(self) -> tuple[str, float]:
+        """The source (or, with none, the surface) with the highest temperature [K]."""
+        values = self.sources or self.surfaces
+        name = max(values, key=values.get)
+        return name, values[name]

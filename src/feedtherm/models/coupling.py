@@ -5,7 +5,9 @@ viscosities and winding resistances are evaluated at the simulated temperatures.
 integrator reads them from the state with a :class:`TemperatureReadout` and re-evaluates the
 boundary conditions (:class:`Coupling`) whenever a reading has moved by more than the
 coupling tolerance since the last evaluation, so a step uses coefficients lagged by at most
-that much; steady states iterate to a fixed point.  Each step's heat and losses are the
+that much; steady states iterate to a fixed point (Picard on the readings, with halved steps
+when the change grows; a change that keeps growing is reported as a divergence, the sign of
+a heat that grows with the temperature faster than the surfaces shed it).  Each step's heat and losses are the
 ones its equations used, so the energy account still closes.
 
 What a surface's temperature is: the area-weighted mean of its exposed nodes; a source's:
@@ -33,6 +35,10 @@ LINK_REFACTOR = 0.2
 #: A coupled steady state has converged when no node moves by more than this [K].
 STEADY_TOLERANCE = 1e-4
 STEADY_ITERATIONS = 100
+#: Smallest fraction of a Picard step the steady iteration takes when the change grows.
+MIN_RELAXATION = 1.0 / 16.0
+#: Iterations of growing change, at the smallest fraction, after which the iteration has diverged.
+RUNAWAY_ITERATIONS = 8
 
 
 @dataclass(frozen=True)

@@ -26,7 +26,15 @@ from scipy.sparse.linalg import cg, splu
 
 from ..boundary import BoundaryConditions, LocalTemperatures
 from ..errors import ModelError
-from .coupling import LINK_REFACTOR, STEADY_ITERATIONS, STEADY_TOLERANCE, Coupling, TemperatureReadout
+from .coupling import (
+    LINK_REFACTOR,
+    MIN_RELAXATION,
+    RUNAWAY_ITERATIONS,
+    STEADY_ITERATIONS,
+    STEADY_TOLERANCE,
+    Coupling,
+    TemperatureReadout,
+)
 from .interface import AmbientCoupling, Operator, ThermalModel, cycle_weights, weighted_sum
 from .options import ModelOptions
 
@@ -259,9 +267,13 @@ class Integrator:
             return self._steady_linear(seg_id, bc, k, rhs)
         state = self._steady_linear(seg_id, bc, k, None)
         current = factorised = bc
-        change = math.inf
+        reading, fraction, growing = None, 1.0, 0
+        change = previous = math.inf
         for _ in range(STEADY_ITERATIONS):
-            current, factorised = self._reevaluate(seg_id, bc, self.readout(state), current, factorised)
+            now = self.readout(state)
+            # Picard on the readings; halved steps once the change grows (an oscillation)
+            reading = now if reading is None else reading.toward(now, fraction)
+            current, factorised = self._reevaluate(seg_id, bc, reading, current, factorised)
             loads = self.loads(seg_id, current, k)
             load = loads.heat + loads.ambient.source
             if factorised is not current:
@@ -271,6 +283,16 @@ class Integrator:
             state = new
             if change <= STEADY_TOLERANCE:
                 break
+            growing = growing + 1 if change > previous else 0
+            if growing and fraction > MIN_RELAXATION:
+                fraction /= 2.0
+            elif growing >= RUNAWAY_ITERATIONS or not np.all(np.isfinite(state)):
+                name, hottest = now.hottest()
+                raise ModelError(f"temperatures.coupling = nonlinear: the steady iteration diverges ({name} at "
+                                 f"{hottest - 273.15:.0f} degC and rising): the heat grows with the temperature "
+                                 "faster than the surfaces shed it (a thermal runaway), or the coupling is too "
+                                 "strong for this iteration; a transient run shows where the temperatures go")
+            previous = change
         else:
             raise ModelError(f"temperatures.coupling = nonlinear: the steady state did not converge in "
                              f"{STEADY_ITERATIONS} iterations (last change {change:.3g} K)")
@@ -403,6 +425,10 @@ class Integrator:
                     progress((t - segments[0].t0) / (t_end - segments[0].t0))
                     last_report = t
             trace.final_bc = bc
+            if coupled:  # a coupled segment's evaluations are not met again: free their factorisations
+                for stale in {id(bc): bc, id(factorised): factorised}.values():
+                    if stale is not seg.bc:
+                        self._forget(seg_id, stale)
         trace.final_state = T
         trace.final_position = path.k
         return trace

@@ -51,9 +51,13 @@ def calibrated_toml(original: LoadedSystem, result: CalibrationResult) -> str:
                         else original.origin)
     doc = tomlkit.parse(text)
     conditions = ", ".join(result.fit_conditions)
+    declared = original.system.calibration.parameters if original.system.calibration else {}
     for parameter, x, se in zip(result.parameters, result.fitted, result.standard_errors):
+        # a value the description leaves at its default is written in its bounds' unit
+        bound = declared[parameter.name].bounds[0] if parameter.name in declared else None
+        template = bound if parameter.kind == "value" and isinstance(bound, str) else None
         for path, value in parameter.values(float(x)).items():
-            _set(doc, path, value)
+            _set(doc, path, value, template)
         provenance = tomlkit.table()
         provenance["paths"] = parameter.paths
         provenance["origin"] = "assumption"
@@ -71,14 +75,17 @@ def calibrated_toml(original: LoadedSystem, result: CalibrationResult) -> str:
     return tomlkit.dumps(doc)
 
 
-def _set(doc, path: str, value: float) -> None:
+def _set(doc, path: str, value: float, template: str | None = None) -> None:
+    """Set ``path`` in the TOML document, creating the tables a default left out."""
     keys = split_path(path)
     node = doc
     for key in keys[:-1]:
+        if isinstance(key, str) and key not in node:
+            node[key] = tomlkit.table()
         node = node[key]
     last = keys[-1]
     old = node.get(last) if hasattr(node, "get") else None
-    node[last] = _formatted(old, value)
+    node[last] = _formatted(old if old is not None else template, value)
 
 
 def _formatted(old, value: float):

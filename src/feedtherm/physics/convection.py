@@ -35,10 +35,12 @@ from feedtherm.physics.dimensionless import (
     reynolds_rotating,
 )
 from feedtherm.physics.forced_convection import (
+    Nu_cylinder_crossflow_Churchill_Bernstein,
     Nu_flat_plate_laminar_average,
     Nu_flat_plate_laminar_local,
     Nu_plate_normal_to_flow,
     Nu_rotating_cylinder,
+    h_cylinder_crossflow,
     h_flat_plate_laminar_average,
     h_plate_normal_to_flow,
     h_rotating_cylinder,
@@ -75,6 +77,9 @@ __all__ = [
     "h_rotating_cylinder",
     "h_flat_plate_laminar_average",
     "h_plate_normal_to_flow",
+    # forced convection of the room's air on a cylinder
+    "Nu_cylinder_crossflow_Churchill_Bernstein",
+    "h_cylinder_crossflow",
     # mixed convection (this module)
     "Nu_mixed",
     "h_mixed",

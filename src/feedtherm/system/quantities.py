@@ -94,6 +94,7 @@ Temperature = _quantity("K", "positive")  # absolute: must be above 0 K
 PosTemperatureDifference = _quantity("K", "positive")
 AngularSpeed = _quantity("rad/s")  # signed: the sign is the direction of rotation
 Speed = _quantity("m/s")
+NonNegSpeed = _quantity("m/s", "nonnegative")
 PosDuration = _quantity("s", "positive")
 NonNegDuration = _quantity("s", "nonnegative")
 PosForce = _quantity("N", "positive")

@@ -26,6 +26,7 @@ from .quantities import (
     AngularSpeed,
     Length,
     NonNegDuration,
+    NonNegSpeed,
     NonNegLength,
     PosArea,
     PosConductivity,
@@ -166,6 +167,18 @@ class Temperatures(Strict):
     reference: Temperature  # of the elongation (zero-strain temperature)
     convection_delta_t: PosTemperatureDifference  # frozen CHTCs are taken at this rise
     coupling: Literal["frozen", "nonlinear"] = "frozen"
+
+
+class Room(Strict):
+    """The air around the machine.
+
+    ``air_speed``: the mean speed of the room's air past the machine (an air-conditioned room's
+    draught, say 0.1-0.3 m/s); it adds forced convection to every surface whose CHTC comes from
+    a correlation (mixed convection, boundary/surfaces.py).  0: still air, convection only from
+    buoyancy and the machine's own motion.
+    """
+
+    air_speed: NonNegSpeed = 0.0
 
 
 class Condition(Strict):
@@ -313,11 +326,21 @@ class FeedSystem(Strict):
     kinematics: Kinematics
     elongation: Elongation
     temperatures: Temperatures
+    room: Room = Room()
     conditions: dict[str, Condition]
     duty_cycles: dict[str, DutyCycle] = {}
     paper: PaperMode | None = None
     calibration: Calibration | None = None
     provenance: list[Provenance] = []
+
+    @model_serializer(mode="wrap")
+    def _omit_a_still_room(self, handler):
+        # ``room`` left at its default (still air) is left out, so that descriptions written
+        # before it existed keep their serialised form and hash (the benches' frozen provenance).
+        data = handler(self)
+        if isinstance(data, dict) and self.room == Room():
+            data.pop("room", None)
+        return data
 
     @field_validator("materials", "parts", "sources", "surfaces", "sensors", "conditions")
     @classmethod

@@ -117,3 +117,30 @@ def test_h_face_normal_to_motion():
         assert cv.h_plate_normal_to_flow(0.1, 1.589, 300.0) == pytest.approx(44.84, rel=RTOL_HAND)
     with pytest.warns(CorrelationRangeWarning, match="Eq. 29"):
         cv.h_plate_normal_to_flow(0.1, 0.003, 300.0)
+
+
+# ------------------------------------------------------- room air: a cylinder in cross flow
+def test_cylinder_crossflow_churchill_bernstein_by_hand(no_warnings):
+    # Re = 1e5, Pr = 0.71: Re^(1/2) = 316.2278, Pr^(1/3) = 0.892112, [1 + (0.4/0.71)^(2/3)]^(1/4)
+    # = 1.682131^(1/4) = 1.138846; 0.62·316.2278·0.892112/1.138846 = 153.5842;
+    # [1 + (1e5/282000)^(5/8)]^(4/5) = 1.523112^(4/5) = 1.400185; Nu = 0.3 + 153.5842·1.400185 = 215.346.
+    assert cv.Nu_cylinder_crossflow_Churchill_Bernstein(1e5, 0.71) == pytest.approx(215.346, rel=1e-5)
+
+
+def test_cylinder_crossflow_in_still_air_is_left_to_natural_convection(no_warnings):
+    assert cv.Nu_cylinder_crossflow_Churchill_Bernstein(0.0, 0.7) == 0.0
+    assert cv.h_cylinder_crossflow(0.032, 0.0, 300.0) == 0.0
+
+
+def test_cylinder_crossflow_warns_below_its_range():
+    with pytest.warns(CorrelationRangeWarning, match="Re\\*Pr"):
+        cv.Nu_cylinder_crossflow_Churchill_Bernstein(0.1, 0.7)
+
+
+def test_cylinder_crossflow_at_four_times_the_air_speed_by_hand(no_warnings):
+    # h_cylinder_crossflow's example: Re = 406.357 gives Nu = 0.3 + 9.774132·1.013382 = 10.20493.
+    # At 4u, Re = 1625.43: the middle term doubles, 19.548264; (1625.43/282000)^(5/8) =
+    # 0.0167557·4^(5/8) = 0.0167557·2.378414 = 0.0398520, 1.039852^(4/5) = 1.031757;
+    # Nu = 0.3 + 19.548264·1.031757 = 20.46906; same k and d: h(4u)/h(u) = 20.46906/10.20493 = 2.005803.
+    ratio = cv.h_cylinder_crossflow(0.032, 0.8, 300.0) / cv.h_cylinder_crossflow(0.032, 0.2, 300.0)
+    assert ratio == pytest.approx(2.005803, rel=1e-5)
