@@ -138,9 +138,10 @@ def test_unknown_parameter_raises_before_any_run(paper):
         resolve_parameters(paper, ["nope"])
 
 
-def test_a_parameter_pushed_to_its_bound_is_flagged(paper, tmp_path):
-    # Measurements far hotter than any preload within [50, 3000] N can make: the fit ends at
-    # the upper bound, and says so.
+def test_a_parameter_pushed_to_its_bound_is_flagged(paper_equations, tmp_path):
+    # Measurements far hotter than any preload within [50, 3000] N can make under the paper's
+    # equation loss models: the fit ends at the upper bound, and says so.
+    paper = paper_equations
     lines = ["condition,quantity,unit,measured"] + [f"I,{q},C,60.0" for q in SENSORS]
     path = tmp_path / "hot.csv"
     path.write_text("\n".join(lines) + "\n")
