@@ -6,7 +6,7 @@ integrator reads them from the state with a :class:`TemperatureReadout` and re-e
 boundary conditions (:class:`Coupling`) whenever a reading has moved by more than the
 coupling tolerance since the last evaluation, so a step uses coefficients lagged by at most
 that much; steady states iterate to a fixed point (Picard on the readings, with halved steps
-when the change grows; a change that keeps growing is reported as a divergence, the sign of
+when the change grows and lengthened ones, 1/(1 − r), when it shrinks slowly by a steady ratio r; a change that keeps growing is reported as a divergence, the sign of
 a heat that grows with the temperature faster than the surfaces shed it).  Each step's heat and losses are the
 ones its equations used, so the energy account still closes.
 
@@ -37,6 +37,10 @@ STEADY_TOLERANCE = 1e-4
 STEADY_ITERATIONS = 100
 #: Smallest fraction of a Picard step the steady iteration takes when the change grows.
 MIN_RELAXATION = 1.0 / 16.0
+#: A change that shrinks by a steady ratio r above this is accelerated (steps of 1/(1 - r)) ...
+SLOW_CONTRACTION = 0.5
+#: ... up to this many plain steps at once.
+MAX_ACCELERATION = 4.0
 #: Iterations of growing change, at the smallest fraction, after which the iteration has diverged.
 RUNAWAY_ITERATIONS = 8
 

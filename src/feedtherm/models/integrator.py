@@ -28,8 +28,10 @@ from ..boundary import BoundaryConditions, LocalTemperatures
 from ..errors import ModelError
 from .coupling import (
     LINK_REFACTOR,
+    MAX_ACCELERATION,
     MIN_RELAXATION,
     RUNAWAY_ITERATIONS,
+    SLOW_CONTRACTION,
     STEADY_ITERATIONS,
     STEADY_TOLERANCE,
     Coupling,
@@ -268,7 +270,7 @@ class Integrator:
         state = self._steady_linear(seg_id, bc, k, None)
         current = factorised = bc
         reading, fraction, growing = None, 1.0, 0
-        change = previous = math.inf
+        change = previous = ratio = math.inf
         for _ in range(STEADY_ITERATIONS):
             now = self.readout(state)
             # Picard on the readings; halved steps once the change grows (an oscillation)
@@ -286,12 +288,17 @@ class Integrator:
             growing = growing + 1 if change > previous else 0
             if growing and fraction > MIN_RELAXATION:
                 fraction /= 2.0
+            elif not growing and change > SLOW_CONTRACTION * previous and abs(change / previous - ratio) < 0.02:
+                # a steady, slow contraction r (a heat that grows with the temperature): the step
+                # 1/(1 - r) lands where the geometric series of plain steps would end
+                fraction = min(1.0 / (1.0 - change / previous), MAX_ACCELERATION)
             elif growing >= RUNAWAY_ITERATIONS or not np.all(np.isfinite(state)):
                 name, hottest = now.hottest()
                 raise ModelError(f"temperatures.coupling = nonlinear: the steady iteration diverges ({name} at "
                                  f"{hottest - 273.15:.0f} degC and rising): the heat grows with the temperature "
                                  "faster than the surfaces shed it (a thermal runaway), or the coupling is too "
                                  "strong for this iteration; a transient run shows where the temperatures go")
+            ratio = change / previous if previous > 0.0 else math.inf
             previous = change
         else:
             raise ModelError(f"temperatures.coupling = nonlinear: the steady state did not converge in "
