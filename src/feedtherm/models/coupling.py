@@ -5,10 +5,11 @@ viscosities and winding resistances are evaluated at the simulated temperatures.
 integrator reads them from the state with a :class:`TemperatureReadout` and re-evaluates the
 boundary conditions (:class:`Coupling`) whenever a reading has moved by more than the
 coupling tolerance since the last evaluation, so a step uses coefficients lagged by at most
-that much; steady states iterate to a fixed point (Picard on the readings, with halved steps
-when the change grows and lengthened ones, 1/(1 − r), when it shrinks slowly by a steady ratio r; a change that keeps growing is reported as a divergence, the sign of
-a heat that grows with the temperature faster than the surfaces shed it).  Each step's heat and losses are the
-ones its equations used, so the energy account still closes.
+that much; steady states iterate to a fixed point: Picard on the readings, with halved steps
+when the change grows and lengthened ones, 1/(1 − r), when it shrinks by a steady, slow ratio
+r; a change that keeps growing is reported as a divergence, the sign of a heat that grows with
+the temperature faster than the surfaces shed it.  Each step's heat and losses are the ones
+its equations used, so the energy account still closes.
 
 What a surface's temperature is: the area-weighted mean of its exposed nodes; a source's:
 the mean of the state weighted by where its heat enters (a bearing's seat, a motor's
