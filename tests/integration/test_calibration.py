@@ -32,7 +32,7 @@ def synthetic_measurements(loaded, path, conditions, seed=7):
 
 def test_known_parameters_are_recovered_within_their_standard_errors(paper, tmp_path):
     names = ["screw_nut_preload", "chtc_moving"]
-    truth = {"screw_nut_preload": 1200.0, "chtc_moving": 1.8}
+    truth = {"screw_nut_preload": 300.0, "chtc_moving": 1.8}
     params = resolve_parameters(paper, names)
     from feedtherm.analysis.calibration import apply
 

@@ -58,6 +58,7 @@ def convective_coefficient(surface: Surface, point: OperatingPoint, t_surface: f
     if isinstance(conv, FixedConvection):
         return conv.coefficient, "fixed"
     t_film = film_temperature(t_surface, ambient)
+    speed = abs(point.table_speed)
     if isinstance(conv, NaturalConvection):
         h, how = convection.h_natural(conv.orientation, conv.length, t_surface, ambient), f"natural, {conv.orientation} (Eq. 25)"
         cylinder, length = conv.orientation == "horizontal_cylinder", conv.length
@@ -67,13 +68,11 @@ def convective_coefficient(surface: Surface, point: OperatingPoint, t_surface: f
         h, how = convection.h_mixed(forced, natural), f"rotating at {conv.shaft} speed (Eq. 27) + natural"
         cylinder, length = True, conv.diameter
     elif isinstance(conv, MovingPlateConvection):
-        speed = abs(point.table_speed)
         forced = convection.h_flat_plate_laminar_average(conv.length, speed, t_film) if speed > 0 else 0.0
         natural = convection.h_natural(conv.orientation, conv.natural_length, t_surface, ambient)
         h, how = convection.h_mixed(forced, natural), "moving plate (Eq. 28, average) + natural"
         cylinder, length = False, conv.natural_length
     elif isinstance(conv, MovingFaceConvection):
-        speed = abs(point.table_speed)
         forced = convection.h_plate_normal_to_flow(conv.length, speed, t_film) if speed > 0 else 0.0
         natural = convection.h_natural("vertical_plate", conv.natural_length, t_surface, ambient)
         h, how = convection.h_mixed(forced, natural), "face normal to motion (Eq. 29) + natural"

@@ -277,9 +277,7 @@ class Integrator:
             reading = now if reading is None else reading.toward(now, fraction)
             current, factorised = self._reevaluate(seg_id, bc, reading, current, factorised)
             loads = self.loads(seg_id, current, k)
-            load = loads.heat + loads.ambient.source
-            if factorised is not current:
-                load = load - _apply(loads.ambient.matrix - self.loads(seg_id, factorised, k).ambient.matrix, state)
+            load = loads.heat + loads.ambient.source - self._link_change(seg_id, current, factorised, k, state)
             new = self._steady_linear(seg_id, factorised, k, load)
             change = float(np.max(np.abs(new - state)))
             state = new
@@ -328,6 +326,15 @@ class Integrator:
             self._forget(seg_id, factorised)
             factorised = evaluated
         return evaluated, factorised
+
+    def _link_change(self, seg_id: int, bc: BoundaryConditions, factorised: BoundaryConditions, k: int | None,
+                     state: np.ndarray) -> np.ndarray:
+        """Heat [W] the links of ``bc`` lose beyond those of the factorised step matrix, at ``state``:
+        what the right-hand side takes while the matrix is not refactorised (0 when it is ``bc``'s)."""
+        if factorised is bc:
+            return np.zeros_like(state)
+        now, ref = self.loads(seg_id, bc, k).ambient, self.loads(seg_id, factorised, k).ambient
+        return _apply(now.matrix - ref.matrix, state)
 
     def _links_moved(self, old: BoundaryConditions, new: BoundaryConditions) -> bool:
         if self.dense:  # a projected model: no per-node links to compare
@@ -404,9 +411,9 @@ class Integrator:
                     T_new = self.solve(seg_id, bc, k, dt, rhs, guess)
                     lost = loads.ambient.heat_lost(T_new)
                 else:  # the links' change since the factorisation, taken at the step's start state
-                    ref = self.loads(seg_id, factorised, k).ambient
-                    rhs -= _apply(loads.ambient.matrix - ref.matrix, T)
+                    rhs -= self._link_change(seg_id, bc, factorised, k, T)
                     T_new = self.solve(seg_id, factorised, k, dt, rhs, guess)
+                    ref = self.loads(seg_id, factorised, k).ambient
                     lost = loads.ambient.heat_lost(T) + float(ref.load @ (T_new - T))
                 t_new = t + dt
                 # energy account: heat in from the boundary conditions, losses from the surfaces,

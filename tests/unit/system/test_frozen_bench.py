@@ -17,10 +17,11 @@ from feedtherm.system.load import load_system
 #   exceed the declared motors' continuous torque), and temperatures.coupling = "nonlinear"; the
 #   calibration parameters follow (motor_copper, motor_no_load, front_bearing_preload for
 #   motor_efficiency).  The paper's equation models stay available (tests/conftest.py keeps them
-#   as a variant for the hand calculations written against them).
+#   as a variant for the hand calculations written against them). The thread preload's calibration
+#   bound follows the motors: 365 N, where the circulating torque reaches their continuous torque.
 # - temperatures.temperature_dependent_chtc became temperatures.coupling; calibration may fit the
 #   room's air speed (calibration.parameters.room_air_speed).
-FROZEN_SHA256 = "4932e9acdf6f325fda0b4834955cff8b9d2df576b3f7dfedb6f6f8383623fc88"
+FROZEN_SHA256 = "aabf0ecc3dbb62a09930a9dd6763f64160a89d9a37fc02e6711766917b5e62a2"
 
 
 def test_paper_bench_is_frozen():
