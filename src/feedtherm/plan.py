@@ -137,7 +137,7 @@ def _segments(loaded: LoadedSystem, duty: list[DutySegment], end: float, mode: s
         point = OperatingPoint(seg.screw_speed * RPM_PER_RAD_S, seg.nut_speed * RPM_PER_RAD_S, seg.ambient,
                                system.kinematics.lead)
         if single_drive:
-            point = replace(point, screw_rpm=point.relative_rpm, nut_rpm=0.0)
+            point = replace(point, screw_rpm=point.relative_rpm, nut_rpm=0.0, nut_motor_off=True)
         if point not in cache:
             cache[point] = boundary_conditions_at(system, point, mode)
         out.append(Segment(seg.start, t1, cache[point]))

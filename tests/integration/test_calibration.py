@@ -32,7 +32,7 @@ def synthetic_measurements(loaded, path, conditions, seed=7):
 
 def test_known_parameters_are_recovered_within_their_standard_errors(paper, tmp_path):
     names = ["screw_nut_preload", "chtc_moving"]
-    truth = {"screw_nut_preload": 1200.0, "chtc_moving": 1.8}
+    truth = {"screw_nut_preload": 300.0, "chtc_moving": 1.8}
     params = resolve_parameters(paper, names)
     from feedtherm.analysis.calibration import apply
 
@@ -138,9 +138,10 @@ def test_unknown_parameter_raises_before_any_run(paper):
         resolve_parameters(paper, ["nope"])
 
 
-def test_a_parameter_pushed_to_its_bound_is_flagged(paper, tmp_path):
-    # Measurements far hotter than any preload within [50, 3000] N can make: the fit ends at
-    # the upper bound, and says so.
+def test_a_parameter_pushed_to_its_bound_is_flagged(paper_equations, tmp_path):
+    # Measurements far hotter than any preload within [50, 3000] N can make under the paper's
+    # equation loss models: the fit ends at the upper bound, and says so.
+    paper = paper_equations
     lines = ["condition,quantity,unit,measured"] + [f"I,{q},C,60.0" for q in SENSORS]
     path = tmp_path / "hot.csv"
     path.write_text("\n".join(lines) + "\n")

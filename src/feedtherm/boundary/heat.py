@@ -243,6 +243,8 @@ def _motor(name, src: MotorSource, point, load_torque, temperature) -> SourceHea
     torque = load_torque + src.extra_torque * _sign(n)
     output = torque * n * 2.0 * math.pi / 60.0  # > 0 driving, < 0 braking (generating)
     details = {"torque_Nm": torque, "shaft_power_W": output}
+    if src.shaft == "nut" and point.nut_motor_off:  # the brake holds the nut: no current
+        return SourceHeat(name, 0.0, dict(src.into), n, {**details, "held_by_brake": True})
     if src.losses is not None:
         # Copper loss from the torque, no-load loss from the speed, driving or braking alike; a
         # braking motor's shaft power goes back to the amplifier's DC bus, not into the motor.

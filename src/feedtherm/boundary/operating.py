@@ -13,12 +13,18 @@ _RAD_PER_S_TO_RPM = 60.0 / (2.0 * math.pi)
 
 @dataclass(frozen=True)
 class OperatingPoint:
-    """Signed motor speeds [rpm], ambient temperature [K] and the screw lead [m]."""
+    """Signed motor speeds [rpm], ambient temperature [K] and the screw lead [m].
+
+    ``nut_motor_off``: the dual drive run as a conventional one, its nut held fixed (by the
+    motor's holding brake) with no current in the nut motor, whatever torque the thread puts
+    on the nut; otherwise a nut at 0 rpm is held by its servo, which carries that torque.
+    """
 
     screw_rpm: float
     nut_rpm: float
     ambient: float
     lead: float
+    nut_motor_off: bool = False
 
     @property
     def relative_rpm(self) -> float:

@@ -28,9 +28,10 @@ import scipy.sparse as sp
 from ..boundary import BoundaryConditions
 from ..boundary.temperatures import LocalTemperatures
 from .interface import ThermalModel
+from .options import ModelOptions
 
 #: Default largest lag [K] of a coupled reading behind the state before re-evaluation.
-COUPLING_TOLERANCE = 0.5
+COUPLING_TOLERANCE = ModelOptions.coupling_tolerance
 #: Relative change of a node's link to its sink above which a coupled run refactorises its steps.
 LINK_REFACTOR = 0.2
 #: A coupled steady state has converged when no node moves by more than this [K].

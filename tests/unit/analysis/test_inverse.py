@@ -7,6 +7,7 @@ import pytest
 from feedtherm.analysis.inverse import Noise, infer, parse_groups, transfer
 from feedtherm.cli import main
 from feedtherm.errors import FeedthermError
+from feedtherm.models.coupling import STEADY_TOLERANCE
 from feedtherm.simulate import steady_state
 
 SOURCES = ["guideways", "screw_motor", "nut_motor", "front_bearing", "rear_bearing", "nut_bearing", "screw_nut"]
@@ -24,12 +25,19 @@ def by_side(paper):
     return transfer(paper, "I", parse_groups(SIDES, SOURCES))
 
 
-def test_the_loss_models_heats_give_the_models_steady_state(paper, by_source):
-    """Linearity: baseline + R·q_prior is the steady state of the full model at condition I."""
+def test_the_loss_models_heats_give_the_models_steady_state(paper, paper_equations, by_source):
+    """Linearity: baseline + R·q_prior is the steady state of the full model at condition I: to
+    round-off at frozen coefficients, and to the coupled steady state's own convergence (1e-4 K)
+    on the paper bench, whose coefficients follow the temperatures."""
+    frozen = transfer(paper_equations, "I", parse_groups(None, SOURCES))
+    steady = steady_state(paper_equations, "I")
+    predicted = frozen.predict(frozen.prior)
+    for i, name in enumerate(frozen.observations):
+        assert predicted[i] == pytest.approx(steady[name], rel=1e-10, abs=1e-15), name
     steady = steady_state(paper, "I")
     predicted = by_source.predict(by_source.prior)
     for i, name in enumerate(by_source.observations):
-        assert predicted[i] == pytest.approx(steady[name], rel=1e-10, abs=1e-15), name
+        assert predicted[i] == pytest.approx(steady[name], abs=STEADY_TOLERANCE * (1e-5 if name == "D" else 1)), name
     # zero heat: every part at the 20 °C ambient, which is also D's reference temperature
     assert np.allclose(by_source.baseline[:-1], 293.15) and abs(by_source.baseline[-1]) < 1e-12
     # more heat never cools a sensor or shortens the screw
@@ -67,7 +75,7 @@ def test_stated_intervals_cover_the_true_heats_as_often_as_they_say(by_source):
     tau = np.maximum(width * by_source.prior, width)
     sigma = np.array([NOISE.temperature] * 5 + [NOISE.elongation])
     inside = total = 0
-    for _ in range(300):
+    for _ in range(400):
         truth = by_source.prior + tau * rng.standard_normal(len(tau))
         if np.any(truth < 0):  # the estimator knows heats are not negative; keep the prior's support
             continue

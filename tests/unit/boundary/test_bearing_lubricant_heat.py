@@ -50,9 +50,9 @@ def test_grade_viscosity_follows_the_ambient(paper):
     assert nu["V"] == pytest.approx(grade.viscosity_at(308.15), rel=1e-12)
 
 
-def test_fixed_viscosity_bench_is_unchanged(paper):
-    # The bundled bench declares 100 mm²/s: its bearings use exactly that value.
-    point = operating_point(paper.system, paper.system.conditions["III"])
-    heats = source_heats(paper.system, point)
+def test_a_fixed_viscosity_is_used_as_declared(paper_equations):
+    # The paper's equation models declare 100 mm²/s: their bearings use exactly that value.
+    point = operating_point(paper_equations.system, paper_equations.system.conditions["III"])
+    heats = source_heats(paper_equations.system, point)
     for name in ("front_bearing", "rear_bearing", "nut_bearing"):
         assert heats[name].details["lubricant_viscosity_m2_per_s"] == pytest.approx(100e-6, rel=1e-12)

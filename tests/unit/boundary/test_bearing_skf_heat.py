@@ -81,8 +81,15 @@ def test_seals_add_their_table_4_moment(paper):
     assert heat.details["friction_torque_Nm"] == pytest.approx(104.506e-3 + 2 * 56.44864e-3, rel=2e-5)
 
 
-def test_default_model_keeps_the_bench_as_it_was(paper):
-    # The bundled bench states no friction_model: Palmgren, whose detail keys are unchanged.
-    heat = heats(paper.system, "II")["nut_bearing"]
-    assert paper.system.sources["nut_bearing"].friction_model == "palmgren"
+def test_default_model_is_palmgren_with_its_detail_keys(paper_equations):
+    # A bearing that states no friction_model: Palmgren, whose detail keys are unchanged.
+    heat = heats(paper_equations.system, "II")["nut_bearing"]
+    assert paper_equations.system.sources["nut_bearing"].friction_model == "palmgren"
     assert {"f1", "P1_N", "load_torque_Nm", "viscous_torque_Nm"} <= set(heat.details)
+
+
+def test_the_paper_bench_takes_its_bearings_by_the_skf_model(paper):
+    for name in ("front_bearing", "rear_bearing", "nut_bearing"):
+        heat = heats(paper.system, "II")[name]
+        assert paper.system.sources[name].friction_model == "skf"
+        assert {"rolling_torque_Nm", "sliding_torque_Nm", "phi_ish", "phi_rs"} <= set(heat.details)

@@ -23,8 +23,8 @@ def point_of(system, condition="III"):
     return operating_point(system, system.conditions[condition])
 
 
-def test_a_bearing_takes_its_lubricant_at_its_own_temperature(paper):
-    system = with_values(paper, {"sources.front_bearing.lubricant_viscosity": None,
+def test_a_bearing_takes_its_lubricant_at_its_own_temperature(paper_equations):
+    system = with_values(paper_equations, {"sources.front_bearing.lubricant_viscosity": None,
                                  "sources.front_bearing.lubricant": VG100}).system
     point = point_of(system)
     # At 40 °C (313.15 K) an ISO VG 100 oil has its grade's midpoint: 100 mm²/s exactly (ISO 3448).

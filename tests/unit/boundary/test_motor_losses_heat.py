@@ -19,7 +19,6 @@ import pytest
 
 from feedtherm.boundary import operating_point
 from feedtherm.boundary.heat import source_heats
-from feedtherm.system.load import load_system
 from feedtherm.system.sources import MotorSource
 from feedtherm.system.variants import with_values
 
@@ -32,8 +31,9 @@ RATED = {"model": "rated", "rated_torque": "1.17 N*m", "rated_copper_loss": "76.
 
 
 @pytest.fixture(scope="module")
-def bench():
-    return load_system("paper")
+def bench(paper_equations):
+    """The torque balance of docs/paper-audit.md §5 is the one of the paper's equation models (500 N preload)."""
+    return paper_equations
 
 
 def with_motor_losses(loaded, losses):

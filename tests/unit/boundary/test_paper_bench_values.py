@@ -12,15 +12,15 @@ import math
 import pytest
 
 from feedtherm.boundary import boundary_conditions
-from feedtherm.system.load import load_system
 
 NU, K_AIR, PR, ALPHA, BETA = 1.55770e-5, 0.0262469, 0.707300, 2.20231e-5, 1 / 298.15
 G = 9.80665
 
 
 @pytest.fixture(scope="module")
-def bench():
-    return load_system("paper").system
+def bench(paper_equations):
+    """The hand calculations here follow the paper's own equations (Eq. 14 motors, Palmgren)."""
+    return paper_equations.system
 
 
 def rpm_to_rad(n):

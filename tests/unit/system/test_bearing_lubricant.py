@@ -9,14 +9,14 @@ from feedtherm.errors import DescriptionError
 from feedtherm.system.load import load_system
 
 PAPER = bench("paper").description.read_text(encoding="utf-8")
-FIXED = 'lubricant_viscosity = "100 mm^2/s"\ninto = { front_bearing = 1.0 }'
+DECLARED = 'lubricant = { grade = "ISO VG 100", viscosity_100C = "11 mm^2/s" }\ninto = { front_bearing = 1.0 }'
 
 
 def write_variant(tmp_path, lubricant_lines: str) -> str:
-    """The paper bench with the front bearing's fixed viscosity replaced by ``lubricant_lines``."""
-    assert FIXED in PAPER, "test fixture out of date: the paper bench's front bearing changed"
+    """The paper bench with the front bearing's declared lubricant replaced by ``lubricant_lines``."""
+    assert PAPER.count(DECLARED) == 1, "test fixture out of date: the paper bench's front bearing changed"
     path = tmp_path / "lubricant_variant.toml"
-    path.write_text(PAPER.replace(FIXED, f"{lubricant_lines}\ninto = {{ front_bearing = 1.0 }}", 1), encoding="utf-8")
+    path.write_text(PAPER.replace(DECLARED, f"{lubricant_lines}\ninto = {{ front_bearing = 1.0 }}", 1), encoding="utf-8")
     return str(path)
 
 
@@ -40,8 +40,10 @@ def test_grade_with_viscosity_100c_loads_with_units(tmp_path):
     assert source.viscosity_at(303.15) == pytest.approx(177.2454e-6, rel=1e-6)
 
 
-def test_a_fixed_viscosity_does_not_depend_on_temperature(paper):
-    source = paper.system.sources["front_bearing"]
+def test_a_fixed_viscosity_does_not_depend_on_temperature(tmp_path):
+    # The bench's bearings declare an ISO VG grade; a variant declares the fixed viscosity.
+    source = load_system(write_variant(tmp_path, 'lubricant_viscosity = "100 mm^2/s"')).system.sources["front_bearing"]
+    assert source.lubricant is None
     assert source.viscosity_at(250.0) == source.viscosity_at(400.0) == pytest.approx(100e-6, rel=1e-12)
 
 

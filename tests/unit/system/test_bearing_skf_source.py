@@ -31,9 +31,10 @@ into = { nut_bearing = 1.0 }'''
 
 
 def write_variant(tmp_path, block: str) -> str:
-    assert PALMGREN_NUT in PAPER, "test fixture out of date: the paper bench's nut bearing changed"
+    """The paper bench with its nut bearing (declared as ``SKF_NUT``) replaced by ``block``."""
+    assert PAPER.count(SKF_NUT) == 1, "test fixture out of date: the paper bench's nut bearing changed"
     path = tmp_path / "skf_variant.toml"
-    path.write_text(PAPER.replace(PALMGREN_NUT, block, 1), encoding="utf-8")
+    path.write_text(PAPER.replace(SKF_NUT, block, 1), encoding="utf-8")
     return str(path)
 
 
@@ -99,7 +100,21 @@ def test_bad_palmgren_bearing_is_named(tmp_path, edit, reason):
     assert "sources.nut_bearing" in message and reason in message, message
 
 
-def test_the_benches_serialise_as_before(paper):
+def test_a_palmgren_bearing_serialises_without_the_skf_fields(tmp_path):
     # The SKF fields of a Palmgren bearing are left out of the serialised form (and the hash).
-    dumped = paper.system.sources["nut_bearing"].model_dump()
+    source = load_system(write_variant(tmp_path, PALMGREN_NUT)).system.sources["nut_bearing"]
+    assert source.friction_model == "palmgren"
+    dumped = source.model_dump()
     assert not {"friction_model", "series", "bore_diameter", "bearings_in_set", "lubrication", "lubricant"} & set(dumped)
+
+
+def test_the_bench_serialises_its_skf_bearings_without_the_unused_options(paper):
+    # The bench's nut bearing is an SKF bearing: its declared SKF fields are serialised; the
+    # Palmgren fields and the SKF options left at their defaults are left out (and the hash).
+    source = paper.system.sources["nut_bearing"]
+    assert source.friction_model == "skf"
+    dumped = source.model_dump()
+    assert {"friction_model", "series", "bore_diameter", "outer_diameter", "bearings_in_set", "lubricant"} <= set(dumped)
+    assert (dumped["friction_model"], dumped["series"], dumped["bearings_in_set"]) == ("skf", "single_row", 2)
+    assert not {"mean_diameter", "f0", "lubricant_viscosity", "lubrication", "base_oil",
+                "seal", "seal_counterface_diameter", "seals_per_bearing", "drag_torque"} & set(dumped)

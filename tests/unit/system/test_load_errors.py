@@ -24,6 +24,13 @@ def load_error(spec: str) -> str:
     return message
 
 
+# The screw motor's declared loss model (the bench's nut motor declares the same line; the
+# anchor's `into = { screw_motor` picks the screw motor's).
+SCREW_MOTOR_LOSSES = (
+    'losses = { model = "datasheet", torque_constant = "0.39 N*m/A", terminal_resistance = "5.70 ohm", '
+    'resistance_temperature = "20 degC", friction_torque = "0.02 N*m", viscous_damping = "2e-5 N*m*s/rad" }\n'
+    'into = { screw_motor'
+)
 SCREW = 'cylinders = [{ origin = ["-60 mm", "0 mm", "0 mm"], length = "510 mm", outer_diameter = "32 mm" }]'
 
 
@@ -40,7 +47,7 @@ SCREW = 'cylinders = [{ origin = ["-60 mm", "0 mm", "0 mm"], length = "510 mm", 
         ('lead = "10 mm"', 'lead = "10"', ["kinematics.lead", "has no unit"]),
         ('lead = "10 mm"', 'lead = "10 kg"', ["kinematics.lead", "not convertible to m"]),
         ('[kinematics]\ndrive = "dual"', '[kinematics]\ndrive = "triple"', ["kinematics.drive", "'dual' or 'single'"]),
-        ('efficiency = 0.85\ninto = { screw_motor', 'efficiency = 1.5\ninto = { screw_motor', ["sources.screw_motor.efficiency", "less than or equal to 1"]),
+        (SCREW_MOTOR_LOSSES, 'efficiency = 1.5\ninto = { screw_motor', ["sources.screw_motor.efficiency", "less than or equal to 1"]),
         ('into = { nut = 0.5, screw = 0.5 }', 'into = { nut = 0.5, screw = 0.6 }', ["sources.screw_nut.into", "add up to 1"]),
         ('[temperatures]\n', '[temperatures]\ninital = "20 degC"\n', ["unknown key 'inital' in temperatures", "did you mean 'initial'"]),
         ('[conditions.I]\nfeed_speed', '[conditions.I]\nscrew_sped = "1 rpm"\nfeed_speed', ["unknown key 'screw_sped'", "did you mean 'screw_speed'"]),
@@ -101,7 +108,7 @@ def test_signed_speeds_are_directions_not_errors(tmp_path):
 
 
 def test_unknown_key_inside_a_tagged_source_suggests_from_that_source_type(tmp_path):
-    spec = write_variant(tmp_path, 'efficiency = 0.85\ninto = { screw_motor', 'eficiency = 0.85\ninto = { screw_motor')
+    spec = write_variant(tmp_path, SCREW_MOTOR_LOSSES, 'eficiency = 0.85\ninto = { screw_motor')
     message = load_error(spec)
     assert "unknown key 'eficiency' in sources.screw_motor" in message
     assert "did you mean 'efficiency'" in message

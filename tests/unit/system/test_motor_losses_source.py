@@ -10,6 +10,10 @@ from feedtherm.system.load import load_system
 from feedtherm.system.sources import DatasheetMotorLosses, RatedMotorLosses
 
 PAPER = bench("paper").description.read_text(encoding="utf-8")
+# The bench's screw motor as declared (its nut motor declares the same losses line).
+BENCH_LOSSES = ('losses = { model = "datasheet", torque_constant = "0.39 N*m/A", terminal_resistance = "5.70 ohm", '
+                'resistance_temperature = "20 degC", friction_torque = "0.02 N*m", viscous_damping = "2e-5 N*m*s/rad" }\n'
+                'into = { screw_motor = 1.0 }')
 EFFICIENCY = 'efficiency = 0.85\ninto = { screw_motor = 1.0 }'
 DATASHEET = ('losses = { model = "datasheet", torque_constant = "0.39 N*m/A", terminal_resistance = "5.70 ohm", '
              'friction_torque = "11 mN*m", viscous_damping = "1.2566371e-3 N*m/krpm" }\n'
@@ -19,9 +23,10 @@ RATED = ('losses = { model = "rated", rated_torque = "1.17 N*m", rated_copper_lo
 
 
 def write_variant(tmp_path, motor: str) -> str:
-    assert PAPER.count(EFFICIENCY) == 1, "test fixture out of date: the bench's screw motor changed"
+    """The paper bench with its screw motor's loss model (``BENCH_LOSSES``) replaced by ``motor``."""
+    assert PAPER.count(BENCH_LOSSES) == 1, "test fixture out of date: the bench's screw motor changed"
     path = tmp_path / "motor_variant.toml"
-    path.write_text(PAPER.replace(EFFICIENCY, motor, 1), encoding="utf-8")
+    path.write_text(PAPER.replace(BENCH_LOSSES, motor, 1), encoding="utf-8")
     return str(path)
 
 
@@ -51,10 +56,28 @@ def test_rated_losses_load_in_si_units(tmp_path):
     assert (losses.rated_torque, losses.rated_copper_loss) == (pytest.approx(1.17), pytest.approx(76.95))
 
 
-def test_the_bench_keeps_the_efficiency_model():
-    motor = load_system("paper").system.sources["screw_motor"]
+def test_the_bench_uses_the_datasheet_loss_model(paper):
+    # Both motors: the declared data sheet values in SI units; the loss model not chosen
+    # (efficiency) is left out of the serialised form, and hash.
+    for name in ("screw_motor", "nut_motor"):
+        motor = paper.system.sources[name]
+        assert motor.efficiency is None
+        losses = motor.losses
+        assert isinstance(losses, DatasheetMotorLosses)
+        assert losses.torque_constant == pytest.approx(0.39, rel=1e-12)
+        assert losses.terminal_resistance == pytest.approx(5.70, rel=1e-12)
+        assert losses.resistance_temperature == pytest.approx(293.15, rel=1e-12)  # 20 degC
+        assert losses.friction_torque == pytest.approx(0.02, rel=1e-12)
+        assert losses.viscous_damping == pytest.approx(2e-5, rel=1e-12)
+        assert "efficiency" not in motor.model_dump(mode="json")
+
+
+def test_an_efficiency_motor_serialises_without_losses(tmp_path):
+    # A motor declared with an efficiency keeps the serialised form, and hash, it had before
+    # `losses` existed.
+    motor = load_system(write_variant(tmp_path, EFFICIENCY)).system.sources["screw_motor"]
     assert motor.efficiency == 0.85 and motor.losses is None
-    assert "losses" not in motor.model_dump(mode="json")  # its serialised form, and hash, unchanged
+    assert "losses" not in motor.model_dump(mode="json")
 
 
 def test_a_motor_needs_a_loss_model(tmp_path):

@@ -1,10 +1,12 @@
 """Sub-volumes of the parts the fast model does not resolve along the screw axis.
 
 Every such part is cut, primitive by primitive, into grids of cells of about ``cell_size``
-[m] (:mod:`.grids`); a small part at least into :data:`PART_CELLS` cells along its longest
-side. Each cell is a node. Primitives of one part touch over faces (a bracket plate fused to
-a housing, a riser on a slab): those links are made from face samples (:mod:`.contacts`),
-like the joints between parts.
+[m] (:mod:`.grids`); a small primitive at least into :data:`PART_CELLS` cells along its
+longest side, so that a compact housing fused to a long bracket plate is cut as finely as a
+housing alone (its bearing seat is where the heat enters and the sensor sits). Each cell is a
+node. Primitives of one part touch over faces (a bracket plate fused to a housing, a riser on
+a slab): those links are made from face samples (:mod:`.contacts`), like the joints between
+parts.
 """
 
 from __future__ import annotations
@@ -14,11 +16,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...system.geometry import bounds
 from ...system.schema import Part
 from .grids import BoxGrid, box_grid, cylinder_grid
 
-PART_CELLS = 4  #: a part has at least this many cells along its longest side (small parts are finer)
+PART_CELLS = 4  #: a primitive has at least this many cells along its longest side (small ones are finer)
 
 
 @dataclass
@@ -103,10 +104,10 @@ def part_cells(name: str, part: Part, conductivity: float, cell_size: float, fir
     (three lists for a box, one along the axis for a cylinder)."""
     n_box = len(part.boxes)
     breaks = breaks or [None] * (n_box + len(part.cylinders))
-    lo, hi = bounds(part)
-    cell_size = min(cell_size, max(b - a for a, b in zip(lo, hi)) / PART_CELLS)
-    grids = [box_grid(b, part.holes, cell_size, breaks[i]) for i, b in enumerate(part.boxes)]
-    grids += [cylinder_grid(c, cell_size, breaks[n_box + i] or ()) for i, c in enumerate(part.cylinders)]
+    grids = [box_grid(b, part.holes, min(cell_size, max(b.size) / PART_CELLS), breaks[i])
+             for i, b in enumerate(part.boxes)]
+    grids += [cylinder_grid(c, min(cell_size, max(c.length, c.outer_diameter) / PART_CELLS), breaks[n_box + i] or ())
+              for i, c in enumerate(part.cylinders)]
     first, n = [], first_node
     for g in grids:
         first.append(n)
