@@ -12,8 +12,8 @@ from .html import heading, number, paragraph, png_image, section, table
 
 NOT_REACHED = "not reached in the run"
 EQUILIBRIUM_PHYSICS = (
-    "Why the ambient temperature cannot change the equilibrium time here. The convection and radiation "
-    "coefficients are frozen for a run (the paper's assumption 3), so the model is linear: C·dT/dt = "
+    "Why the ambient temperature cannot change the equilibrium time under the paper's assumption 3. With the "
+    "convection and radiation coefficients frozen for a run, the model is linear: C·dT/dt = "
     "−G·(T − T_amb) + q. Written for the rise θ = T − T_amb it reads C·dθ/dt = −G·θ + q with θ = 0 at the "
     "start, and the ambient temperature has disappeared: it shifts every temperature by the same amount and "
     "leaves every rise, and so the equilibrium time, unchanged. Conditions II, IV and V run at the same "
@@ -23,6 +23,13 @@ EQUILIBRIUM_PHYSICS = (
     "change the convection coefficients by a few per cent over 10 K, and the linearised radiation coefficient "
     "(∝ T³) by about 10 %, far too little to move the equilibrium time by 40 min. A warmer room does not make "
     "heat \"more difficult to dissipate\": the heat lost depends on T − T_amb, not on T_amb."
+)
+COUPLED_PHYSICS = (
+    "This description couples them (temperatures.coupling = \"nonlinear\"): the convection and radiation "
+    "coefficients, the lubricants' viscosities and the windings' resistances follow the simulated "
+    "temperatures, so the equation above is linear only within a step. The ambient then also acts through the "
+    "air's and the oils' properties (a cooler room: thicker oil, more bearing heat; warmer windings: more "
+    "copper loss), by a few per cent per 10 K; the model's times at IV, II and V above show how much."
 )
 TIME_CONSTANT_PHYSICS = (
     "The time constants are the eigenvalues of C⁻¹G: they follow from the heat capacities and the "
@@ -113,7 +120,10 @@ def equilibrium_section(validation: Validation) -> str:
         body.append(equilibrium_table(validation, others))
     if not validation.solutions:
         body.append(paragraph("No runs to show."))
-    body += [paragraph(EQUILIBRIUM_PHYSICS), paragraph(TIME_CONSTANT_PHYSICS), paragraph(SPEED_PHYSICS)]
+    body.append(paragraph(EQUILIBRIUM_PHYSICS))
+    if any(run.info.get("coupling") == "nonlinear" for run in validation.solutions.values()):
+        body.append(paragraph(COUPLED_PHYSICS))
+    body += [paragraph(TIME_CONSTANT_PHYSICS), paragraph(SPEED_PHYSICS)]
     return section("equilibrium", "Equilibrium time", "".join(body))
 
 
