@@ -84,7 +84,7 @@ def test_held_out_predictions_fall_in_their_intervals_and_flagged_values_are_not
     from feedtherm.analysis.measurements import Measurement, MeasurementSet
 
     names = ["screw_nut_preload"]
-    truth = apply_values(paper, names, [900.0])
+    truth = apply_values(paper, names, [300.0])
     data = synthetic_measurements(truth, tmp_path / "m.csv", ["I", "II", "IV"])
     own = _Model(truth, [], "physics").finals([], ["I", "II"])
     spoiled = [Measurement(r.condition, r.quantity, r.unit, r.measured + (30.0 if (r.condition, r.quantity) == ("IV", "D_um") else 0.0))
@@ -95,7 +95,7 @@ def test_held_out_predictions_fall_in_their_intervals_and_flagged_values_are_not
     result = calibrate(paper, data, ["I", "IV"], names, consistency=flags)
     assert [(r.condition, r.quantity, r.flag) for r in result.excluded] == [("IV", "D_um", "spoiled on purpose")]
     assert abs(result.excluded[0].deviation + 30.0) < 2.0  # the fit did not bend towards the spoiled value
-    assert abs(result.fitted[0] - 900.0) < 3 * result.standard_errors[0]
+    assert abs(result.fitted[0] - 300.0) < 3 * result.standard_errors[0]
     fitted_eq = [r for r in result.residuals if r.quantity == EQUILIBRIUM_QUANTITY]
     assert [r.condition for r in fitted_eq] == ["I"] and abs(fitted_eq[0].deviation) < 1.0  # minutes
     held = result.held_out
@@ -139,15 +139,17 @@ def test_unknown_parameter_raises_before_any_run(paper):
 
 
 def test_a_parameter_pushed_to_its_bound_is_flagged(paper_equations, tmp_path):
-    # Measurements far hotter than any preload within [50, 3000] N can make under the paper's
-    # equation loss models: the fit ends at the upper bound, and says so.
+    # Measurements far hotter than any preload within the declared [50, 365] N can make under the
+    # paper's equation loss models: the fit ends at the upper bound, and says so.
     paper = paper_equations
+    upper = resolve_parameters(paper, ["screw_nut_preload"])[0].upper
+    assert upper == pytest.approx(365.0)
     lines = ["condition,quantity,unit,measured"] + [f"I,{q},C,60.0" for q in SENSORS]
     path = tmp_path / "hot.csv"
     path.write_text("\n".join(lines) + "\n")
     result = calibrate(paper, read_measurements(str(path), sensors=SENSORS), ["I"], ["screw_nut_preload"])
     assert result.at_bound == ["upper"]
-    assert result.fitted[0] == pytest.approx(3000.0)
+    assert result.fitted[0] == pytest.approx(upper)
 
 
 def test_parallel_conditions_give_the_serial_values(paper):
