@@ -17,7 +17,7 @@ import platform
 import resource
 import time
 
-from feedtherm.analysis.calibration import calibrate, cross_validate
+from feedtherm.analysis.calibration import RunCache, calibrate, cross_validate
 from feedtherm.analysis.consistency import check_description_measurements
 from feedtherm.analysis.validation import measurements_of
 from feedtherm.outputs.calibration_files import worst
@@ -50,7 +50,7 @@ def main() -> None:
 
     started = time.perf_counter()
     consistency = check_description_measurements(loaded.system, data)
-    options = {"consistency": consistency, "workers": args.workers}
+    options = {"consistency": consistency, "workers": args.workers, "cache": RunCache()}
     result = calibrate(loaded, data, fit, names, **options)
     first = time.perf_counter() - started
     folds = cross_validate(loaded, data, names, start=result.fitted, **options)

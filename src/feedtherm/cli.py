@@ -245,7 +245,7 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     _require_paper_table(loaded, args.mode)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "calibration", args.mode)
     check_output_dir(out_dir)
-    from .analysis.calibration import calibrate, cross_validate, resolve_parameters
+    from .analysis.calibration import RunCache, calibrate, cross_validate, resolve_parameters
     from .analysis.consistency import check_description_measurements
     from .analysis.validation import measurements_of
     from .outputs.calibration_files import print_calibration, write_calibration
@@ -256,7 +256,7 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     resolve_parameters(loaded, names)  # unknown names and missing bounds fail before any run
     consistency = check_description_measurements(loaded.system, data)
     options = {"mode": args.mode, "consistency": consistency, "equilibrium": not args.no_equilibrium,
-               "workers": args.workers}
+               "workers": args.workers, "cache": RunCache()}
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
         result = calibrate(loaded, data, fit, names, progress=progress, **options)
     cross = None

@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
-from scipy.optimize import least_squares
+from scipy.optimize import least_squares, lsq_linear
 from scipy.stats import t as student_t
 
 from ..errors import FeedthermError
@@ -191,17 +191,49 @@ def _final_values(loaded: LoadedSystem, condition: str, mode: str) -> dict[str, 
     return values
 
 
+class RunCache:
+    """Final values of runs already made, by parameter values and condition.
+
+    A calibration evaluates the same points more than once: the prediction intervals start
+    from the optimum the fit has just evaluated, and every leave-one-out fold starts from the
+    first fit's optimum, where its values and sensitivities are known.  Pass one cache to
+    :func:`calibrate` and :func:`cross_validate` of one system and mode to run each point once.
+    The runs are deterministic, so a cached value is the value the run would give.
+    """
+
+    def __init__(self) -> None:
+        self._finals: dict[tuple, dict[str, float]] = {}
+
+    def get(self, key: tuple) -> dict[str, float] | None:
+        return self._finals.get(key)
+
+    def put(self, key: tuple, finals: dict[str, float]) -> None:
+        self._finals[key] = finals
+
+    def __len__(self) -> int:
+        return len(self._finals)
+
+
+#: Finite-difference step of the sensitivities, as a fraction of each parameter's range.  One
+#: step serves the fit's Jacobian and the prediction intervals, so that the points of one are
+#: reused by the other; 1 % stays clear of the jitter the coupling tolerance leaves in the
+#: values (re-evaluations at 0.2 K thresholds), where 0.1 % did not.
+SENSITIVITY_STEP = 0.01
+
+
 class _Model:
     """Final values (and the time to 95 % of the steady rise) of conditions, counting the runs.
 
-    With ``workers`` > 1 the conditions of one evaluation run in parallel processes (the runs
-    are independent; a least-squares step needs all of them before it can go on).
+    With ``workers`` > 1 the runs of one request run in parallel processes (the runs are
+    independent).  ``cache`` keeps every run's values for later requests of the same point.
     """
 
-    def __init__(self, loaded: LoadedSystem, parameters: list[FitParameter], mode: str, workers: int = 1):
+    def __init__(self, loaded: LoadedSystem, parameters: list[FitParameter], mode: str, workers: int = 1,
+                 cache: RunCache | None = None):
         self.loaded, self.parameters, self.mode = loaded, parameters, mode
         self.runs = 0
         self.workers = max(1, workers)
+        self.cache = cache if cache is not None else RunCache()
         self._pool: ProcessPoolExecutor | None = None
 
     def __enter__(self) -> "_Model":
@@ -212,16 +244,53 @@ class _Model:
             self._pool.shutdown()
             self._pool = None
 
+    def _key(self, x, condition: str) -> tuple:
+        # 12 significant digits: a point that went through the fit's [0, 1] scaling and back
+        # differs from itself in the last bit
+        names = tuple(p.name for p in self.parameters)
+        return (self.mode, condition, names, tuple(float(f"{float(v):.12g}") for v in x))
+
     def finals(self, x, conditions: list[str]) -> dict[str, dict[str, float]]:
-        variant = apply(self.loaded, self.parameters, x)
-        self.runs += len(conditions)
-        if self.workers == 1 or len(conditions) == 1:
-            return {c: _final_values(variant, c, self.mode) for c in conditions}
-        if self._pool is None:
-            context = mp.get_context("fork" if "fork" in mp.get_all_start_methods() else "spawn")
-            self._pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=context)
-        futures = {c: self._pool.submit(_final_values, variant, c, self.mode) for c in conditions}
-        return {c: f.result() for c, f in futures.items()}
+        return self.finals_many([x], conditions)[0]
+
+    def finals_many(self, points: list, conditions: list[str]) -> list[dict[str, dict[str, float]]]:
+        """Values of every condition at every point; the runs not cached run side by side."""
+        missing = [(i, c) for i, x in enumerate(points) for c in conditions
+                   if self.cache.get(self._key(x, c)) is None]
+        missing = list(dict.fromkeys(missing))
+        if missing:
+            variants = {i: apply(self.loaded, self.parameters, points[i]) for i in {i for i, _ in missing}}
+            self.runs += len(missing)
+            if self.workers == 1 or len(missing) == 1:
+                values = [_final_values(variants[i], c, self.mode) for i, c in missing]
+            else:
+                if self._pool is None:
+                    context = mp.get_context("fork" if "fork" in mp.get_all_start_methods() else "spawn")
+                    self._pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=context)
+                futures = [self._pool.submit(_final_values, variants[i], c, self.mode) for i, c in missing]
+                values = [f.result() for f in futures]
+            for (i, c), v in zip(missing, values):
+                self.cache.put(self._key(points[i], c), v)
+        return [{c: self.cache.get(self._key(x, c)) for c in conditions} for x in points]
+
+    def sensitivities(self, x, lower, upper, conditions: list[str]):
+        """Values at ``x`` and their forward differences per parameter, all runs side by side.
+
+        The step is :data:`SENSITIVITY_STEP` of each range, towards the farther bound.
+        Returns ``(base, steps, moved)``: the values at ``x``, the step per parameter and the
+        values at each shifted point.
+        """
+        x = np.asarray(x, dtype=float)
+        span = upper - lower
+        steps, points = [], [x]
+        for j in range(len(x)):
+            h = SENSITIVITY_STEP * span[j] * (1.0 if x[j] + SENSITIVITY_STEP * span[j] <= upper[j] else -1.0)
+            shifted = x.copy()
+            shifted[j] += h
+            steps.append(h)
+            points.append(shifted)
+        values = self.finals_many(points, conditions)
+        return values[0], steps, values[1:]
 
 
 @dataclass(frozen=True)
@@ -268,13 +337,14 @@ def _sigma(loaded: LoadedSystem, unit: str) -> float:
 def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names: list[str], *,
               mode: str = "physics", progress: Callable[[float], None] | None = None,
               consistency: ConsistencyReport | None = None, equilibrium: bool = True,
-              start: np.ndarray | None = None, workers: int = 1) -> CalibrationResult:
+              start: np.ndarray | None = None, workers: int = 1, cache: RunCache | None = None) -> CalibrationResult:
     """Fit the parameters ``names`` to the conditions ``fit``; predict every other condition.
 
     ``consistency``: values it flags are left out of the fit (and reported with their reason).
     ``equilibrium``: also fit the stated equilibrium times of the fitted conditions.
     ``start``: the parameter values to start from (default: the description's, clipped to the bounds).
     ``workers``: processes that run the conditions of one evaluation side by side.
+    ``cache``: runs already made (shared with a later :func:`cross_validate`).
     """
     started = time.perf_counter()
     measured = data.conditions()
@@ -289,25 +359,43 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
     rows = [r for r in fitted_data if not r.flag]
     if len(rows) < len(parameters):
         raise FeedthermError(f"--fit: {len(rows)} measured values cannot determine {len(parameters)} parameters")
-    with _Model(loaded, parameters, mode, workers) as model:
+    with _Model(loaded, parameters, mode, workers, cache) as model:
         sigma = np.array([_sigma(loaded, r.unit) for r in rows])
         target = np.array([r.measured for r in rows])
         lower = np.array([p.lower for p in parameters])
         upper = np.array([p.upper for p in parameters])
         span = upper - lower
 
-        def residuals(u):  # u: parameters scaled to [0, 1] within their bounds
-            finals = model.finals(lower + u * span, fit)
-            if progress is not None:
-                progress(min(0.9, model.runs / (len(fit) * (len(parameters) + 1) * 8)))
+        def values(finals) -> np.ndarray:
             return (np.array([finals[r.condition][r.quantity] for r in rows]) - target) / sigma
 
+        def report_progress() -> None:
+            if progress is not None:
+                progress(min(0.9, model.runs / (len(fit) * (len(parameters) + 1) * 8)))
+
+        def residuals(u):  # u: parameters scaled to [0, 1] within their bounds
+            out = values(model.finals(lower + u * span, fit))
+            report_progress()
+            return out
+
+        def jacobian(u):  # the same forward differences as the prediction intervals', in u
+            base, steps, moved = model.sensitivities(lower + u * span, lower, upper, fit)
+            report_progress()
+            f0 = values(base)
+            return np.column_stack([(values(m) - f0) / (h / s) for m, h, s in zip(moved, steps, span)])
+
         x_start = np.array([p.start for p in parameters]) if start is None else np.clip(start, lower, upper)
-        u0 = (x_start - lower) / span
-        result = least_squares(residuals, u0, bounds=(0.0, 1.0), diff_step=1e-3, x_scale=1.0, xtol=1e-3, ftol=1e-4)
-        x = lower + result.x * span
-        se, corr, identifiable, cov, s2, dof = _uncertainty(result.jac / span[None, :], result.fun, x, len(rows))
-        at_bound = ["lower" if u <= 1e-6 else "upper" if u >= 1 - 1e-6 else "" for u in result.x]
+        u = (x_start - lower) / span
+        jac = jacobian(u)
+        for _ in range(MAX_FIT_ROUNDS):
+            result = least_squares(residuals, u, jac=_Broyden(residuals, u, jac), bounds=(0.0, 1.0), x_scale=1.0,
+                                   xtol=XTOL, ftol=FTOL)
+            u, jac = result.x, jacobian(result.x)
+            if _converged(jac, result.fun, u):
+                break
+        x = lower + u * span
+        se, corr, identifiable, cov, s2, dof = _uncertainty(jac / span[None, :], result.fun, x, len(rows))
+        at_bound = ["lower" if ui <= 1e-6 else "upper" if ui >= 1 - 1e-6 else "" for ui in u]
         held_out = [c for c in measured if c not in fit and c in loaded.system.conditions]
         every = _data(data, list(fit) + held_out, consistency, equilibrium)
         finals, intervals = _prediction_intervals(model, x, lower, upper, every, cov, s2, dof, loaded)
@@ -326,12 +414,56 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
         )
 
 
+#: Tolerances of the fit, on the parameters scaled to [0, 1] and on the relative cost reduction.
+XTOL, FTOL = 1e-3, 1e-4
+#: Rounds of least squares, each ended by a full finite-difference Jacobian (see :class:`_Broyden`).
+MAX_FIT_ROUNDS = 4
+
+
+class _Broyden:
+    """The fit's Jacobian: finite differences where a round starts, Broyden's updates after.
+
+    A forward-difference Jacobian costs one run per parameter and condition; a least-squares
+    step costs one run per condition.  Within a round the Jacobian is updated from the steps
+    the fit takes anyway (Broyden's rank-one secant update, Dennis & Schnabel 1996, §8.1), and
+    each round ends with a finite-difference Jacobian at the point reached: it is the one the
+    covariance and the prediction intervals use, and :func:`_converged` checks on it that the
+    point is a minimum; if not, a new round starts there.
+    """
+
+    def __init__(self, residuals: Callable, u0: np.ndarray, jac0: np.ndarray):
+        self.residuals = residuals
+        self.u, self.f, self.jac = np.array(u0, dtype=float), residuals(u0), np.array(jac0, dtype=float)
+
+    def __call__(self, u) -> np.ndarray:
+        u = np.asarray(u, dtype=float)
+        du = u - self.u
+        if np.any(du != 0.0):
+            f = self.residuals(u)  # evaluated by the fit already: a cached run
+            self.jac = self.jac + np.outer(f - self.f - self.jac @ du, du) / float(du @ du)
+            self.u, self.f = u.copy(), f
+        return self.jac.copy()
+
+
+def _converged(jac: np.ndarray, fun: np.ndarray, u: np.ndarray) -> bool:
+    """Whether the bounded Gauss-Newton step from ``u`` with the exact Jacobian is negligible.
+
+    The step solves min |J·d + f| with 0 ≤ u + d ≤ 1 (scipy ``lsq_linear``); it is negligible
+    when it moves no scaled parameter by more than ``XTOL`` or promises a cost reduction below
+    ``FTOL`` of the cost, the tolerances ``least_squares`` stops on.
+    """
+    step = lsq_linear(jac, -fun, bounds=(-u, 1.0 - u)).x
+    cost = 0.5 * float(fun @ fun)
+    predicted = cost - 0.5 * float(np.sum((jac @ step + fun) ** 2))
+    return float(np.max(np.abs(step), initial=0.0)) <= XTOL or predicted <= FTOL * cost
+
+
 def _prediction_intervals(model: _Model, x, lower, upper, rows: list[_Datum], cov: np.ndarray, s2: float, dof: int,
                           loaded: LoadedSystem):
     """Values at ``x`` of every condition in ``rows`` and the 95 % half-width of each.
 
     Var = g·Cov·gᵀ + s²·σ²: ``g`` the value's sensitivity to the parameters (one-sided
-    differences of 1 % of each range, away from the nearer bound), ``Cov`` the parameter
+    differences of :data:`SENSITIVITY_STEP` of each range, away from the nearer bound), ``Cov`` the parameter
     covariance of the fit, ``σ`` the declared weight of a measurement of that kind and ``s²``
     the residual variance per degree of freedom (1 when none is left), and the coverage factor
     Student's t with those degrees of freedom (s² is itself estimated from few residuals): the
@@ -339,16 +471,10 @@ def _prediction_intervals(model: _Model, x, lower, upper, rows: list[_Datum], co
     the fit's.
     """
     conditions = list(dict.fromkeys(r.condition for r in rows))
-    base = model.finals(x, conditions)
-    span = upper - lower
-    gradients = {(r.condition, r.quantity): np.zeros(len(x)) for r in rows}
-    for j in range(len(x)):
-        h = 0.01 * span[j] * (1.0 if x[j] + 0.01 * span[j] <= upper[j] else -1.0)
-        shifted = x.copy()
-        shifted[j] += h
-        moved = model.finals(shifted, conditions)
-        for r in rows:
-            gradients[(r.condition, r.quantity)][j] = (moved[r.condition][r.quantity] - base[r.condition][r.quantity]) / h
+    base, steps, moved = model.sensitivities(x, lower, upper, conditions)
+    gradients = {(r.condition, r.quantity): np.array([(m[r.condition][r.quantity] - base[r.condition][r.quantity]) / h
+                                                      for m, h in zip(moved, steps)])
+                 for r in rows}
     coverage = float(student_t.ppf(0.975, dof)) if dof > 0 else Z95
     intervals = {}
     for key, g in gradients.items():
@@ -391,22 +517,24 @@ def _uncertainty(jac: np.ndarray, fun: np.ndarray, x: np.ndarray, m: int):
 def cross_validate(loaded: LoadedSystem, data: MeasurementSet, names: list[str], *, mode: str = "physics",
                    progress: Callable[[float], None] | None = None, consistency: ConsistencyReport | None = None,
                    equilibrium: bool = True, start: np.ndarray | None = None,
-                   workers: int = 1) -> list[tuple[str, CalibrationResult]]:
+                   workers: int = 1, cache: RunCache | None = None) -> list[tuple[str, CalibrationResult]]:
     """Leave each measured condition out in turn: fit on the rest, predict the one left out.
 
     ``start``: where every fold's fit starts (a fit on all the conditions is a good start:
-    a fold differs from it by one condition's data).
+    a fold differs from it by one condition's data).  ``cache``: pass the first fit's, so the
+    folds reuse its values and sensitivities at their common start.
     """
+    cache = cache if cache is not None else RunCache()
     conditions = [c for c in data.conditions() if c in loaded.system.conditions]
     out = []
     for i, left_out in enumerate(conditions):
         fit = [c for c in conditions if c != left_out]
         out.append((left_out, calibrate(loaded, data, fit, names, mode=mode, consistency=consistency,
-                                        equilibrium=equilibrium, start=start, workers=workers)))
+                                        equilibrium=equilibrium, start=start, workers=workers, cache=cache)))
         if progress is not None:
             progress((i + 1) / len(conditions))
     return out
 
 
-__all__ = ["calibrate", "cross_validate", "resolve_parameters", "CalibrationResult", "Prediction", "ELONGATION_QUANTITY",
+__all__ = ["calibrate", "cross_validate", "RunCache", "resolve_parameters", "CalibrationResult", "Prediction", "ELONGATION_QUANTITY",
            "EQUILIBRIUM_QUANTITY"]

@@ -68,6 +68,10 @@ def absolute_temperature(name, T):
 
 def check_range_nonzero(correlation, quantity, a, low, high):
     """check_range on the non-zero entries: 0 is the no-driving-force limit (Nu = 0)."""
+    if np.ndim(a) == 0:  # the common scalar case, without numpy's masking
+        if float(a) > 0.0:
+            check_range(correlation, quantity, float(a), low, high)
+        return
     nz = a[a > 0.0]
     if nz.size:
         check_range(correlation, quantity, nz, low, high)

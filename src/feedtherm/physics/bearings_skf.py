@@ -682,6 +682,11 @@ def _nu_mm2_s(nu):
 
 def _positive(value, label):
     arr = np.asarray(value, dtype=float)
+    if arr.ndim == 0:  # the common scalar case, without numpy's reductions
+        v = float(arr)
+        if not (math.isfinite(v) and v > 0.0):
+            raise ValueError(f"{label} must be finite and > 0, got {value!r}")
+        return arr
     if np.any(~np.isfinite(arr)) or np.any(arr <= 0.0):
         raise ValueError(f"{label} must be finite and > 0, got {value!r}")
     return arr
@@ -689,6 +694,11 @@ def _positive(value, label):
 
 def _nonneg(value, label):
     arr = np.asarray(value, dtype=float)
+    if arr.ndim == 0:  # the common scalar case, without numpy's reductions
+        v = float(arr)
+        if not (math.isfinite(v) and v >= 0.0):
+            raise ValueError(f"{label} must be finite and >= 0, got {value!r}")
+        return arr
     if np.any(~np.isfinite(arr)) or np.any(arr < 0.0):
         raise ValueError(f"{label} must be finite and >= 0, got {value!r}")
     return arr

@@ -37,6 +37,10 @@ _MORGAN = ((1e-2, 0.675, 0.058), (1e2, 1.02, 0.148), (1e4, 0.850, 0.188),
 
 def _power_law(x, regimes):
     """Piecewise C·x^n; regime i covers [upper_{i-1}, upper_i)."""
+    if np.ndim(x) == 0:  # the common scalar case, without building arrays
+        v = float(x)
+        _, C, n = next(r for r in regimes if v < r[0] or r[0] == math.inf)
+        return C * v**n
     idx = np.searchsorted([r[0] for r in regimes], x, side="right")
     C = np.array([r[1] for r in regimes])[idx]
     n = np.array([r[2] for r in regimes])[idx]

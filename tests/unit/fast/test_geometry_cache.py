@@ -42,3 +42,31 @@ def test_a_moved_face_is_a_new_geometry(paper, empty_cache):
     bigger = with_values(paper, {"parts.worktable.boxes[0].size[2]": 0.030}).system
     operators(bigger)
     assert len(assemble._GEOMETRY) == 2
+
+
+def _bases(system):
+    model = discretize(system, "fast", ModelOptions())
+    return model, model.boundary_basis(None)
+
+
+def test_boundary_bases_are_shared_by_a_geometry_and_equal_a_fresh_build(paper, empty_cache):
+    _, original = _bases(paper.system)
+    hotter = with_values(paper, {"sources.screw_nut.preload": 300.0,
+                                 "surfaces.screw_shaft.chtc_factor": 2.0}).system
+    _, reused = _bases(hotter)
+    assert reused is original  # no face moved and the heat goes where it went: the same basis
+    assemble._GEOMETRY.clear()
+    _, fresh = _bases(hotter)
+    assert fresh is not original
+    for a, b in ((reused.exposure, fresh.exposure), (reused.distribution, fresh.distribution)):
+        np.testing.assert_array_equal(a.toarray(), b.toarray())
+
+
+def test_a_source_sent_elsewhere_gets_its_own_basis(paper, empty_cache):
+    model, original = _bases(paper.system)
+    names = list(paper.system.sources)
+    i = names.index("front_bearing")
+    moved = with_values(paper, {"sources.front_bearing.into": {"screw": 1.0}}).system
+    _, other = _bases(moved)
+    assert other is not original
+    assert not np.array_equal(other.distribution.toarray()[i], original.distribution.toarray()[i])

@@ -68,7 +68,7 @@ def _geometry_cache(layout: Layout) -> dict:
     if digest in _GEOMETRY:
         _GEOMETRY.move_to_end(digest)
     else:
-        _GEOMETRY[digest] = {"sides": {}, "contacts": {}, "surfaces": {}}
+        _GEOMETRY[digest] = {"sides": {}, "contacts": {}, "surfaces": {}, "bases": {}}
         while len(_GEOMETRY) > _GEOMETRY_ENTRIES:
             _GEOMETRY.popitem(last=False)
     return _GEOMETRY[digest]
@@ -91,6 +91,8 @@ class Network:
         self.system = layout.system
         self._check_joints()
         cache = _geometry_cache(layout)
+        #: this geometry's cache, shared with every model built on the same geometry
+        self.geometry = cache
         sides = cache["sides"]
         for name, cells in layout.cells.items():
             if name not in sides:

@@ -7,7 +7,7 @@ import scipy.sparse as sp
 
 from ...constants import AMBIENT_SENSOR, ELONGATION_PROBE
 from ...system.schema import FeedSystem
-from ..interface import HeatInput, ThermalModel, elongation_row
+from ..interface import BoundaryBasis, HeatInput, ThermalModel, elongation_row, source_shares
 from ..options import ModelOptions
 from .assemble import Network
 from .layout import build_layout
@@ -37,6 +37,20 @@ class FastDiscretization(ThermalModel):
 
     def heat_distribution(self, heat: HeatInput, k: int) -> np.ndarray:
         return self.network.heat_distribution(heat.part, heat.over_contact_with, k)
+
+    def boundary_basis(self, k: int | None) -> BoundaryBasis:
+        """As :meth:`ThermalModel.boundary_basis`, shared by the models of one geometry.
+
+        Calibration and sweeps build a model per run for values that move no face; the bases
+        depend on the geometry (the network's digest) and on where the sources' heat goes
+        (their shares, which the digest leaves out), so they are kept under both.
+        """
+        shares = tuple((s.source, s.part, s.power, s.over_contact_with) for s in source_shares(self.system))
+        bases = self.network.geometry["bases"]
+        key = (k, shares)
+        if key not in bases:
+            bases[key] = super().boundary_basis(k)
+        return bases[key]
 
     # -------------------------------------------------------------- probes
     def _probes(self) -> None:
