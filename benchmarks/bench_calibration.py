@@ -23,7 +23,7 @@ from feedtherm.analysis.validation import measurements_of
 from feedtherm.outputs.calibration_files import worst
 from feedtherm.system.load import load_system
 
-DEFAULT_PARAMS = "screw_nut_preload,front_bearing_preload,foundation,chtc_screw"
+DEFAULT_PARAMS = "screw_nut_preload,front_bearing_preload,foundation,chtc_screw,elongation_read_at"
 
 
 def largest(rows) -> dict:

@@ -54,6 +54,26 @@ def test_known_parameters_are_recovered_within_their_standard_errors(paper, tmp_
     assert {p.name for p in out} == {"calibrated.toml", "calibration.json", "heldout.csv"}
 
 
+def test_the_point_the_elongation_is_read_at_is_recovered_and_written_in_mm(paper, tmp_path):
+    """Only D depends on elongation.read_at: from one condition's D the fit finds the point."""
+    params = resolve_parameters(paper, ["elongation_read_at"])
+    from feedtherm.analysis.calibration import apply
+
+    generating = apply(paper, params, [0.22])
+    data = synthetic_measurements(generating, tmp_path / "synthetic.csv", ["I", "III"])
+    result = calibrate(paper, data, ["I"], ["elongation_read_at"], equilibrium=False)
+    # D grows by about 70 µm per metre of read point at I (hand check: α·ΔT̄ = 1.2e-5 · 6 K);
+    # the synthetic D carries 0.5 µm of noise, so the point is known to about ±7 mm per σ
+    assert abs(result.fitted[0] - 0.22) < 0.015
+    held = {(p.condition, p.quantity): p for p in result.held_out}
+    assert abs(held[("III", "D_um")].deviation) < 1.5  # 0.5 µm noise, carried to III
+    write_calibration(paper, result, tmp_path / "cal")
+    text = (tmp_path / "cal" / "calibrated.toml").read_text()
+    assert load_system(str(tmp_path / "cal" / "calibrated.toml")).system.elongation.read_at == pytest.approx(
+        result.fitted[0], rel=1e-5)
+    assert "mm" in text.split("[elongation]")[1].split("[")[0]
+
+
 def test_parameters_the_data_cannot_separate_are_reported(paper, tmp_path):
     # The thread's friction coefficient and its preload act only through one friction torque:
     # two temperatures cannot tell them apart, and the fit must say so instead of returning
