@@ -210,9 +210,6 @@ class RunCache:
     def put(self, key: tuple, finals: dict[str, float]) -> None:
         self._finals[key] = finals
 
-    def __len__(self) -> int:
-        return len(self._finals)
-
 
 #: Finite-difference step of the sensitivities, as a fraction of each parameter's range.  One
 #: step serves the fit's Jacobian and the prediction intervals, so that the points of one are

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from feedtherm.physics._arrays import scalar_or_array as _out
+from feedtherm.physics._checks import finite_array
 
 #: Geometric constants (R1, R2, R3, S1, S2, S3) for the rolling and sliding moments, in the
 #: catalogue's units; R3 = S3 = 0 where the bearing type has no F_g term.
@@ -681,24 +682,9 @@ def _nu_mm2_s(nu):
 
 
 def _positive(value, label):
-    arr = np.asarray(value, dtype=float)
-    if arr.ndim == 0:  # the common scalar case, without numpy's reductions
-        v = float(arr)
-        if not (math.isfinite(v) and v > 0.0):
-            raise ValueError(f"{label} must be finite and > 0, got {value!r}")
-        return arr
-    if np.any(~np.isfinite(arr)) or np.any(arr <= 0.0):
-        raise ValueError(f"{label} must be finite and > 0, got {value!r}")
-    return arr
+    return finite_array(value, label, positive=True)
 
 
 def _nonneg(value, label):
-    arr = np.asarray(value, dtype=float)
-    if arr.ndim == 0:  # the common scalar case, without numpy's reductions
-        v = float(arr)
-        if not (math.isfinite(v) and v >= 0.0):
-            raise ValueError(f"{label} must be finite and >= 0, got {value!r}")
-        return arr
-    if np.any(~np.isfinite(arr)) or np.any(arr < 0.0):
-        raise ValueError(f"{label} must be finite and >= 0, got {value!r}")
-    return arr
+    return finite_array(value, label)
+

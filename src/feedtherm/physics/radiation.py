@@ -17,28 +17,24 @@ from scipy.constants import Stefan_Boltzmann
 SIGMA = Stefan_Boltzmann
 
 
+def _outside(a: np.ndarray, low: float, high: float = math.inf) -> bool:
+    """Whether an entry of ``a`` is not finite or lies outside (low, high]."""
+    if a.ndim == 0:  # the common scalar case, without numpy's reductions
+        v = float(a)
+        return not (math.isfinite(v) and low < v <= high)
+    return bool(np.any(~np.isfinite(a)) or np.any(a <= low) or np.any(a > high))
+
+
 def _validate(emissivity, T_surface, T_ambient):
-    if all(isinstance(v, float) for v in (emissivity, T_surface, T_ambient)):
-        return _validate_scalars(emissivity, T_surface, T_ambient)
     eps = np.asarray(emissivity, dtype=float)
-    if np.any(~np.isfinite(eps)) or np.any(eps <= 0.0) or np.any(eps > 1.0):
+    if _outside(eps, 0.0, 1.0):
         raise ValueError(f"emissivity must lie in (0, 1], got {emissivity!r}")
     Ts = np.asarray(T_surface, dtype=float)
     Ta = np.asarray(T_ambient, dtype=float)
     for name, T in (("T_surface", Ts), ("T_ambient", Ta)):
-        if np.any(~np.isfinite(T)) or np.any(T <= 0.0):
+        if _outside(T, 0.0):
             raise ValueError(f"{name} must be an absolute temperature in K (> 0)")
     return eps, Ts, Ta
-
-
-def _validate_scalars(eps: float, Ts: float, Ta: float):
-    """:func:`_validate` for plain floats (the boundary step's case), without numpy's reductions."""
-    if not (math.isfinite(eps) and 0.0 < eps <= 1.0):
-        raise ValueError(f"emissivity must lie in (0, 1], got {eps!r}")
-    for name, T in (("T_surface", Ts), ("T_ambient", Ta)):
-        if not (math.isfinite(T) and T > 0.0):
-            raise ValueError(f"{name} must be an absolute temperature in K (> 0)")
-    return np.asarray(eps), np.asarray(Ts), np.asarray(Ta)
 
 
 def _out(a):

@@ -24,6 +24,8 @@ class FastDiscretization(ThermalModel):
         self.positions = self.layout.positions
         self.dx = self.layout.dx
         self._sliding: dict[int, sp.csr_matrix] = {}
+        # where the sources' heat goes: with the geometry, what the boundary bases depend on
+        self._source_shares = tuple((h.source, h.part, h.power, h.over_contact_with) for h in source_shares(system))
         self._probes()
 
     # -------------------------------------------------------------- operators
@@ -45,9 +47,8 @@ class FastDiscretization(ThermalModel):
         depend on the geometry (the network's digest) and on where the sources' heat goes
         (their shares, which the digest leaves out), so they are kept under both.
         """
-        shares = tuple((s.source, s.part, s.power, s.over_contact_with) for s in source_shares(self.system))
         bases = self.network.geometry["bases"]
-        key = (k, shares)
+        key = (k, self._source_shares)
         if key not in bases:
             bases[key] = super().boundary_basis(k)
         return bases[key]
