@@ -4,11 +4,20 @@ A description states every dimensional value as a string ``"<number> <unit>"`` (
 example ``"32 mm"``, ``"396 rpm"``, ``"20 degC"``, ``"1.25e-3 m^2*K/W"``), parsed with
 pint and stored as a float in SI units (K for temperatures, rad/s for speeds).  A bare
 number is accepted only for dimensionless quantities, so a unit is never guessed.
+
+Every value must be finite, and the quantities with a :class:`Limit` must lie inside it:
+ranges no machine-tool feed drive leaves, stated with their reason, so that a typo (``20 K``
+for ``20 degC``, ``1e30 rpm``) is an error at the description rather than a crash, a hang or
+a nonsense result later.  A rotational speed written per unit time without an angle
+(``1/min``, ``Hz``) counts revolutions, as datasheets mean it (pint alone would read it as
+radians, 2 pi too slow).
 """
 
 from __future__ import annotations
 
+import math
 import re
+from dataclasses import dataclass
 from functools import lru_cache
 from typing import Annotated
 
@@ -16,6 +25,48 @@ import pint
 from pydantic import BeforeValidator
 
 _NUMBER_AND_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
+_KELVIN_AT_0C = 273.15
+
+
+@dataclass(frozen=True)
+class Limit:
+    """The range ``low..high`` [``si``] a quantity must lie in, shown in ``unit`` with its reason.
+
+    ``magnitude``: the limit applies to the absolute value (signed quantities such as a
+    direction of rotation).
+    """
+
+    low: float
+    high: float
+    si: str
+    unit: str
+    reason: str
+    magnitude: bool = False
+
+    def violated_by(self, si_value: float) -> bool:
+        v = abs(si_value) if self.magnitude else si_value
+        return not self.low <= v <= self.high
+
+    def describe(self) -> str:
+        low, high = (float(registry().Quantity(x, self.si).to(self.unit).magnitude) for x in (self.low, self.high))
+        span = f"|value| <= {high:g} {self.unit}" if self.magnitude else f"{low:g} to {high:g} {self.unit}"
+        return f"{span} ({self.reason})"
+
+
+#: The ranges of the limited quantities (docs/system-description.md, "Accepted ranges").
+TEMPERATURE_LIMIT = Limit(_KELVIN_AT_0C - 150.0, _KELVIN_AT_0C + 1000.0, "K", "degC",
+                          "the range of the air and lubricant properties feedtherm uses")
+ROTATIONAL_SPEED_LIMIT = Limit(0.0, 100_000 * 2 * math.pi / 60, "rad/s", "rpm",
+                               "faster than any machine-tool drive or spindle", magnitude=True)
+LENGTH_LIMIT = Limit(0.0, 100.0, "m", "m", "larger than any machine tool", magnitude=True)
+CONDUCTIVITY_LIMIT = Limit(0.0, 5000.0, "W/(m*K)", "W/(m*K)", "above every solid's, diamond's 2,200 included")
+POWER_LIMIT = Limit(0.0, 1e6, "W", "W", "a megawatt is beyond any feed drive's heat")
+DENSITY_LIMIT = Limit(0.0, 25_000.0, "kg/m^3", "kg/m^3", "denser than any material, osmium's 22,600 included")
+SPECIFIC_HEAT_LIMIT = Limit(0.0, 20_000.0, "J/(kg*K)", "J/(kg*K)", "above every material's, hydrogen's 14,300 included")
+EXPANSION_LIMIT = Limit(0.0, 1e-3, "1/K", "1/K", "ten times a polymer's")
+
+#: The unit a bare number's hint suggests, where it is not the SI unit.
+_HINT_UNITS = {"m": "mm", "rad/s": "rpm", "m^2": "mm^2", "N*m": "N*m"}
 
 
 @lru_cache(maxsize=1)
@@ -24,7 +75,13 @@ def registry() -> pint.UnitRegistry:
     return pint.UnitRegistry()
 
 
-def to_si(value: object, si_unit: str, *, sign: str = "any") -> float:
+def _counts_revolutions(quantity) -> bool:
+    """True for a speed written per unit time without an angle (``1/min``, ``Hz``)."""
+    return "radian" not in quantity.to_root_units()._units
+
+
+def to_si(value: object, si_unit: str, *, sign: str = "any", limit: Limit | None = None,
+          hint: str | None = None) -> float:
     """Convert ``"<number> <unit>"`` to a float in ``si_unit``.
 
     Parameters
@@ -35,18 +92,24 @@ def to_si(value: object, si_unit: str, *, sign: str = "any") -> float:
         Target unit, e.g. ``"m"``, ``"K"``, ``"rad/s"``, ``""`` for dimensionless.
     sign : {"any", "positive", "nonnegative"}
         Constraint on the converted value (temperatures are checked in kelvin).
+    limit : Limit, optional
+        The range the converted value must lie in.
+    hint : str, optional
+        The unit a bare number's message suggests (default: a usual one for ``si_unit``).
 
     Raises
     ------
     ValueError
-        With a one-line reason: no unit, unknown unit, wrong dimension, wrong sign.
+        With a one-line reason: no unit, unknown unit, wrong dimension, wrong sign, not
+        finite, outside ``limit``.
     """
     if isinstance(value, bool):
         raise ValueError(f"expected a quantity, got {value!r}")
     ureg = registry()
+    suggestion = hint or _HINT_UNITS.get(si_unit, si_unit)
     if isinstance(value, (int, float)):
         if si_unit:
-            raise ValueError(f"{value!r} has no unit; write it as \"{value} {si_unit}\"")
+            raise ValueError(f"{value!r} has no unit; write it with one, e.g. \"{value} {suggestion}\"")
         number, unit = float(value), ""
     elif isinstance(value, str):
         match = _NUMBER_AND_UNIT.match(value)
@@ -54,45 +117,65 @@ def to_si(value: object, si_unit: str, *, sign: str = "any") -> float:
             raise ValueError(f"{value!r} is not a quantity of the form \"<number> <unit>\"")
         number, unit = float(match.group(1)), match.group(2)
         if si_unit and not unit:
-            raise ValueError(f"{value!r} has no unit; write it as \"{value} {si_unit}\"")
+            raise ValueError(f"{value!r} has no unit; write it with one, e.g. \"{value.strip()} {suggestion}\"")
     else:
         raise ValueError(f"expected a quantity such as \"1 {si_unit or '1'}\", got {value!r}")
+    if not math.isfinite(number):
+        raise ValueError(f"must be a finite number, got {value!r}")
     try:
         quantity = ureg.Quantity(number, unit or "dimensionless")
         converted = float(quantity.to(si_unit or "dimensionless").magnitude)
+        if si_unit == "rad/s" and _counts_revolutions(quantity):
+            converted *= 2.0 * math.pi
     except pint.errors.UndefinedUnitError:
         raise ValueError(f"unknown unit {unit!r} in {value!r}") from None
     except pint.errors.DimensionalityError:
         raise ValueError(f"{value!r} is not convertible to {si_unit or 'a dimensionless number'}") from None
     except (pint.errors.PintError, AttributeError, TypeError, SyntaxError):
         raise ValueError(f"cannot read the unit of {value!r}") from None
+    if not math.isfinite(converted):
+        raise ValueError(f"must be a finite number, got {value!r} ({converted:g} {si_unit or ''})".replace(" )", ")"))
+    # an absolute temperature below its range is out of range, not "negative"
+    if limit is not None and limit.low > 0 and limit.violated_by(converted):
+        raise ValueError(f"{value!r} lies outside the accepted range, {limit.describe()}{_typo(value, unit, limit)}")
     if sign == "positive" and not converted > 0:
         raise ValueError(f"must be positive, got {value!r}")
     if sign == "nonnegative" and not converted >= 0:
         raise ValueError(f"must not be negative, got {value!r}")
+    if limit is not None and limit.violated_by(converted):
+        raise ValueError(f"{value!r} lies outside the accepted range, {limit.describe()}")
     return converted
 
 
-def _quantity(si_unit: str, sign: str = "any"):
-    return Annotated[float, BeforeValidator(lambda v: to_si(v, si_unit, sign=sign))]
+def _typo(value: object, unit: str, limit: Limit) -> str:
+    """A hint where a temperature written in K would be plausible in degC (``20 K``)."""
+    if limit is TEMPERATURE_LIMIT and unit in ("K", "kelvin") and isinstance(value, str):
+        number = float(_NUMBER_AND_UNIT.match(value).group(1))
+        if not limit.violated_by(number + _KELVIN_AT_0C):
+            return f"; did you mean \"{number:g} degC\"?"
+    return ""
+
+
+def _quantity(si_unit: str, sign: str = "any", limit: Limit | None = None, hint: str | None = None):
+    return Annotated[float, BeforeValidator(lambda v: to_si(v, si_unit, sign=sign, limit=limit, hint=hint))]
 
 
 # Annotated float types: SI value after validation.  "Pos" = strictly positive.
-Length = _quantity("m")
-PosLength = _quantity("m", "positive")
-NonNegLength = _quantity("m", "nonnegative")
+Length = _quantity("m", limit=LENGTH_LIMIT)
+PosLength = _quantity("m", "positive", LENGTH_LIMIT)
+NonNegLength = _quantity("m", "nonnegative", LENGTH_LIMIT)
 PosArea = _quantity("m^2", "positive")
-PosDensity = _quantity("kg/m^3", "positive")
-PosConductivity = _quantity("W/(m*K)", "positive")
-PosSpecificHeat = _quantity("J/(kg*K)", "positive")
-PosExpansion = _quantity("1/K", "positive")
+PosDensity = _quantity("kg/m^3", "positive", DENSITY_LIMIT)
+PosConductivity = _quantity("W/(m*K)", "positive", CONDUCTIVITY_LIMIT)
+PosSpecificHeat = _quantity("J/(kg*K)", "positive", SPECIFIC_HEAT_LIMIT)
+PosExpansion = _quantity("1/K", "positive", EXPANSION_LIMIT)
 PosModulus = _quantity("Pa", "positive")
 PosContactResistance = _quantity("m^2*K/W", "positive")
 PosHeatTransferCoefficient = _quantity("W/(m^2*K)", "positive")
-Power = _quantity("W", "nonnegative")
-Temperature = _quantity("K", "positive")  # absolute: must be above 0 K
-PosTemperatureDifference = _quantity("K", "positive")
-AngularSpeed = _quantity("rad/s")  # signed: the sign is the direction of rotation
+Power = _quantity("W", "nonnegative", POWER_LIMIT)
+Temperature = _quantity("K", "positive", TEMPERATURE_LIMIT, hint="degC")  # absolute
+PosTemperatureDifference = _quantity("K", "positive", hint="K")
+AngularSpeed = _quantity("rad/s", limit=ROTATIONAL_SPEED_LIMIT)  # signed: the sign is the direction of rotation
 Speed = _quantity("m/s")
 NonNegSpeed = _quantity("m/s", "nonnegative")
 PosDuration = _quantity("s", "positive")
@@ -129,6 +212,8 @@ def to_base_si(value: object) -> float:
     if isinstance(value, bool):
         raise ValueError(f"expected a number or a quantity, got {value!r}")
     if isinstance(value, (int, float)):
+        if not math.isfinite(value):
+            raise ValueError(f"must be a finite number, got {value!r}")
         return float(value)
     if not isinstance(value, str):
         raise ValueError(f"expected a number or a quantity, got {value!r}")
@@ -138,6 +223,9 @@ def to_base_si(value: object) -> float:
     number, unit = float(match.group(1)), match.group(2)
     try:
         quantity = registry().Quantity(number, unit or "dimensionless")
-        return float(quantity.to_base_units().magnitude)
+        converted = float(quantity.to_base_units().magnitude)
     except (pint.errors.PintError, AttributeError, TypeError, SyntaxError):
         raise ValueError(f"cannot read the unit of {value!r}") from None
+    if not math.isfinite(converted):
+        raise ValueError(f"must be a finite number, got {value!r}")
+    return converted

@@ -34,7 +34,8 @@ def test_csv_cycle_reads_signed_speeds(tmp_path):
         ("time_s,screw_rpm,nut_rpm,ambient_C\n10,396,360,20\n", "first segment must start at 0 s"),
         ("time_s,screw_rpm,nut_rpm,ambient_C\n0,396,360,20\n0,1,1,20\n", "segment 1 starts at 0 s"),
         ("time_s,screw_rpm,nut_rpm,ambient_C\n0,396,360,20\n5000,1,1,20\n", "at or after the end"),
-        ("time_s,screw_rpm,nut_rpm,ambient_C\n0,396,360,-300\n", "must be positive"),
+        ("time_s,screw_rpm,nut_rpm,ambient_C\n0,396,360,-300\n", "ambient: .-300.0 degC. lies outside the accepted range, -150 to 1000 degC"),
+        ("time_s,screw_rpm,nut_rpm,ambient_C\n0,1e30,360,20\n", "screw_speed: .* lies outside the accepted range, \\|value\\| <= 100000 rpm"),
     ],
 )
 def test_bad_csv_cycles_name_the_line_and_reason(tmp_path, text, fragment):

@@ -101,7 +101,7 @@ def test_a_motor_takes_one_loss_model_only(tmp_path):
     (("torque_constant =", "torque_const ="),
      "unknown key 'torque_const' in sources.screw_motor.losses; did you mean 'torque_constant'?"),
     (("friction_torque = \"11 mN*m\"", "friction_torque = 0.011"),
-     "sources.screw_motor.losses.friction_torque: 0.011 has no unit; write it as \"0.011 N*m\""),
+     "sources.screw_motor.losses.friction_torque: 0.011 has no unit; write it with one, e.g. \"0.011 N*m\""),
 ])
 def test_bad_datasheet_values_are_named(tmp_path, change, expected):
     old, new = change

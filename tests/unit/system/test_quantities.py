@@ -1,8 +1,17 @@
 import math
 
 import pytest
+from pydantic import TypeAdapter, ValidationError
 
-from feedtherm.system.quantities import to_si
+from feedtherm.system.quantities import (
+    AngularSpeed,
+    PosConductivity,
+    PosLength,
+    PosTemperatureDifference,
+    Power,
+    Temperature,
+    to_si,
+)
 
 
 @pytest.mark.parametrize(
@@ -43,3 +52,48 @@ def test_quantities_convert_to_si(text, unit, expected):
 def test_bad_quantities_say_why(value, unit, sign, fragment):
     with pytest.raises(ValueError, match=fragment):
         to_si(value, unit, sign=sign)
+
+
+# The same shaft speed in every spelling a datasheet uses: 396 rev/min = 396 * 2 pi / 60 rad/s
+# = 41.4690 rad/s.  "1/min", "min^-1" and "Hz" carry no angle; an engineer means revolutions.
+@pytest.mark.parametrize("text", ["396 rpm", "396 1/min", "396 min^-1", "6.6 Hz", "6.6 1/s",
+                                  "6.6 revolution/second", "41.469023027385 rad/s", "2376 deg/s"])
+def test_every_spelling_of_a_rotational_speed_gives_the_same_shaft_speed(text):
+    assert to_si(text, "rad/s") == pytest.approx(396 * 2 * math.pi / 60, rel=1e-9)
+
+
+@pytest.mark.parametrize("value", ["1e400 mm", "inf mm", float("inf"), float("nan")])
+def test_values_must_be_finite(value):
+    with pytest.raises(ValueError, match="finite|not a quantity"):
+        to_si(value, "m" if isinstance(value, str) else "")
+
+
+@pytest.mark.parametrize(
+    "annotation, value, fragment",
+    [
+        # the typos: 20 K for 20 degC; an absolute zero crossed; a speed beyond any spindle
+        (Temperature, "20 K", 'lies outside the accepted range, -150 to 1000 degC (the range of the air and '
+                              'lubricant properties feedtherm uses); did you mean "20 degC"?'),
+        (Temperature, "-300 degC", "lies outside the accepted range, -150 to 1000 degC"),
+        (Temperature, 20, 'has no unit; write it with one, e.g. "20 degC"'),
+        (AngularSpeed, "1e30 rpm", "lies outside the accepted range, |value| <= 100000 rpm"),
+        (AngularSpeed, "-200000 rpm", "|value| <= 100000 rpm"),
+        (PosLength, 10, 'has no unit; write it with one, e.g. "10 mm"'),
+        (PosLength, "1e400 mm", "must be a finite number, got '1e400 mm'"),
+        (PosLength, "200 m", "|value| <= 100 m"),
+        (PosLength, "-5 mm", "must be positive"),  # the sign before the range
+        (PosConductivity, "1e30 W/(m*K)", "0 to 5000 W/(m*K)"),
+        (Power, "1e30 W", "0 to 1e+06 W"),
+        (PosTemperatureDifference, 1, 'e.g. "1 K"'),
+    ],
+)
+def test_limits_name_the_range_and_reason(annotation, value, fragment):
+    with pytest.raises(ValidationError) as info:
+        TypeAdapter(annotation).validate_python(value)
+    assert fragment in str(info.value)
+
+
+def test_limits_accept_the_ends_of_their_ranges():
+    assert TypeAdapter(Temperature).validate_python("-150 degC") == pytest.approx(123.15)
+    assert TypeAdapter(AngularSpeed).validate_python("-100000 rpm") == pytest.approx(-100000 * 2 * math.pi / 60)
+    assert TypeAdapter(PosConductivity).validate_python("5000 W/(m*K)") == 5000.0
