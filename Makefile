@@ -5,7 +5,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: setup setup-test validate test bench clean
+.PHONY: setup setup-test validate test bench fuzz clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -39,3 +39,9 @@ clean:
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_fast.py
+
+# The description fuzzing contract with a larger budget than the suite's (about 25 minutes).
+FUZZ_EXAMPLES ?= 2000
+fuzz: $(STAMP)
+	FEEDTHERM_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(BIN)/python -m pytest -q --hypothesis-show-statistics \
+		tests/integration/test_fuzz_descriptions.py

@@ -8,7 +8,9 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import signal
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -54,11 +56,28 @@ def cmd_heat(args: argparse.Namespace) -> int:
 
 
 def cmd_check(args: argparse.Namespace) -> int:
+    from .plan import plan_run
     from .system.checks import check_system
+    from .system.load import parse_toml, read_text, validate_data
 
-    loaded = _load(args.system)
+    text, origin = read_text(args.system)
+    loaded = validate_data(parse_toml(text, origin), origin)  # the schema; the checks below list every error
     findings = check_system(loaded.system)
+    errors = [f for f in findings if f.severity == "error"]
+    if errors:
+        for finding in errors:
+            print(f"feedtherm: error: {origin}: {finding}", file=sys.stderr)
+        return 2
     system = loaded.system
+    # What `heat` and `run` would meet: every condition's and duty cycle's heats and
+    # coefficients evaluated, and its step count planned (a model is not built).
+    for kind, names in (("condition", system.conditions), ("cycle", system.duty_cycles)):
+        for name in names:
+            try:
+                plan_run(loaded, **{kind: name})
+            except FeedthermError as exc:
+                section = "conditions" if kind == "condition" else "duty_cycles"
+                raise FeedthermError(f"{loaded.origin}: {section}.{name}: {exc}") from None
     print(f"{loaded.origin}: valid description '{system.meta.name}' — {len(system.parts)} parts, "
           f"{len(system.joints)} joints, {len(system.sources)} heat sources, {len(system.surfaces)} surfaces, "
           f"{len(system.sensors)} sensors, {len(system.conditions)} conditions; sha256 {loaded.sha256[:12]}")
@@ -432,16 +451,36 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM, raised where the program is, so that it stops as cleanly as on Ctrl-C."""
+
+
+def _raise_terminated(signum, frame) -> None:
+    raise _Terminated()
+
+
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
+    # A terminated run unwinds like an interrupted one: staged outputs are removed, worker
+    # pools shut down, nothing half-written is left (only in the main thread, where Python
+    # may install handlers).
+    previous = None
+    if threading.current_thread() is threading.main_thread():
+        previous = signal.signal(signal.SIGTERM, _raise_terminated)
     try:
         return args.func(args)
     except FeedthermError as exc:
         print(f"feedtherm: error: {exc}", file=sys.stderr)
         return 2
+    except _Terminated:
+        print("feedtherm: terminated", file=sys.stderr)
+        return 128 + signal.SIGTERM
     except KeyboardInterrupt:
         print("feedtherm: interrupted", file=sys.stderr)
         return 130
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
 
 
 if __name__ == "__main__":  # pragma: no cover

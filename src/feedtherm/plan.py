@@ -8,6 +8,7 @@ once; :func:`feedtherm.simulate.execute` integrates a plan and packs its Solutio
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -75,8 +76,40 @@ def plan_run(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
     opts = options or ModelOptions()
     opts = replace(opts, **{name: value for name, value in (("motion", motion), ("mesh", mesh), ("solver", solver))
                             if value is not None})
-    return RunPlan(loaded, label, mode, entry, opts, _segments(loaded, segments, end, mode, single_drive),
-                   single_drive, sample_interval, start)
+    planned = _segments(loaded, segments, end, mode, single_drive)
+    _check_step_count(loaded, planned, opts)
+    return RunPlan(loaded, label, mode, entry, opts, planned, single_drive, sample_interval, start)
+
+
+#: Most time steps a run may plan: a minute or so of the fast model, many hours of the FE model
+#: (the paper bench's 3 h runs take 6,480-9,721; a 24 h duty cycle at its fastest, 78,000).
+#: A fast table with the resolved motion needs steps_per_stroke steps per stroke; beyond this
+#: the run is refused before it starts rather than left to run for hours.
+MAX_STEPS = 500_000
+
+
+def estimated_steps(stroke: float, segments: list[Segment], options: ModelOptions) -> int:
+    """The time steps the shared integrator will take over ``segments`` (as its step rule)."""
+    steps = 0.0
+    for seg in segments:
+        span = seg.t1 - seg.t0
+        if seg.speed == 0.0:
+            dt = min(options.standstill_step, options.max_step)
+        elif options.motion == "averaged":
+            dt = min(options.averaged_step, options.max_step)
+        else:  # steps_per_stroke steps per stroke, none longer than max_step
+            dt = min(stroke / (options.steps_per_stroke * seg.speed), options.max_step)
+        steps += span / dt
+    return math.ceil(steps)
+
+
+def _check_step_count(loaded: LoadedSystem, segments: list[Segment], options: ModelOptions) -> None:
+    steps = estimated_steps(loaded.system.kinematics.stroke, segments, options)
+    if steps > MAX_STEPS:
+        fastest = max(seg.speed for seg in segments) * 60.0
+        raise FeedthermError(f"the run would take about {steps:,} time steps, more than the {MAX_STEPS:,} a run may "
+                             f"plan (the table moves at up to {fastest:.4g} m/min, {options.steps_per_stroke} steps "
+                             "per stroke): shorten --duration, or use --motion averaged")
 
 
 def _check_arguments(loaded, mode, model, duration, sample_interval, motion, mesh, solver, start) -> ModelEntry:

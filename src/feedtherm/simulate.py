@@ -23,6 +23,7 @@ from .models.options import ModelOptions
 from .models.registry import build_model
 from .plan import RunPlan, plan_run
 from .solution import Solution
+from .solution.health import check_health
 from .solution.pack import pack_solution, sample_times
 from .system.load import LoadedSystem
 from .system.schema import FeedSystem
@@ -103,6 +104,7 @@ def execute(plan: RunPlan, progress: Callable[[float], None] | None = None,
     }
     solution = pack_solution(system, integrator, segments, trace, T0, times, info)
     solution.info["wall_time_s"] = time.perf_counter() - started
+    check_health(solution)
     return solution
 
 

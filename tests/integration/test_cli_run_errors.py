@@ -143,3 +143,33 @@ def test_no_progress_bar_when_stdout_is_not_a_terminal():
     with cli._LazyProgress(enabled=False, delay=0.0) as progress:
         progress(0.5)
         assert progress._bar is None
+
+
+def test_a_run_of_too_many_steps_is_refused_before_it_starts(tmp_path):
+    """99,000 rpm against 0 rpm: the table at 990 m/min, 20 steps per 200 mm stroke, 600 s:
+    600 s / (0.2 m / (20 * 16.5 m/s)) = 990,000 steps > 500,000 (the run hung before the limit)."""
+    from feedtherm.benches import bench
+
+    text = bench("paper").description.read_text(encoding="utf-8")
+    (tmp_path / "fast.toml").write_text(text.replace('screw_speed = "396 rpm"\nnut_speed = "360 rpm"',
+                                                     'screw_speed = "99000 rpm"\nnut_speed = "0 rpm"', 1))
+    result = run(tmp_path, "fast.toml", "--condition", "I", "--duration", "600", "--out", "out")
+    assert_one_line_error_and_nothing_written(result, tmp_path, "990,000 time steps", "more than the 500,000",
+                                              "--motion averaged", inputs=["fast.toml"])
+
+
+def test_sigterm_stops_a_run_cleanly(tmp_path):
+    """SIGTERM mid-run: exit 128 + 15, one line, no output directory and no staging folder."""
+    import signal
+    import time
+
+    process = subprocess.Popen([sys.executable, "-m", "feedtherm", "run", "paper", "--condition", "III",
+                                "--duration", "300000", "--out", "out"], cwd=tmp_path, text=True,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    time.sleep(6.0)  # past the imports, inside the integration (a 300,000 s run takes far longer)
+    assert process.poll() is None, process.communicate()
+    process.send_signal(signal.SIGTERM)
+    _, err = process.communicate(timeout=60)
+    assert process.returncode == 128 + signal.SIGTERM, err
+    assert err.strip() == "feedtherm: terminated"
+    assert list(tmp_path.iterdir()) == []

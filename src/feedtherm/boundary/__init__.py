@@ -27,7 +27,7 @@ from typing import Literal
 from ..physics.contact import conductance_contact
 from ..physics.validity import CorrelationRangeWarning
 from ..system.schema import FeedSystem
-from .heat import SourceHeat, source_heats
+from .heat import SourceHeat, named_failure, source_heats
 from .operating import OperatingPoint, operating_point
 from .paper import scaled
 from .surfaces import SurfaceTransfer, surface_transfer
@@ -110,7 +110,7 @@ def _physics(system: FeedSystem, point: OperatingPoint, *, with_radiation: bool,
         heats = source_heats(system, point, local.sources)
     surfaces = {}
     for name in system.surfaces:
-        with _collect(f"surfaces.{name}", sink):
+        with _collect(f"surfaces.{name}", sink), named_failure(f"surfaces.{name}"):
             surfaces[name] = surface_transfer(system, name, point, local.surfaces.get(name, frozen),
                                               with_radiation=with_radiation)
     return heats, surfaces

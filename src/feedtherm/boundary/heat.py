@@ -8,8 +8,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 
+from ..errors import ModelError
 from ..physics import (
     ball_screw,
     bearings,
@@ -48,6 +50,20 @@ class SourceHeat:
     details: dict[str, float] = field(default_factory=dict)
 
 
+@contextmanager
+def named_failure(path: str):
+    """A physics function's refusal (its arguments outside its domain) as one line naming ``path``.
+
+    The correlations check their arguments and raise ``ValueError``; met while evaluating a
+    description's source or surface, that is a description the models cannot evaluate at this
+    operating point, reported as :class:`~feedtherm.errors.ModelError` with the value's path.
+    """
+    try:
+        yield
+    except (ValueError, ZeroDivisionError, OverflowError, FloatingPointError) as exc:
+        raise ModelError(f"{path}: cannot be evaluated here: {exc}") from None
+
+
 def _sign(x: float) -> float:
     return math.copysign(1.0, x) if x != 0.0 else 0.0
 
@@ -73,29 +89,32 @@ def source_heats(system: FeedSystem, point: OperatingPoint,
 
     for name, src in sources.items():
         if isinstance(src, GuidewaySource):
-            force = guideways.friction_force_guideway(
-                src.friction_coefficient, src.moving_mass * GRAVITY + src.external_load,
-                src.seal_drag_per_carriage, src.carriages,
-            )
-            axial_force += force
-            heats[name] = SourceHeat(
-                name, guideways.heat_guideway(force, point.table_speed), dict(src.into),
-                0.0, {"friction_force_N": force, "table_speed_m_per_s": point.table_speed},
-            )
+            with named_failure(f"sources.{name}"):
+                force = guideways.friction_force_guideway(
+                    src.friction_coefficient, src.moving_mass * GRAVITY + src.external_load,
+                    src.seal_drag_per_carriage, src.carriages,
+                )
+                axial_force += force
+                heats[name] = SourceHeat(
+                    name, guideways.heat_guideway(force, point.table_speed), dict(src.into),
+                    0.0, {"friction_force_N": force, "table_speed_m_per_s": point.table_speed},
+                )
     for name, src in sources.items():
-        if isinstance(src, SlidingScrewSource):
-            heats[name] = _sliding_screw(name, src, point, axial_force, shaft_torque, temperature(name))
-        elif isinstance(src, BallScrewSource):
-            heats[name] = _ball_screw(name, src, point, axial_force, shaft_torque)
-        elif isinstance(src, BearingSource):
-            heats[name] = _bearing(name, src, point, shaft_torque, temperature(name))
-        elif isinstance(src, TorqueSource):
-            heats[name] = _torque(name, src, point, axial_force, shaft_torque)
-        elif isinstance(src, FixedSource):
-            heats[name] = SourceHeat(name, src.power, dict(src.into), 0.0)
+        with named_failure(f"sources.{name}"):
+            if isinstance(src, SlidingScrewSource):
+                heats[name] = _sliding_screw(name, src, point, axial_force, shaft_torque, temperature(name))
+            elif isinstance(src, BallScrewSource):
+                heats[name] = _ball_screw(name, src, point, axial_force, shaft_torque)
+            elif isinstance(src, BearingSource):
+                heats[name] = _bearing(name, src, point, shaft_torque, temperature(name))
+            elif isinstance(src, TorqueSource):
+                heats[name] = _torque(name, src, point, axial_force, shaft_torque)
+            elif isinstance(src, FixedSource):
+                heats[name] = SourceHeat(name, src.power, dict(src.into), 0.0)
     for name, src in sources.items():
         if isinstance(src, MotorSource):
-            heats[name] = _motor(name, src, point, shaft_torque[src.shaft], temperature(name))
+            with named_failure(f"sources.{name}"):
+                heats[name] = _motor(name, src, point, shaft_torque[src.shaft], temperature(name))
     return {name: heats[name] for name in sources}  # declaration order
 
 

@@ -1,8 +1,13 @@
-"""Consistency checks of a valid description: what ``feedtherm check`` lists.
+"""Consistency checks of a description that passed its schema: what ``feedtherm check`` lists.
 
-A description that loads is valid; these findings are warnings about its content: a stated
-feed speed that its motor speeds contradict, a value no provenance entry accounts for, a
-sensor outside its part, a joint between parts that do not touch, and so on.
+Two kinds of finding.  An *error* is a description no model can run as meant: a sensor
+outside the part it names, a face the part's shape does not have, a joint declared twice, the
+elongation read off the screw, a stroke longer than the thread, calibration bounds reversed or
+of another dimension than their value, a part that no path connects to the ambient.
+:func:`~feedtherm.system.load.load_system` refuses such a description with the first error's
+line, so that no command starts on it.  A *warning* is content worth a look that the models
+can still run: a stated feed speed that the motor speeds contradict, a value no provenance
+entry accounts for, a joint between parts that do not touch.
 """
 
 from __future__ import annotations
@@ -13,8 +18,10 @@ from dataclasses import dataclass
 
 from ..constants import AMBIENT_SENSOR
 from ..physics.mechanics import speed_table
-from .geometry import contains, gap, screw_axis, surface_area
+from .geometry import bounds, contains, gap, screw_axis, surface_area
+from .quantities import same_dimension, to_base_si
 from .schema import FeedSystem
+from .variants import si_unit_at
 
 _RAD_PER_S_TO_RPM = 60.0 / (2.0 * math.pi)
 #: Relative tolerance on a stated feed speed against (n_s - n_n) * lead.
@@ -27,17 +34,30 @@ TOUCH_TOLERANCE = 1e-3
 class Finding:
     path: str
     message: str
+    severity: str = "warning"  # or "error": no model can run the description as meant
 
     def __str__(self) -> str:
         return f"{self.path}: {self.message}"
 
 
 def check_system(system: FeedSystem) -> list[Finding]:
-    """Every inconsistency found in ``system`` (an empty list when there is none)."""
+    """Every inconsistency found in ``system``, errors first (an empty list when there is none)."""
     return [
+        *check_errors(system),
         *_feed_speeds(system),
-        *_geometry(system),
+        *_joints_touch(system),
         *_provenance(system),
+    ]
+
+
+def check_errors(system: FeedSystem) -> list[Finding]:
+    """The findings no model can run past (see the module's docstring)."""
+    return [
+        *_geometry(system),
+        *_joints_unique(system),
+        *_stroke(system),
+        *calibration_bounds(system),
+        *_ambient_paths(system),
     ]
 
 
@@ -65,30 +85,136 @@ def _geometry(system: FeedSystem) -> list[Finding]:
     findings = []
     parts = system.parts
     for name, sensor in system.sensors.items():
-        if not contains(parts[sensor.part], sensor.position):
-            findings.append(Finding(f"sensors.{name}.position", f"lies outside part {sensor.part!r}"))
-    for i, joint in enumerate(system.joints):
-        a, b = joint.between
-        distance = gap(parts[a], parts[b])
-        if distance > TOUCH_TOLERANCE:
-            findings.append(Finding(f"joints[{i}]", f"{a!r} and {b!r} do not touch ({distance * 1e3:.1f} mm apart)"))
+        part = parts[sensor.part]
+        if (part.boxes or part.cylinders) and not contains(part, sensor.position):
+            where = ", ".join(f"{x * 1e3:g}" for x in sensor.position)
+            findings.append(Finding(f"sensors.{name}.position", f"({where}) mm lies outside part {sensor.part!r}, "
+                                    "which it names (a sensor reads its part's surface or inside)", "error"))
     for name, surface in system.surfaces.items():
         try:
             area = surface_area(surface, parts[surface.part])
         except (ValueError, IndexError) as exc:
-            findings.append(Finding(f"surfaces.{name}.faces", str(exc)))
+            findings.append(Finding(f"surfaces.{name}.faces", str(exc), "error"))
             continue
         if area <= 0.0:
-            findings.append(Finding(f"surfaces.{name}", f"has no area ({area:g} m^2)"))
-    screw = screw_axis(parts[system.kinematics.screw])
-    for key in ("fixed_at", "read_at"):
-        x = getattr(system.elongation, key)
-        if not screw.start <= x <= screw.end:
-            findings.append(Finding(f"elongation.{key}", f"x = {x * 1e3:g} mm is not on the screw ({screw.start * 1e3:g}..{screw.end * 1e3:g} mm)"))
+            findings.append(Finding(f"surfaces.{name}", f"has no area ({area:g} m^2)", "error"))
+    screw_part = parts[system.kinematics.screw]
+    if screw_part.cylinders:
+        screw = screw_axis(screw_part)
+        for key in ("fixed_at", "read_at"):
+            x = getattr(system.elongation, key)
+            if not screw.start <= x <= screw.end:
+                findings.append(Finding(f"elongation.{key}", f"x = {x * 1e3:g} mm is not on the screw "
+                                        f"({screw.start * 1e3:g}..{screw.end * 1e3:g} mm)", "error"))
     if AMBIENT_SENSOR in system.sensors:
         findings.append(Finding(f"sensors.{AMBIENT_SENSOR}",
                                 f"{AMBIENT_SENSOR} is the ambient temperature; a declared {AMBIENT_SENSOR} is ignored"))
     return findings
+
+
+def _joints_touch(system: FeedSystem) -> list[Finding]:
+    findings = []
+    for i, joint in enumerate(system.joints):
+        a, b = joint.between
+        distance = gap(system.parts[a], system.parts[b])
+        if distance > TOUCH_TOLERANCE:
+            findings.append(Finding(f"joints[{i}]", f"{a!r} and {b!r} do not touch ({distance * 1e3:.1f} mm apart)"))
+    return findings
+
+
+def _joints_unique(system: FeedSystem) -> list[Finding]:
+    """A pair of parts joined twice would count its contact conductance twice."""
+    findings, first = [], {}
+    for i, joint in enumerate(system.joints):
+        pair = frozenset(joint.between)
+        if len(pair) == 1:
+            findings.append(Finding(f"joints[{i}].between", f"joins {joint.between[0]!r} to itself", "error"))
+        elif pair in first:
+            findings.append(Finding(f"joints[{i}].between", f"{' and '.join(map(repr, joint.between))} are already "
+                                    f"joined by joints[{first[pair]}]; one joint per pair of parts", "error"))
+        else:
+            first[pair] = i
+    return findings
+
+
+def _stroke(system: FeedSystem) -> list[Finding]:
+    """The nut must travel its stroke on the screw (where any condition moves the table)."""
+    kin = system.kinematics
+    screw, nut = system.parts[kin.screw], system.parts[kin.nut]
+    points = [*system.conditions.values(), *(s for cycle in system.duty_cycles.values() for s in cycle.segments)]
+    if not (screw.cylinders and (nut.cylinders or nut.boxes)) or all(p.screw_speed == p.nut_speed for p in points):
+        return []
+    axis = screw_axis(screw)
+    (nut_lo, nut_hi) = bounds(nut)
+    length = axis.end - axis.start
+    if kin.stroke > length:
+        return [Finding("kinematics.stroke", f"{kin.stroke * 1e3:g} mm is longer than the screw "
+                        f"({length * 1e3:g} mm)", "error")]
+    centre = 0.5 * (nut_lo[0] + nut_hi[0])
+    half = 0.5 * (nut_hi[0] - nut_lo[0])
+    lo, hi = centre - 0.5 * kin.stroke - half, centre + 0.5 * kin.stroke + half
+    if lo < axis.start - TOUCH_TOLERANCE or hi > axis.end + TOUCH_TOLERANCE:
+        return [Finding("kinematics.stroke", f"the nut would travel {lo * 1e3:g}..{hi * 1e3:g} mm, beyond the screw "
+                        f"({axis.start * 1e3:g}..{axis.end * 1e3:g} mm)", "error")]
+    return []
+
+
+def calibration_bounds(system: FeedSystem) -> list[Finding]:
+    """Bounds finite, lower below upper, and of their values' dimension (factors for a scale)."""
+    if system.calibration is None:
+        return []
+    findings = []
+    for name, spec in system.calibration.parameters.items():
+        where = f"calibration.parameters.{name}.bounds"
+        try:
+            lower, upper = (to_base_si(b) for b in spec.bounds)
+        except ValueError as exc:
+            findings.append(Finding(where, str(exc), "error"))
+            continue
+        if not lower < upper:
+            findings.append(Finding(where, f"the lower bound ({spec.bounds[0]}) must be below the upper "
+                                    f"({spec.bounds[1]})", "error"))
+        expected = "" if spec.kind == "scale" else _unit_of_paths(system, spec.paths)
+        if expected is None:
+            continue
+        for bound in spec.bounds:
+            if not same_dimension(bound, expected):
+                why = ("a scale parameter's bounds are factors (bare numbers)" if spec.kind == "scale" else
+                       f"does not have the dimension of the values it bounds ({expected})")
+                findings.append(Finding(where, f"{bound!r} {why}" if spec.kind == "value" else f"{bound!r}: {why}",
+                                        "error"))
+                break
+    return findings
+
+
+def _unit_of_paths(system: FeedSystem, paths: list[str]) -> str | None:
+    """The SI unit of the values at ``paths`` (``None`` where it cannot be told)."""
+    for path in paths:
+        try:
+            unit = si_unit_at(system, path.replace("[*]", "[0]"))
+        except (KeyError, IndexError, AttributeError, TypeError):
+            continue
+        if unit is not None:
+            return unit
+    return None
+
+
+def _ambient_paths(system: FeedSystem) -> list[Finding]:
+    """Every part must reach the ambient (a surface) through joints, or its temperature is undefined."""
+    joined: dict[str, set[str]] = {name: set() for name in system.parts}
+    for joint in system.joints:
+        a, b = joint.between
+        joined[a].add(b)
+        joined[b].add(a)
+    reached = {surface.part for surface in system.surfaces.values()}
+    frontier = list(reached)
+    while frontier:
+        for other in joined[frontier.pop()] - reached:
+            reached.add(other)
+            frontier.append(other)
+    return [Finding(f"parts.{name}", "no surface and no chain of joints connects it to the ambient; its "
+                    "temperature would have no steady state", "error")
+            for name in system.parts if name not in reached]
 
 
 def leaf_paths(data, prefix: str = "") -> list[str]:

@@ -62,13 +62,31 @@ def parse_toml(text: str, origin: str) -> dict:
 
 
 def load_system(spec: str = "paper") -> LoadedSystem:
-    """Load and validate a description given as a TOML path or a bench name."""
+    """Load a description given as a TOML path or a bench name, and validate it (:func:`validate_description`)."""
     text, origin = read_text(spec)
-    return validate_data(parse_toml(text, origin), origin)
+    return validate_description(parse_toml(text, origin), origin)
+
+
+def validate_description(data: dict, origin: str) -> LoadedSystem:
+    """Validate parsed description data: its schema, then :func:`~feedtherm.system.checks.check_errors`.
+
+    The checks find what no model can run as meant (sensors off their parts, faces that do not
+    exist, joints declared twice, ...); the first is raised as one line, so that no command
+    starts on such a description.
+    """
+    from .checks import check_errors  # checks reads descriptions through variants, which imports this module
+
+    loaded = validate_data(data, origin)
+    errors = check_errors(loaded.system)
+    if errors:
+        more = f" (and {len(errors) - 1} more error{'s' if len(errors) > 2 else ''}: run feedtherm check)" \
+            if len(errors) > 1 else ""
+        raise DescriptionError(f"{origin}: {errors[0]}{more}")
+    return loaded
 
 
 def validate_data(data: dict, origin: str) -> LoadedSystem:
-    """Validate already-parsed description data."""
+    """Validate already-parsed description data against the schema only (variants of a checked description)."""
     try:
         system = FeedSystem.model_validate(data)
     except ValidationError as exc:

@@ -156,8 +156,16 @@ def _typo(value: object, unit: str, limit: Limit) -> str:
     return ""
 
 
+@dataclass(frozen=True)
+class SIUnit:
+    """Marks a quantity field with the SI unit its value is stored in (see :func:`same_dimension`)."""
+
+    unit: str
+
+
 def _quantity(si_unit: str, sign: str = "any", limit: Limit | None = None, hint: str | None = None):
-    return Annotated[float, BeforeValidator(lambda v: to_si(v, si_unit, sign=sign, limit=limit, hint=hint))]
+    return Annotated[float, BeforeValidator(lambda v: to_si(v, si_unit, sign=sign, limit=limit, hint=hint)),
+                     SIUnit(si_unit)]
 
 
 # Annotated float types: SI value after validation.  "Pos" = strictly positive.
@@ -191,7 +199,7 @@ PosKinematicViscosity = _quantity("m^2/s", "positive")
 PosDynamicViscosity = _quantity("Pa*s", "positive")
 PosPressureViscosityCoefficient = _quantity("1/Pa", "positive")  # Barus alpha of a lubricant
 PosMass = _quantity("kg", "positive")
-Fraction = Annotated[float, BeforeValidator(lambda v: _fraction(v))]
+Fraction = Annotated[float, BeforeValidator(lambda v: _fraction(v)), SIUnit("")]
 PosDimensionless = _quantity("", "positive")
 NonNegAngle = _quantity("rad", "nonnegative")
 
@@ -229,3 +237,23 @@ def to_base_si(value: object) -> float:
     if not math.isfinite(converted):
         raise ValueError(f"must be a finite number, got {value!r}")
     return converted
+
+
+def same_dimension(value: object, si_unit: str) -> bool:
+    """True when ``value`` (a bare number or ``"<number> <unit>"``) has the dimension of ``si_unit``.
+
+    A bare number is dimensionless.  Angles are dimensionless to pint, so ``"1000 rpm"`` has
+    the dimension of ``"rad/s"`` (and of ``"1/s"``).
+    """
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        unit = ""
+    elif isinstance(value, str) and (match := _NUMBER_AND_UNIT.match(value)):
+        unit = match.group(2)
+    else:
+        return False
+    ureg = registry()
+    try:
+        return ureg.Quantity(1, unit or "dimensionless").dimensionality == \
+            ureg.Quantity(1, si_unit or "dimensionless").dimensionality
+    except (pint.errors.PintError, AttributeError, TypeError, SyntaxError):
+        return False

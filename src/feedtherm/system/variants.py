@@ -10,12 +10,14 @@ from __future__ import annotations
 import hashlib
 import json
 import re
+import typing
 from typing import Any
 
-from pydantic import BaseModel
+from pydantic import BaseModel, ValidationError
 
 from ..errors import DescriptionError
-from .load import LoadedSystem
+from .load import LoadedSystem, describe_error
+from .quantities import SIUnit
 from .schema import Condition, FeedSystem
 
 _STEP = re.compile(r"([A-Za-z0-9_]+)|\[(\d+)\]")
@@ -34,6 +36,31 @@ def get_path(obj: Any, path: str) -> Any:
     for key in split_path(path):
         obj = obj[key] if isinstance(obj, (dict, list, tuple)) else getattr(obj, key)
     return obj
+
+
+def si_unit_at(system: FeedSystem, path: str) -> str | None:
+    """The SI unit the value at ``path`` is stored in (``None``: not a quantity field).
+
+    Raises ``KeyError``/``IndexError``/``AttributeError`` where the path names no value.
+    """
+    keys = split_path(path)
+    parent = system
+    for key in keys[:-1]:
+        parent = parent[key] if isinstance(parent, (dict, list, tuple)) else getattr(parent, key)
+    if not isinstance(parent, BaseModel) or keys[-1] not in type(parent).model_fields:
+        raise KeyError(path)
+    field = type(parent).model_fields[keys[-1]]
+    return _si_unit_in([*field.metadata, field.annotation])
+
+
+def _si_unit_in(items) -> str | None:
+    for item in items:
+        if isinstance(item, SIUnit):
+            return item.unit
+        found = _si_unit_in([*getattr(item, "__metadata__", ()), *typing.get_args(item)])
+        if found is not None:
+            return found
+    return None
 
 
 def _set(obj: Any, keys: list, value: Any) -> Any:
@@ -74,6 +101,10 @@ def with_condition(loaded: LoadedSystem, name: str, screw_rpm: float, nut_rpm: f
     data = {"screw_speed": f"{screw_rpm} rpm", "nut_speed": f"{nut_rpm} rpm", "ambient": f"{ambient_c} degC"}
     if duration_s is not None:
         data["duration"] = f"{duration_s} s"
-    condition = Condition.model_validate(data)
+    try:
+        condition = Condition.model_validate(data)
+    except ValidationError as exc:
+        raise DescriptionError(f"condition {name} ({screw_rpm:g} rpm, {nut_rpm:g} rpm, {ambient_c:g} degC): "
+                               f"{describe_error(exc)}") from None
     conditions = {**loaded.system.conditions, name: condition}
     return with_values(loaded, {"conditions": conditions}, origin_suffix=f"condition {name}")
