@@ -105,6 +105,16 @@ def test_spreading_a_patch_over_axial_cells_keeps_its_length():
     assert set(cell[patch == 0]) == {2, 3, 4}
 
 
+def test_a_patch_wider_than_the_cells_beside_a_narrow_one_stays_in_range():
+    """Found by the description fuzzer: a 60 m carriage on a rail of 10 cells indexed past the last
+    edge.  The wide patch keeps the share that lies over the cells: 0.1 m of its 60 m."""
+    edges = np.linspace(0.0, 0.1, 11)
+    patch, cell, frac = spread_along(edges, np.array([0.05, 0.05]), np.array([60.0, 0.01]))
+    assert cell.max() <= 9
+    assert np.bincount(patch, weights=frac) == pytest.approx([0.1 / 60.0, 1.0])
+    assert set(cell[patch == 0]) == set(range(10))
+
+
 def test_contact_conductance_is_area_over_resistance_in_series_with_the_sides():
     a, b, g = aggregate([0, 0, 1], [5, 5, 5], np.array([1.0, 3.0, 2.0]), np.zeros(3), np.full(3, 0.5), 0.5)
     assert list(zip(a, b)) == [(0, 5), (1, 5)]

@@ -119,8 +119,8 @@ def spread_along(edges: np.ndarray, x: np.ndarray, extent: np.ndarray) -> tuple[
     last = np.maximum(last, first)
     patches, cells, fractions = [], [], []
     for j in range(int((last - first).max(initial=0)) + 1):
-        cell = first + j
-        ok = cell <= last
+        ok = first + j <= last
+        cell = np.minimum(first + j, last)  # patches spanning fewer cells than the widest stay in range
         width = np.minimum(hi, edges[np.minimum(cell + 1, n)]) - np.maximum(lo, edges[cell])
         frac = np.where(extent > 0, width / np.where(extent > 0, extent, 1.0), 1.0)
         ok &= frac > 0
