@@ -1,10 +1,13 @@
 """Whole runs of the fast model on the bundled descriptions."""
 
+import re
+
 import numpy as np
 import pytest
 
 from dataclasses import replace
 
+from feedtherm.errors import ModelError
 from feedtherm.models.fast.discretization import FastDiscretization
 from feedtherm.models.registry import ModelEntry, register_model, unregister_model
 from feedtherm.simulate import simulate
@@ -50,10 +53,14 @@ def test_energy_check_trips_when_the_solver_alone_is_wrong(paper, drop, area_sca
     tampered = type("Tampered", (TamperedFast,), {"drop": drop, "area_scale": area_scale})
     register_model(ModelEntry("tampered-fast", "the fast model with a solver error (test)", tampered))
     try:
-        run = simulate(paper, condition="I", duration=3600.0, model="tampered-fast")
+        # the run's own health check refuses the result: the balance, computed apart from the
+        # solver's matrices, does not close
+        with pytest.raises(ModelError) as info:
+            simulate(paper, condition="I", duration=3600.0, model="tampered-fast")
     finally:
         unregister_model("tampered-fast")
-    assert abs(run.energy.relative_error) > 1e-3
+    error = float(re.search(r"differ by (\S+) of the heat", str(info.value)).group(1))
+    assert abs(error) > 1e-3
 
 
 def test_temperatures_rise_from_initial_towards_steady(run_i):
