@@ -44,6 +44,7 @@ def check_system(system: FeedSystem) -> list[Finding]:
     """Every inconsistency found in ``system``, errors first (an empty list when there is none)."""
     return [
         *check_errors(system),
+        *_ambient_sensor(system),
         *_feed_speeds(system),
         *_joints_touch(system),
         *_provenance(system),
@@ -106,10 +107,14 @@ def _geometry(system: FeedSystem) -> list[Finding]:
             if not screw.start <= x <= screw.end:
                 findings.append(Finding(f"elongation.{key}", f"x = {x * 1e3:g} mm is not on the screw "
                                         f"({screw.start * 1e3:g}..{screw.end * 1e3:g} mm)", "error"))
-    if AMBIENT_SENSOR in system.sensors:
-        findings.append(Finding(f"sensors.{AMBIENT_SENSOR}",
-                                f"{AMBIENT_SENSOR} is the ambient temperature; a declared {AMBIENT_SENSOR} is ignored"))
     return findings
+
+
+def _ambient_sensor(system: FeedSystem) -> list[Finding]:
+    if AMBIENT_SENSOR not in system.sensors:
+        return []
+    return [Finding(f"sensors.{AMBIENT_SENSOR}",
+                    f"{AMBIENT_SENSOR} is the ambient temperature; a declared {AMBIENT_SENSOR} is ignored")]
 
 
 def _joints_touch(system: FeedSystem) -> list[Finding]:

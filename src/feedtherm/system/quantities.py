@@ -66,7 +66,7 @@ SPECIFIC_HEAT_LIMIT = Limit(0.0, 20_000.0, "J/(kg*K)", "J/(kg*K)", "above every 
 EXPANSION_LIMIT = Limit(0.0, 1e-3, "1/K", "1/K", "ten times a polymer's")
 
 #: The unit a bare number's hint suggests, where it is not the SI unit.
-_HINT_UNITS = {"m": "mm", "rad/s": "rpm", "m^2": "mm^2", "N*m": "N*m"}
+_HINT_UNITS = {"m": "mm", "rad/s": "rpm", "m^2": "mm^2"}
 
 
 @lru_cache(maxsize=1)

@@ -33,7 +33,11 @@ def split_path(path: str) -> list[str | int]:
 
 
 def get_path(obj: Any, path: str) -> Any:
-    for key in split_path(path):
+    return _walk(obj, split_path(path))
+
+
+def _walk(obj: Any, keys: list[str | int]) -> Any:
+    for key in keys:
         obj = obj[key] if isinstance(obj, (dict, list, tuple)) else getattr(obj, key)
     return obj
 
@@ -44,9 +48,7 @@ def si_unit_at(system: FeedSystem, path: str) -> str | None:
     Raises ``KeyError``/``IndexError``/``AttributeError`` where the path names no value.
     """
     keys = split_path(path)
-    parent = system
-    for key in keys[:-1]:
-        parent = parent[key] if isinstance(parent, (dict, list, tuple)) else getattr(parent, key)
+    parent = _walk(system, keys[:-1])
     if not isinstance(parent, BaseModel) or keys[-1] not in type(parent).model_fields:
         raise KeyError(path)
     field = type(parent).model_fields[keys[-1]]
