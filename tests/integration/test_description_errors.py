@@ -125,3 +125,23 @@ def test_a_speed_in_any_spelling_gives_the_benchs_heat(tmp_path, monkeypatch, ca
     reference = json.loads(feedtherm_here(tmp_path, monkeypatch, capsys, "heat", "paper", "--condition", "I", "--json")[1])
     assert heat["screw_rpm"] == pytest.approx(396.0, rel=1e-6)
     assert heat["heat_W"] == pytest.approx(reference["heat_W"], rel=1e-6)
+
+
+@pytest.mark.parametrize(
+    "bench_name, change, fragment",
+    [
+        # the f0 = inf (a Palmgren bearing of the ball-screw example)
+        ("ballscrew_example", ("f0 = 4.0", "f0 = inf"), "sources.front_bearing.f0: must be a finite number, got inf"),
+        # NaN where a plain number has an upper bound: named as not finite, not "should be less than 0.5"
+        ("ballscrew_example", ("poisson_ratio = 0.29", "poisson_ratio = nan"), "poisson_ratio: Input should be a finite number"),
+        # a temperature without its unit: the hint names degC, not K
+        ("paper", ('reference = "20 degC"', "reference = 20"), 'temperatures.reference: 20 has no unit; write it with one, e.g. "20 degC"'),
+    ],
+)
+def test_messages_name_what_is_wrong(tmp_path, monkeypatch, capsys, bench_name, change, fragment):
+    text = bench(bench_name).description.read_text(encoding="utf-8")
+    assert change[0] in text, f"test fixture out of date: {change[0]!r}"
+    path = tmp_path / "variant.toml"
+    path.write_text(text.replace(*change, 1), encoding="utf-8")
+    code, _, err = feedtherm_here(tmp_path, monkeypatch, capsys, "check", str(path))
+    assert code == 2 and err.count("\n") == 1 and fragment in err, err
