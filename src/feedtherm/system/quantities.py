@@ -64,6 +64,17 @@ POWER_LIMIT = Limit(0.0, 1e6, "W", "W", "a megawatt is beyond any feed drive's h
 DENSITY_LIMIT = Limit(0.0, 25_000.0, "kg/m^3", "kg/m^3", "denser than any material, osmium's 22,600 included")
 SPECIFIC_HEAT_LIMIT = Limit(0.0, 20_000.0, "J/(kg*K)", "J/(kg*K)", "above every material's, hydrogen's 14,300 included")
 EXPANSION_LIMIT = Limit(0.0, 1e-3, "1/K", "1/K", "ten times a polymer's")
+MODULUS_LIMIT = Limit(0.0, 1e13, "Pa", "GPa", "ten times diamond's")
+AREA_LIMIT = Limit(0.0, 1e4, "m^2", "m^2", "100 m square, larger than any machine tool")
+FORCE_LIMIT = Limit(0.0, 1e7, "N", "N", "a thousand tonnes, beyond any feed drive's load or preload", magnitude=True)
+TORQUE_LIMIT = Limit(0.0, 1e5, "N*m", "N*m", "beyond any feed drive's motor")
+MASS_LIMIT = Limit(0.0, 1e6, "kg", "kg", "beyond any machine tool's moving mass")
+HTC_LIMIT = Limit(0.0, 1e10, "W/(m^2*K)", "W/(m^2*K)",
+                  "ten times the penalty coefficients that hold a face at a temperature")
+TEMPERATURE_DIFFERENCE_LIMIT = Limit(0.0, 1000.0, "K", "K", "the span of the accepted temperatures")
+LINEAR_SPEED_LIMIT = Limit(0.0, 100.0, "m/s", "m/min", "a 6,000 m/min table, or a gale in the room", magnitude=True)
+DURATION_LIMIT = Limit(0.0, 1e8, "s", "h", "three years")
+KINEMATIC_VISCOSITY_LIMIT = Limit(0.0, 1.0, "m^2/s", "mm^2/s", "thicker than any lubricant's base oil")
 
 #: The unit a bare number's hint suggests, where it is not the SI unit.
 _HINT_UNITS = {"m": "mm", "rad/s": "rpm", "m^2": "mm^2"}
@@ -172,33 +183,33 @@ def _quantity(si_unit: str, sign: str = "any", limit: Limit | None = None, hint:
 Length = _quantity("m", limit=LENGTH_LIMIT)
 PosLength = _quantity("m", "positive", LENGTH_LIMIT)
 NonNegLength = _quantity("m", "nonnegative", LENGTH_LIMIT)
-PosArea = _quantity("m^2", "positive")
+PosArea = _quantity("m^2", "positive", AREA_LIMIT)
 PosDensity = _quantity("kg/m^3", "positive", DENSITY_LIMIT)
 PosConductivity = _quantity("W/(m*K)", "positive", CONDUCTIVITY_LIMIT)
 PosSpecificHeat = _quantity("J/(kg*K)", "positive", SPECIFIC_HEAT_LIMIT)
 PosExpansion = _quantity("1/K", "positive", EXPANSION_LIMIT)
-PosModulus = _quantity("Pa", "positive")
-PosContactResistance = _quantity("m^2*K/W", "positive")
-PosHeatTransferCoefficient = _quantity("W/(m^2*K)", "positive")
+PosModulus = _quantity("Pa", "positive", MODULUS_LIMIT)
+PosContactResistance = _quantity("m^2*K/W", "positive")  # no upper limit: a large one insulates a joint
+PosHeatTransferCoefficient = _quantity("W/(m^2*K)", "positive", HTC_LIMIT)
 Power = _quantity("W", "nonnegative", POWER_LIMIT)
 Temperature = _quantity("K", "positive", TEMPERATURE_LIMIT, hint="degC")  # absolute
-PosTemperatureDifference = _quantity("K", "positive", hint="K")
+PosTemperatureDifference = _quantity("K", "positive", TEMPERATURE_DIFFERENCE_LIMIT, hint="K")
 AngularSpeed = _quantity("rad/s", limit=ROTATIONAL_SPEED_LIMIT)  # signed: the sign is the direction of rotation
-Speed = _quantity("m/s")
-NonNegSpeed = _quantity("m/s", "nonnegative")
-PosDuration = _quantity("s", "positive")
-NonNegDuration = _quantity("s", "nonnegative")
-PosForce = _quantity("N", "positive")
-NonNegForce = _quantity("N", "nonnegative")
-NonNegTorque = _quantity("N*m", "nonnegative")
-PosTorque = _quantity("N*m", "positive")
+Speed = _quantity("m/s", limit=LINEAR_SPEED_LIMIT)
+NonNegSpeed = _quantity("m/s", "nonnegative", LINEAR_SPEED_LIMIT)
+PosDuration = _quantity("s", "positive", DURATION_LIMIT)
+NonNegDuration = _quantity("s", "nonnegative", DURATION_LIMIT)
+PosForce = _quantity("N", "positive", FORCE_LIMIT)
+NonNegForce = _quantity("N", "nonnegative", FORCE_LIMIT)
+NonNegTorque = _quantity("N*m", "nonnegative", TORQUE_LIMIT)
+PosTorque = _quantity("N*m", "positive", TORQUE_LIMIT)
 PosTorqueConstant = _quantity("N*m/A", "positive")  # a motor's torque per A r.m.s.
 PosResistance = _quantity("ohm", "positive")
 NonNegRotationalDamping = _quantity("N*m*s/rad", "nonnegative")  # drag torque per angular speed
-PosKinematicViscosity = _quantity("m^2/s", "positive")
+PosKinematicViscosity = _quantity("m^2/s", "positive", KINEMATIC_VISCOSITY_LIMIT)
 PosDynamicViscosity = _quantity("Pa*s", "positive")
 PosPressureViscosityCoefficient = _quantity("1/Pa", "positive")  # Barus alpha of a lubricant
-PosMass = _quantity("kg", "positive")
+PosMass = _quantity("kg", "positive", MASS_LIMIT)
 Fraction = Annotated[float, BeforeValidator(lambda v: _fraction(v)), SIUnit("")]
 PosDimensionless = _quantity("", "positive")
 NonNegAngle = _quantity("rad", "nonnegative")

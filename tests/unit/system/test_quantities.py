@@ -6,9 +6,13 @@ from pydantic import TypeAdapter, ValidationError
 from feedtherm.system.quantities import (
     AngularSpeed,
     PosConductivity,
+    PosDuration,
+    PosForce,
+    PosHeatTransferCoefficient,
     PosLength,
     PosTemperatureDifference,
     Power,
+    Speed,
     Temperature,
     to_si,
 )
@@ -85,6 +89,10 @@ def test_values_must_be_finite(value):
         (PosConductivity, "1e30 W/(m*K)", "0 to 5000 W/(m*K)"),
         (Power, "1e30 W", "0 to 1e+06 W"),
         (PosTemperatureDifference, 1, 'e.g. "1 K"'),
+        (PosForce, "1e30 N", "|value| <= 1e+07 N"),
+        (PosDuration, "1e12 s", "0 to 27777.8 h (three years)"),
+        (Speed, "-200 m/s", "|value| <= 6000 m/min"),
+        (PosHeatTransferCoefficient, "1e12 W/(m^2*K)", "0 to 1e+10 W/(m^2*K)"),
     ],
 )
 def test_limits_name_the_range_and_reason(annotation, value, fragment):
