@@ -89,7 +89,11 @@ MAX_STEPS = 500_000
 
 
 def estimated_steps(stroke: float, segments: list[Segment], options: ModelOptions) -> int:
-    """The time steps the shared integrator will take over ``segments`` (as its step rule)."""
+    """About the time steps the shared integrator takes over ``segments``.
+
+    Its rule (:meth:`~feedtherm.models.integrator.Integrator._step`) on a grid that splits the
+    stroke evenly; the model's grid is not built yet when a run is planned.
+    """
     steps = 0.0
     for seg in segments:
         span = seg.t1 - seg.t0

@@ -146,24 +146,23 @@ def to_si(value: object, si_unit: str, *, sign: str = "any", limit: Limit | None
         raise ValueError(f"cannot read the unit of {value!r}") from None
     if not math.isfinite(converted):
         raise ValueError(f"must be a finite number, got {value!r} ({converted:g} {si_unit or ''})".replace(" )", ")"))
+    out_of_range = limit is not None and limit.violated_by(converted)
     # an absolute temperature below its range is out of range, not "negative"
-    if limit is not None and limit.low > 0 and limit.violated_by(converted):
-        raise ValueError(f"{value!r} lies outside the accepted range, {limit.describe()}{_typo(value, unit, limit)}")
+    if out_of_range and limit.low > 0:
+        raise ValueError(f"{value!r} lies outside the accepted range, {limit.describe()}{_typo(number, unit, limit)}")
     if sign == "positive" and not converted > 0:
         raise ValueError(f"must be positive, got {value!r}")
     if sign == "nonnegative" and not converted >= 0:
         raise ValueError(f"must not be negative, got {value!r}")
-    if limit is not None and limit.violated_by(converted):
+    if out_of_range:
         raise ValueError(f"{value!r} lies outside the accepted range, {limit.describe()}")
     return converted
 
 
-def _typo(value: object, unit: str, limit: Limit) -> str:
+def _typo(number: float, unit: str, limit: Limit) -> str:
     """A hint where a temperature written in K would be plausible in degC (``20 K``)."""
-    if limit is TEMPERATURE_LIMIT and unit in ("K", "kelvin") and isinstance(value, str):
-        number = float(_NUMBER_AND_UNIT.match(value).group(1))
-        if not limit.violated_by(number + _KELVIN_AT_0C):
-            return f"; did you mean \"{number:g} degC\"?"
+    if limit is TEMPERATURE_LIMIT and unit in ("K", "kelvin") and not limit.violated_by(number + _KELVIN_AT_0C):
+        return f"; did you mean \"{number:g} degC\"?"
     return ""
 
 
