@@ -110,7 +110,7 @@ def cmd_run(args: argparse.Namespace) -> int:
 
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
         solution = execute(plan, progress)
-    write_run(solution, out_dir, sample_interval=args.sample_interval)
+    write_run(solution, out_dir, sample_interval=args.sample_interval, figures=not args.no_plots)
     print(summary_line(solution, out_dir))
     return 0
 
@@ -370,6 +370,9 @@ def build_parser() -> argparse.ArgumentParser:
                           "conjugate gradients (cg), or auto: direct up to 60,000 unknowns")
     run.add_argument("--sample-interval", type=_positive_seconds, default=10.0, metavar="S",
                      help="spacing of the written samples [s] (default: 10)")
+    run.add_argument("--no-plots", action="store_true",
+                     help="write the tables (and an FE run's fields) without plots and images: faster, "
+                          "for scripts that run many runs")
     _out_argument(run, "out/<system>_<condition>_<mode>")
     run.set_defaults(func=cmd_run)
 

@@ -4,6 +4,8 @@ Physics functions keep their own constants (``physics/`` imports nothing of ours
 """
 
 import math
+import os
+from pathlib import Path
 
 #: The sensor that reads the ambient air; every model reports it from the boundary conditions.
 AMBIENT_SENSOR = "T6"
@@ -13,3 +15,10 @@ ELONGATION_PROBE = "D"
 KELVIN_OFFSET = 273.15
 #: rpm per rad/s, 60/(2π).
 RPM_PER_RAD_S = 60.0 / (2.0 * math.pi)
+
+
+def cache_root() -> Path:
+    """Where feedtherm keeps what it can rebuild (meshes, parsed unit definitions):
+    ``$FEEDTHERM_CACHE``, default ``~/.cache/feedtherm``."""
+    root = os.environ.get("FEEDTHERM_CACHE")
+    return Path(root).expanduser() if root else Path.home() / ".cache" / "feedtherm"

@@ -66,26 +66,29 @@ def write_run_outputs(solution: Solution, out_dir: Path, *, sample_interval: flo
     return [out_dir / name for name in names]
 
 
-def write_run(solution: Solution, out_dir: Path, *, sample_interval: float) -> list[Path]:
+def write_run(solution: Solution, out_dir: Path, *, sample_interval: float, figures: bool = True) -> list[Path]:
     """Tables, plots and (FE runs) fields of a run in one set: all files appear in ``out_dir``, or none.
 
     The set replaces every file of an earlier run in ``out_dir`` (:data:`RUN_FILES`), also
     those this run does not write, such as the fields of an earlier FE run or its extra
-    snapshots; other files in ``out_dir`` are kept.
+    snapshots; other files in ``out_dir`` are kept.  ``figures=False`` leaves out the plots
+    and field images (about 2 s of drawing), for scripts that run many runs.
     """
     out_dir = Path(out_dir)
     with staged_directory(out_dir, replaces=RUN_FILES) as stage:
-        names = write_tables(solution, stage, sample_interval=sample_interval) + draw_run_plots(solution, stage)
-        names += write_field_outputs(solution, stage)
+        names = write_tables(solution, stage, sample_interval=sample_interval)
+        if figures:
+            names += draw_run_plots(solution, stage)
+        names += write_field_outputs(solution, stage, images=figures)
     return [out_dir / name for name in names]
 
 
-def write_field_outputs(solution: Solution, directory: Path) -> list[str]:
-    """fields.pvd, its .vtu snapshots and the two field images of an FE run (nothing otherwise)."""
+def write_field_outputs(solution: Solution, directory: Path, *, images: bool = True) -> list[str]:
+    """fields.pvd, its .vtu snapshots and (``images``) the two field images of an FE run (nothing otherwise)."""
     series = solution.fields
     if series is None:
         return []
-    paths = write_pvd(series, directory) + write_field_images(series, directory)
+    paths = write_pvd(series, directory) + (write_field_images(series, directory) if images else [])
     return [Path(p).name for p in paths]
 
 

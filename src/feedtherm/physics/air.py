@@ -1,4 +1,4 @@
-"""Thermophysical properties of dry air, evaluated with CoolProp.
+"""Thermophysical properties of dry air (CoolProp's values, tabulated at one atmosphere).
 
 All convection correlations of the paper (§3.2, Eqs. 24-29) need the properties of air
 at the *qualitative temperature* ε, which the paper leaves undefined in Eq. 25; the
@@ -7,7 +7,11 @@ review (docs/paper-audit.md §1, Eq. 25) identifies it as the film temperature
 §9.6).  :func:`film_temperature` computes it and :func:`properties_air` returns the
 properties there.
 
-CoolProp is a declared dependency; there is deliberately no fallback table.
+The properties are CoolProp's (Lemmon et al. 2000 / Lemmon & Jacobsen 2004).  At one standard
+atmosphere they are read from a table of CoolProp's values every kelvin
+(:mod:`.air_table`), because importing CoolProp takes seconds and a command such as
+``feedtherm heat`` should answer at once; other pressures and temperatures outside the
+table ask CoolProp itself.
 """
 
 from __future__ import annotations
@@ -16,21 +20,21 @@ import functools
 import math
 from dataclasses import dataclass
 
-import CoolProp.CoolProp as CP
 import numpy as np
 
+from feedtherm.physics.air_table import P_TABLE, T_FIRST, T_LAST, coolprop_row, read_table
 from feedtherm.physics.validity import check_range
 
 #: Standard atmosphere, [Pa].
-P_ATM = 101325.0
+P_ATM = P_TABLE
 
 #: Validity range of :func:`properties_air` in this package, [K].  CoolProp's equation of
 #: state covers a much wider range; 200-500 K is the range in which the ideal-gas
 #: expansion coefficient and the single-phase, dry-air assumptions are checked here.
 T_MIN, T_MAX = 200.0, 500.0
 
-#: Temperatures are rounded to this many decimals of a kelvin before the (cached)
-#: CoolProp call; 0.01 K changes no property by more than ~3e-5 relative.
+#: Away from the table, temperatures are rounded to this many decimals of a kelvin before
+#: the (cached) CoolProp call; 0.01 K changes no property by more than ~3e-5 relative.
 _T_DECIMALS = 2
 
 
@@ -116,7 +120,9 @@ def properties_air(T, p=P_ATM):
 
     Density, specific heat, viscosity and conductivity come from CoolProp's pseudo-pure
     fluid ``"Air"`` (Lemmon et al. 2000 equation of state, Lemmon & Jacobsen 2004
-    transport).  Derived quantities:
+    transport): at one standard atmosphere and 110-1400 K from the table of its values
+    every kelvin (:mod:`feedtherm.physics.air_table`), interpolated linearly (ρT, c_p, μ, k:
+    within 5e-6 of CoolProp), elsewhere from CoolProp itself.  Derived quantities:
 
     .. math::
 
@@ -158,7 +164,7 @@ def properties_air(T, p=P_ATM):
     CoolProp gives ρ and ν about 1.3 % different from the table, at 10⁵ Pa within 0.5 %.
     The other properties hardly depend on pressure and agree within ~1 %.
 
-    Results are cached on T rounded to 0.01 K (and p); the function is pure.
+    CoolProp's results are cached on T rounded to 0.01 K (and p); the function is pure.
 
     References
     ----------
@@ -185,7 +191,10 @@ def properties_air(T, p=P_ATM):
     T = _positive_finite("T", T)
     p = _positive_finite("p", p)
     check_range("properties_air (CoolProp Air)", "T [K]", T, T_MIN, T_MAX)
-    rho, cp, mu, k = _coolprop_state(round(T, _T_DECIMALS), p)
+    if p == P_TABLE and T_FIRST <= T <= T_LAST:
+        rho, cp, mu, k = _tabulated(T)
+    else:
+        rho, cp, mu, k = _coolprop_state(round(T, _T_DECIMALS), p)
     return AirProperties(
         temperature=T,
         density=rho,
@@ -202,14 +211,21 @@ def properties_air(T, p=P_ATM):
 @functools.lru_cache(maxsize=4096)
 def _coolprop_state(T: float, p: float) -> tuple[float, float, float, float]:
     """Density, c_p, μ and k of air from CoolProp (cached; T already rounded)."""
-    state = CP.AbstractState("HEOS", "Air")
-    state.update(CP.PT_INPUTS, p, T)
-    return (
-        float(state.rhomass()),
-        float(state.cpmass()),
-        float(state.viscosity()),
-        float(state.conductivity()),
-    )
+    return coolprop_row(T, p)
+
+
+@functools.lru_cache(maxsize=1)
+def _table() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The table's columns: T, ρT (nearly constant, so that a straight line between rows fits it), c_p, μ, k."""
+    T, rho, cp, mu, k = read_table().T
+    return T, rho * T, cp, mu, k
+
+
+def _tabulated(T: float) -> tuple[float, float, float, float]:
+    """Density, c_p, μ and k at T [K] and one atmosphere, interpolated in the table."""
+    grid, rho_T, cp, mu, k = _table()
+    return (float(np.interp(T, grid, rho_T)) / T, float(np.interp(T, grid, cp)),
+            float(np.interp(T, grid, mu)), float(np.interp(T, grid, k)))
 
 
 def _positive_finite(name: str, value) -> float:

@@ -14,7 +14,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import brentq
 
 from feedtherm.physics._arrays import scalar_or_array as _out
 from feedtherm.physics._checks import nonnegative as _nonnegative
@@ -137,6 +136,8 @@ def axial_loads_preloaded_nut(F_axial, F_preload):
         return F, 0.0
     if F == 0.0:
         return F_p, F_p
+    from scipy.optimize import brentq  # 0.3 s to import: only where a preloaded nut is loaded
+
     budget = 2.0 * F_p ** (2.0 / 3.0)
     F2 = brentq(lambda x: (x + F) ** (2.0 / 3.0) + x ** (2.0 / 3.0) - budget, 0.0, F_p,
                 xtol=1e-12 * F_p, rtol=1e-14)

@@ -24,6 +24,8 @@ from typing import Annotated
 import pint
 from pydantic import BeforeValidator
 
+from ..constants import cache_root
+
 _NUMBER_AND_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
 _KELVIN_AT_0C = 273.15
 
@@ -82,8 +84,16 @@ _HINT_UNITS = {"m": "mm", "rad/s": "rpm", "m^2": "mm^2"}
 
 @lru_cache(maxsize=1)
 def registry() -> pint.UnitRegistry:
-    """The one unit registry of feedtherm (built lazily: pint takes ~0.1 s to load)."""
-    return pint.UnitRegistry()
+    """The one unit registry of feedtherm, built lazily.
+
+    Parsing pint's definitions takes about 0.5 s, reading them back from pint's disk cache
+    (under :func:`~feedtherm.constants.cache_root`) 0.02 s; a cache that cannot be written or
+    read (a read-only home, a file cut short) costs only that time.
+    """
+    try:
+        return pint.UnitRegistry(cache_folder=cache_root() / "pint")
+    except Exception:  # noqa: BLE001 - a cache must never stop a command
+        return pint.UnitRegistry()
 
 
 def _counts_revolutions(quantity) -> bool:

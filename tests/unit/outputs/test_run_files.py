@@ -270,6 +270,14 @@ def test_write_run_writes_tables_and_plots_together(solution, tmp_path):
         "sensors.png", "summary.json"]
 
 
+def test_without_figures_a_run_writes_the_tables_and_removes_an_earlier_runs_plots(solution, tmp_path):
+    out_dir = tmp_path / "run"
+    write_run(solution, out_dir, sample_interval=60.0)
+    written = write_run(solution, out_dir, sample_interval=60.0, figures=False)
+    assert sorted(p.name for p in out_dir.iterdir()) == sorted(p.name for p in written) == [
+        "screw.csv", "screw_displacement.csv", "sensors.csv", "summary.json"]
+
+
 def test_a_run_replaces_every_file_of_an_earlier_run_and_keeps_others(solution, tmp_path):
     """A fast run over an FE run's directory: no fields of the other run beside the new summary."""
     out_dir = tmp_path / "run"

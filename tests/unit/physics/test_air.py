@@ -1,9 +1,12 @@
 """Tests of feedtherm.physics.air against Incropera et al. (2007), Table A.4."""
 
 import dataclasses
+import subprocess
+import sys
 import math
 import warnings
 
+import numpy as np
 import pytest
 
 from feedtherm.physics.air import AirProperties, film_temperature, properties_air
@@ -117,3 +120,41 @@ def test_film_temperature_adds_arrays_elementwise():
 
     assert list(film_temperature([300.0, 310.0], [290.0, 290.0])) == [295.0, 300.0]
     assert film_temperature(303.15, 293.15) == pytest.approx(298.15)
+
+
+# --- the table of CoolProp's values at one atmosphere (feedtherm.physics.air_table) ---------
+
+def test_table_interpolation_stays_within_5e6_of_coolprop():
+    # Linear interpolation between whole kelvins of ρT, c_p, μ and k: the largest deviation
+    # measured over 110-1400 K is 4.7e-6 (c_p near 110 K, where it curves most).
+    from feedtherm.physics.air import _coolprop_state, _tabulated
+
+    for T in np.random.default_rng(7).uniform(110.0, 1400.0, 200):
+        tabulated, exact = np.array(_tabulated(T)), np.array(_coolprop_state(T, 101325.0))
+        assert np.all(np.abs(tabulated / exact - 1.0) <= 5e-6), T
+
+
+def test_table_rows_are_coolprops_values():
+    from feedtherm.physics.air_table import read_table, table_rows
+
+    table = read_table()
+    assert table[0, 0] == 110.0 and table[-1, 0] == 1400.0 and np.all(np.diff(table[:, 0]) == 1.0)
+    picked = table[[0, 190, 1290]]  # 110, 300 and 1400 K
+    assert np.allclose(table_rows(picked[:, 0]), picked, rtol=1e-9, atol=0.0)
+
+
+def test_outside_the_table_coolprop_answers():
+    # 1e5 Pa is not the table's pressure: ρ from CoolProp, ≈ p/(R_air T) = 1e5/(287.05 · 300) = 1.1612
+    assert properties_air(300.0, p=1e5).density == pytest.approx(1.1612, rel=2e-3)
+    # 1500 K is past the table's last row (with the range warning)
+    with pytest.warns(CorrelationRangeWarning):
+        hot = properties_air(1500.0)
+    assert hot.density == pytest.approx(101325.0 / (287.05 * 1500.0), rel=2e-3)
+
+
+def test_importing_the_air_properties_does_not_import_coolprop():
+    # CoolProp takes seconds to import; a command's start-up must not pay it (issue 13)
+    code = ("import sys, feedtherm.physics.air as a; a.properties_air(300.0); "
+            "import feedtherm.cli; print('CoolProp' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"

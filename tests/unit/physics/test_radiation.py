@@ -8,8 +8,14 @@ import pytest
 from feedtherm.physics.radiation import SIGMA, h_radiation, heat_flux_radiation
 
 
-def test_sigma_is_codata_value():
-    assert SIGMA == pytest.approx(5.670374419e-8, rel=1e-9)
+def test_sigma_follows_from_the_defined_si_constants():
+    # σ = 2π⁵ k⁴ / (15 h³ c²) with the exact k = 1.380649e-23 J/K, h = 6.62607015e-34 J·s,
+    # c = 299792458 m/s (SI 2019); scipy.constants holds the same CODATA value
+    from scipy.constants import Stefan_Boltzmann
+
+    k, h, c = 1.380649e-23, 6.62607015e-34, 299792458.0
+    assert SIGMA == pytest.approx(2.0 * math.pi ** 5 * k ** 4 / (15.0 * h ** 3 * c ** 2), rel=1e-9)
+    assert SIGMA == pytest.approx(Stefan_Boltzmann, rel=1e-12)
 
 
 def test_incropera_example_1_2_steam_pipe():

@@ -30,6 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ...constants import cache_root
 from ...errors import ModelError
 from ...system.schema import Cylinder, FeedSystem, Part
 
@@ -58,9 +59,7 @@ DENSITIES: dict[str, Density] = {
 
 def cache_dir() -> Path:
     """``$FEEDTHERM_CACHE/meshes``, default ``~/.cache/feedtherm/meshes``."""
-    root = os.environ.get("FEEDTHERM_CACHE")
-    base = Path(root).expanduser() if root else Path.home() / ".cache" / "feedtherm"
-    return base / "meshes"
+    return cache_root() / "meshes"
 
 
 def thickness(part: Part) -> float:
