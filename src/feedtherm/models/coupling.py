@@ -74,7 +74,7 @@ class TemperatureReadout:
         used = totals > 0.0
         self._names = [("surface", n) for n in basis.surfaces] + [("source", n) for n in basis.sources]
         self._names = [name for name, keep in zip(self._names, used) if keep]
-        self._weights = sp.diags(1.0 / totals[used]) @ weights[used]
+        self._weights = model.restrict(sp.diags(1.0 / totals[used]) @ weights[used])
 
     def __call__(self, state: np.ndarray) -> LocalTemperatures:
         values = self._weights @ state

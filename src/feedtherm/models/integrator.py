@@ -108,11 +108,18 @@ def factorize(A: sp.spmatrix):
 
 
 class _DenseLU:
+    """LAPACK's LU (getrf/getrs) of a dense step matrix, called directly: ``scipy.linalg.lu_solve``
+    copies the factors on every call, which costs more than the solve at a reduced model's size."""
+
     def __init__(self, A: np.ndarray):
-        self._factors = scipy.linalg.lu_factor(A)
+        getrf, self._getrs = scipy.linalg.get_lapack_funcs(("getrf", "getrs"), (A,))
+        self._lu, self._piv, info = getrf(np.asfortranarray(A, dtype=float))
+        if info != 0:
+            raise ModelError(f"a reduced model's step matrix is singular (LAPACK getrf info {info})")
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
-        return scipy.linalg.lu_solve(self._factors, rhs)
+        x, info = self._getrs(self._lu, self._piv, rhs)
+        return x
 
 
 def operator_sum(*operators: Operator) -> Operator:
@@ -180,6 +187,7 @@ class Integrator:
         self._conductance = {}  # position (None: cycle average) → conduction operator
         self._loads = {}  # (segment, boundary conditions' id, position) → (boundary conditions, Loads)
         self._matrix_keys = {}  # same keys → key of the step matrix (without C/dt)
+        self._link_changes = {}  # (segment, evaluated bc's id, factorised bc's id, position) → link difference
         solver = options.solver
         self.dense = isinstance(model.conductance(0), np.ndarray)
         self.direct = self.dense or solver == "direct" or (solver == "auto" and model.n_nodes <= DIRECT_SOLVER_LIMIT)
@@ -220,6 +228,7 @@ class Integrator:
         for key in keys:
             del self._loads[key]
         stale -= set(self._matrix_keys.values())
+        self._link_changes.clear()
         for cache in (self._lu, self._cg):
             for key in [key for key in cache if key[0] in stale or key[1:3] == (seg_id, id(bc))]:
                 del cache[key]
@@ -333,12 +342,13 @@ class Integrator:
         what the right-hand side takes while the matrix is not refactorised (0 when it is ``bc``'s)."""
         if factorised is bc:
             return np.zeros_like(state)
-        now, ref = self.loads(seg_id, bc, k).ambient, self.loads(seg_id, factorised, k).ambient
-        return _apply(now.matrix - ref.matrix, state)
+        key = (seg_id, id(bc), id(factorised), k)
+        if key not in self._link_changes:
+            now, ref = self.loads(seg_id, bc, k).ambient, self.loads(seg_id, factorised, k).ambient
+            self._link_changes[key] = now.matrix - ref.matrix
+        return _apply(self._link_changes[key], state)
 
     def _links_moved(self, old: BoundaryConditions, new: BoundaryConditions) -> bool:
-        if self.dense:  # a projected model: no per-node links to compare
-            return True
         g_old, g_new = self.model.ambient_links(old, None), self.model.ambient_links(new, None)
         return bool(np.any(np.abs(g_new - g_old) > LINK_REFACTOR * g_old))
 
@@ -427,7 +437,7 @@ class Integrator:
                     state = (1 - w) * T + w * T_new
                     self._record_sample(trace, state, k_probe)
                     if next_sample >= next_snapshot - 1e-9 or next_sample >= t_end - 1e-9:
-                        trace.snapshots.append((next_sample, state, m.positions[k_probe]))
+                        trace.snapshots.append((next_sample, m.full_state(state), m.positions[k_probe]))
                         next_snapshot = next_sample + self.options.snapshot_interval
                     next_sample = next(samples, None)
                 trace.step_end.append(t_new)

@@ -226,6 +226,17 @@ class ThermalModel(ABC):
         return cache[k]
 
     # ------------------------------------------------------------------ states
+    def restrict(self, rows: Operator) -> Operator:
+        """Rows that read a full state (one per row, over the nodes), as rows that read this model's state.
+
+        A full-state model reads its own nodes; a projected model multiplies by its basis.
+        """
+        return rows
+
+    def full_state(self, state: np.ndarray) -> np.ndarray:
+        """The nodal temperatures [K] of ``state`` (a projected model lifts its coordinates)."""
+        return state
+
     def uniform_state(self, temperature: float) -> np.ndarray:
         """The state of a body at one temperature [K] throughout."""
         return np.full(self.n_nodes, float(temperature))

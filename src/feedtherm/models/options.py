@@ -16,7 +16,9 @@ class ModelOptions:
     cell_size: float = 0.04  # [m] size of the sub-volumes of the parts not resolved along the screw axis
     # FE model
     mesh: Literal["coarse", "medium", "fine"] = "coarse"
-    # time stepping (both models)
+    # reduced model: relative POD tolerance of its basis (models/reduced/basis.py)
+    reduction_tolerance: float = 1e-4
+    # time stepping (every model)
     steps_per_stroke: int = 20  # at least this many time steps per stroke
     standstill_step: float = 10.0  # [s] time step while the table stands still
     max_step: float = 30.0  # [s] upper bound of any step

@@ -56,11 +56,20 @@ def _fem(system: FeedSystem, options: ModelOptions) -> ThermalModel:
                              min_positions=options.steps_per_stroke)
 
 
+def _reduced(system: FeedSystem, options: ModelOptions) -> ThermalModel:
+    from .reduced import ProjectedModel, moment_basis
+
+    full = _fem(system, options)
+    return ProjectedModel(full, moment_basis(full, tolerance=options.reduction_tolerance))
+
+
 _BUILT_IN = (
     ModelEntry("fast", "thermal network: the screw in axial cells × rings, the other parts in sub-volumes "
                        "(docs/fast-model.md)", _fast),
     ModelEntry("fem", "3D finite elements (gmsh + scikit-fem), every part meshed, joints as interface "
                       "conductances (docs/fem-model.md)", _fem, uses_mesh=True),
+    ModelEntry("reduced", "the FE model projected onto a moment-matching basis: the same mesh and moving nut, "
+                          "a few hundred unknowns (docs/reduced-model.md)", _reduced, uses_mesh=True),
 )
 _registered: dict[str, ModelEntry] = {}
 

@@ -1,0 +1,137 @@
+r"""The projection basis of a reduced model: moments of the full model's transfer functions.
+
+The full model's temperatures answer its inputs — each source's heat at each position of the
+moving group, each surface's sink — through :math:`(G_k + A_k + sC)^{-1}` (Laplace variable
+:math:`s`).  Rational Krylov (moment matching) spans those answers at a few shifts, from
+:math:`s = 0` (the steady states) to :math:`s = 1/\tau` for time constants from a
+reciprocation step to the parts' own (Grimme 1997; Antoulas 2005, ch. 11).  The snapshots
+are taken with the cycle-averaged operator, one factorisation per shift, and corrected
+toward each position's own operator by one block step
+:math:`x_k \leftarrow x_k + \bar M^{-1}(b_k - M_k x_k)`, so that the sliding contact under
+the nut at position k is in the span too.  The uniform state is the basis's first vector, so
+the reduced model keeps the full model's energy balance exactly (its Galerkin equation for
+that vector is the balance).
+
+The snapshots are compressed by a proper orthogonal decomposition in the capacity inner
+product (pyMOR's :func:`~pymor.algorithms.pod.pod`): the basis size is the number of modes
+whose singular values exceed ``tolerance`` times the largest one, not a constant.
+
+The boundary conditions are not known when the model is built (they follow the operating
+point and, coupled, the temperatures); the snapshots use a reference film coefficient on
+every declared surface (:data:`REFERENCE_HTC`).  The reduced operators themselves take each
+run's coefficients exactly: they are sums of per-surface projected matrices.
+
+References
+----------
+E. J. Grimme, *Krylov projection methods for model reduction*, PhD thesis, University of
+Illinois, 1997.  A. C. Antoulas, *Approximation of Large-Scale Dynamical Systems*, SIAM, 2005.
+R. Milk, S. Rave, F. Schindler, "pyMOR — generic algorithms and interfaces for model order
+reduction", SIAM J. Sci. Comput. 38 (2016) S194–S216.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..integrator import factorize
+from ..interface import ThermalModel, cycle_weights, weighted_sum
+
+#: [W/(m²·K)] film coefficient on every surface while the snapshots are taken: still air with
+#: radiation from a metal surface is 5-15; the runs' own coefficients enter the reduced operators.
+REFERENCE_HTC = 10.0
+#: [s] time constants of the shifted snapshots: a reciprocation step, a cycle, the nut's and
+#: the screw's warm-up, the bed's (besides s = 0, the steady states).
+TIME_CONSTANTS = (2.0, 60.0, 600.0, 6000.0)
+#: Positions (spread over the stroke, the ends included) at which the answers to the inputs that
+#: do not move are corrected toward the position's own operator.
+CORRECTED_POSITIONS = 5
+#: Default relative POD tolerance (singular values below it times the largest are dropped).
+TOLERANCE = 1e-5
+
+
+@dataclass(frozen=True)
+class Basis:
+    """A capacity-orthonormal basis ``vectors`` (n, r), the uniform state first, and how it was made."""
+
+    vectors: np.ndarray
+    singular_values: np.ndarray
+    tolerance: float
+    snapshots: int
+    seconds: float
+
+    @property
+    def size(self) -> int:
+        return self.vectors.shape[1]
+
+
+def reference_links(model: ThermalModel, k: int | None) -> np.ndarray:
+    """Node-to-air conductances [W/K] with :data:`REFERENCE_HTC` on every surface at position k."""
+    return np.asarray(model.boundary_basis(k).exposure.sum(axis=0)).ravel() * REFERENCE_HTC
+
+
+def inputs(model: ThermalModel, k: int) -> np.ndarray:
+    """The full model's input vectors at position k: each source's heat shares, each surface's sink (n, m)."""
+    basis = model.boundary_basis(k)
+    sinks = basis.exposure.T * REFERENCE_HTC
+    return sp.hstack([basis.distribution.T, sinks]).toarray()
+
+
+def split_inputs(model: ThermalModel) -> tuple[np.ndarray, list[np.ndarray]]:
+    """The inputs that are the same at every position (n, m), and per position those that are not."""
+    per_position = [inputs(model, k) for k in range(len(model.positions))]
+    first = per_position[0]
+    same = np.array([all(np.array_equal(b[:, j], first[:, j]) for b in per_position) for j in range(first.shape[1])])
+    return first[:, same], [b[:, ~same] for b in per_position]
+
+
+def moment_basis(model: ThermalModel, tolerance: float = TOLERANCE,
+                 time_constants: tuple[float, ...] = TIME_CONSTANTS) -> Basis:
+    """The basis of :mod:`this module <.basis>` for ``model`` (module notes)."""
+    from pymor.algorithms.gram_schmidt import gram_schmidt
+    from pymor.algorithms.pod import pod
+    from pymor.operators.numpy import NumpyMatrixOperator
+    from pymor.core.logger import set_log_levels
+    from pymor.vectorarrays.numpy import NumpyVectorSpace
+
+    set_log_levels({"pymor": "WARN"})  # its progress lines are not a run's output
+
+    started = time.perf_counter()
+    C = np.asarray(model.capacity, dtype=float)
+    n_positions = len(model.positions)
+    averaged_links = reference_links(model, None)
+    G_mean = weighted_sum(cycle_weights(n_positions), [model.conductance(k) for k in range(n_positions)])
+    fixed, moving = split_inputs(model)
+    # the fixed inputs' answers are corrected at a few positions, the moving inputs' at every one
+    corrected_at = sorted({round(i * (n_positions - 1) / (CORRECTED_POSITIONS - 1)) for i in range(CORRECTED_POSITIONS)})
+    snapshots = []
+    for tau in (None, *time_constants):
+        shift = 0.0 if tau is None else 1.0 / tau
+        mean = factorize((G_mean + sp.diags(averaged_links + shift * C)).tocsc())
+        x_fixed = mean.solve(fixed)
+        snapshots.append(x_fixed)
+        for k in range(n_positions):
+            # one block step toward position k's own operator (its sliding contact and exposure)
+            M_k = model.conductance(k) + sp.diags(reference_links(model, k) + shift * C)
+            if k in corrected_at:
+                snapshots.append(x_fixed + mean.solve(fixed - M_k @ x_fixed))
+            if moving[k].shape[1]:
+                x = mean.solve(moving[k])
+                snapshots.append(x + mean.solve(moving[k] - M_k @ x))
+    X = np.hstack(snapshots)
+    space = NumpyVectorSpace(model.n_nodes)
+    product = NumpyMatrixOperator(sp.diags(C).tocsr())
+    ones = np.ones(model.n_nodes) / np.sqrt(C.sum())
+    # the uniform part is the first basis vector: take it out of the snapshots, then scale
+    # each snapshot to unit capacity norm so that every input counts alike
+    X = X - np.outer(ones, ones @ (C[:, None] * X))
+    norms = np.sqrt(np.einsum("ij,ij->j", X, C[:, None] * X))
+    kept = norms > 1e-12 * norms.max()  # an input with no response beyond the uniform one
+    X = X[:, kept] / norms[kept]
+    modes, singular_values = pod(space.from_numpy(X), product=product, rtol=tolerance)
+    vectors = gram_schmidt(space.from_numpy(np.column_stack([ones, modes.to_numpy()])), product=product)
+    return Basis(vectors.to_numpy(), np.asarray(singular_values), tolerance, X.shape[1],
+                 time.perf_counter() - started)

@@ -1,0 +1,106 @@
+"""The reduced model (models/reduced): a projection that keeps the full model's answers.
+
+The projections are checked against the full operators multiplied out directly, the basis
+against its definition, and the runs against the full model's own run of the same plan.
+The fast model serves as the full model where the check is about the projection (it is
+built in a second); one short FE run checks ``--model reduced`` itself.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from feedtherm.boundary import boundary_conditions
+from feedtherm.models.reduced import ProjectedModel, moment_basis
+from feedtherm.simulate import execute, plan_run
+
+DURATION = 1800.0  # [s]: the nut's warm-up, where the moving heat matters most
+
+
+@pytest.fixture(scope="module")
+def plan(paper):
+    return plan_run(paper, condition="I", duration=DURATION)
+
+
+@pytest.fixture(scope="module")
+def full(plan, paper):
+    return plan.model.build(paper.system, plan.options)
+
+
+@pytest.fixture(scope="module")
+def reduced(full):
+    return ProjectedModel(full, moment_basis(full, tolerance=1e-4))
+
+
+@pytest.fixture(scope="module")
+def runs(plan, full, reduced):
+    return execute(plan, model=full), execute(plan, model=reduced)
+
+
+def test_the_basis_is_capacity_orthonormal_and_starts_with_the_uniform_state(full, reduced):
+    V, C = reduced.V, np.asarray(full.capacity)
+    assert np.allclose(V.T @ (C[:, None] * V), np.eye(V.shape[1]), atol=1e-9)
+    assert np.allclose(V[:, 0], V[0, 0]) and V[0, 0] > 0.0
+    # so a uniform state is represented exactly
+    T = reduced.full_state(reduced.uniform_state(293.15))
+    assert np.allclose(T, 293.15, rtol=0.0, atol=1e-9)
+
+
+def test_the_basis_size_follows_the_tolerance(full, reduced):
+    coarse = moment_basis(full, tolerance=1e-2)
+    assert coarse.size < reduced.basis.size
+    # every kept singular value is above the tolerance times the largest, the dropped ones below
+    s = coarse.singular_values
+    assert s.min() >= 1e-2 * s.max() and coarse.size == s.size + 1  # + the uniform state
+
+
+@pytest.mark.parametrize("k", [0, 7, 20, 40])
+def test_projected_operators_are_the_full_ones_multiplied_out(full, reduced, paper, k):
+    V = reduced.V
+    G = full.conductance(k)
+    assert np.allclose(reduced.conductance(k), V.T @ (G @ V), rtol=1e-10, atol=1e-10 * np.abs(G).max())
+    bc = boundary_conditions(paper.system, "I", "physics")
+    full_ambient, ambient = full.ambient_coupling(bc, k), reduced.ambient_coupling(bc, k)
+    links = full_ambient.matrix
+    assert np.allclose(ambient.matrix, V.T @ (links[:, None] * V), rtol=1e-10, atol=1e-12)
+    assert np.allclose(ambient.source, V.T @ full_ambient.source, rtol=1e-10, atol=1e-9)
+    assert ambient.source_total == pytest.approx(full_ambient.source_total, rel=1e-12)
+    assert np.allclose(reduced.heat_vector(bc, k), V.T @ full.heat_vector(bc, k), rtol=1e-10, atol=1e-12)
+
+
+def test_readouts_are_the_full_models_of_the_lifted_state(full, reduced):
+    z = np.random.default_rng(3).normal(size=reduced.n_nodes)
+    T = reduced.full_state(z)
+    assert np.allclose(reduced.probe(z, 5), full.probe(T, 5), rtol=1e-12)
+    assert np.allclose(reduced.screw_mean(z), full.screw_mean(T), rtol=1e-12)
+    means = full.part_means(T)
+    for part, value in reduced.part_means(z).items():
+        assert value == pytest.approx(float(means[part]), rel=1e-12)
+
+
+def test_a_reduced_run_follows_the_full_run(runs):
+    full_run, reduced_run = runs
+    for name in full_run.sensors:
+        assert np.max(np.abs(reduced_run.sensors[name] - full_run.sensors[name])) <= 0.1, name
+    assert np.max(np.abs(reduced_run.elongation - full_run.elongation)) <= 0.2e-6
+    # the uniform state is in the basis: its Galerkin equation is the energy balance
+    assert abs(reduced_run.energy.relative_error) <= 1e-9
+
+
+def test_the_reduced_fe_model_runs_from_the_command_line_and_follows_the_fe_model(paper, tmp_path, monkeypatch):
+    monkeypatch.setenv("FEEDTHERM_CACHE", str(tmp_path / "cache"))
+    plan = plan_run(paper, condition="I", duration=600.0, model="fem", mesh="coarse")
+    fe = plan.model.build(paper.system, plan.options)
+    reduced_plan = plan_run(paper, condition="I", duration=600.0, model="reduced", mesh="coarse")
+    full_run = execute(plan, model=fe)
+    reduced_run = execute(reduced_plan)
+    assert reduced_run.info["model"] == "reduced"
+    stats = reduced_run.info["mesh_statistics"]
+    assert stats["reduced_from"] == fe.n_nodes and stats["basis_size"] < fe.n_nodes // 20
+    for name in full_run.sensors:
+        assert np.max(np.abs(reduced_run.sensors[name] - full_run.sensors[name])) <= 0.1, name
+    assert np.max(np.abs(reduced_run.elongation - full_run.elongation)) <= 0.2e-6
+    assert reduced_run.fields is not None and reduced_run.fields.temperatures.shape[1] == fe.n_nodes
+    assert sp.issparse(fe.conductance(0))
