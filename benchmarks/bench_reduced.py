@@ -1,0 +1,91 @@
+"""Benchmark of the reduced model against the full FE model it projects (issue 13).
+
+Run:
+    .venv/bin/python benchmarks/bench_reduced.py --mesh coarse|medium|fine [--tolerance 1e-4] [--condition I]
+
+Builds the FE model once (the mesh from the cache), then times, on the same model and the
+same plan (condition I, 10,800 s, position-resolved, >= 20 steps per stroke):
+
+- the full FE run;
+- the reduced model's basis (snapshots, POD), its projection, and its run.
+
+It reports the largest deviation over the whole transient (every sample) of T1-T5 and D
+between the two, the basis size, and the wall times.  The figures are printed and written as
+JSON to benchmarks/results/reduced_<mesh>_<condition>.json; benchmarks/README.md keeps the
+latest.  The fine mesh's full run takes 20-30 min on a 2-core machine.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import platform
+import resource
+import time
+from datetime import date
+from pathlib import Path
+
+import numpy as np
+
+from feedtherm.models.reduced import ProjectedModel, moment_basis
+from feedtherm.simulate import execute, plan_run
+from feedtherm.system.load import load_system
+
+SENSORS = ["T1", "T2", "T3", "T4", "T5"]
+RESULTS = Path(__file__).resolve().parent / "results"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--mesh", default="coarse", choices=["coarse", "medium", "fine"])
+    parser.add_argument("--condition", default="I")
+    parser.add_argument("--tolerance", type=float, default=1e-4)
+    parser.add_argument("--system", default="paper")
+    args = parser.parse_args()
+
+    loaded = load_system(args.system)
+    plan = plan_run(loaded, condition=args.condition, model="fem", mesh=args.mesh)
+    started = time.perf_counter()
+    full = plan.model.build(loaded.system, plan.options)
+    build_s = time.perf_counter() - started
+
+    started = time.perf_counter()
+    full_run = execute(plan, model=full)
+    full_s = time.perf_counter() - started
+
+    started = time.perf_counter()
+    basis = moment_basis(full, tolerance=args.tolerance)
+    basis_s = time.perf_counter() - started
+    started = time.perf_counter()
+    reduced = ProjectedModel(full, basis)
+    project_s = time.perf_counter() - started
+    started = time.perf_counter()
+    reduced_run = execute(plan, model=reduced)
+    reduced_s = time.perf_counter() - started
+
+    deviation = {name: float(np.max(np.abs(reduced_run.sensors[name] - full_run.sensors[name])))
+                 for name in SENSORS}
+    figures = {
+        "date": date.today().isoformat(),
+        "machine": f"{platform.machine()}, {platform.python_implementation()} {platform.python_version()}",
+        "mesh": args.mesh, "condition": args.condition, "vertices": full.n_nodes,
+        "positions": len(full.positions), "steps": full_run.info["steps"],
+        "tolerance": args.tolerance, "basis_size": basis.size, "snapshots": basis.snapshots,
+        "fe_build_s": round(build_s, 1),
+        "full_run_s": round(full_s, 1),
+        "basis_s": round(basis_s, 1), "projection_s": round(project_s, 1), "reduced_run_s": round(reduced_s, 1),
+        "reduced_total_s": round(basis_s + project_s + reduced_s, 1),
+        "speed_up_including_basis": round(full_s / (basis_s + project_s + reduced_s), 1),
+        "max_abs_dT_K": {k: round(v, 4) for k, v in deviation.items()},
+        "max_abs_dT_all_K": round(max(deviation.values()), 4),
+        "max_abs_dD_um": round(float(np.max(np.abs(reduced_run.elongation - full_run.elongation))) * 1e6, 4),
+        "energy_balance_error_reduced": reduced_run.energy.relative_error,
+        "peak_rss_MB": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0, 1),
+    }
+    RESULTS.mkdir(exist_ok=True)
+    (RESULTS / f"reduced_{args.mesh}_{args.condition}.json").write_text(json.dumps(figures, indent=2))
+    print(json.dumps(figures, indent=2))
+
+
+if __name__ == "__main__":
+    main()
