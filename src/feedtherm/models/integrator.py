@@ -118,8 +118,7 @@ class _DenseLU:
             raise ModelError(f"a reduced model's step matrix is singular (LAPACK getrf info {info})")
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
-        x, info = self._getrs(self._lu, self._piv, rhs)
-        return x
+        return self._getrs(self._lu, self._piv, rhs)[0]
 
 
 def operator_sum(*operators: Operator) -> Operator:

@@ -102,6 +102,19 @@ class BoundaryBasis:
     distribution: sp.csr_matrix
 
 
+def surface_coefficients(bc: BoundaryConditions, surfaces: list[str]) -> tuple[np.ndarray, np.ndarray]:
+    """Each surface's total coefficient [W/(m²·K)] and sink temperature [K] (a surface left out exchanges nothing)."""
+    transfer = [bc.surfaces.get(name) for name in surfaces]
+    return (np.array([0.0 if t is None else t.total for t in transfer]),
+            np.array([0.0 if t is None else t.sink for t in transfer]))
+
+
+def source_powers(bc: BoundaryConditions, sources: list[str]) -> np.ndarray:
+    """Each source's heat [W] (a source left out gives nothing)."""
+    heats = [bc.heats.get(name) for name in sources]
+    return np.array([0.0 if q is None else q.power for q in heats])
+
+
 def cycle_weights(n_positions: int) -> np.ndarray:
     """Time share of each grid position under steady reciprocation (the ends count half)."""
     w = np.ones(n_positions)
@@ -180,16 +193,13 @@ class ThermalModel(ABC):
     def _links(self, bc: BoundaryConditions, k: int | None) -> tuple[np.ndarray, np.ndarray]:
         """Node-to-sink conductances ``g`` [W/K] and their heat at the sink temperatures ``g·T_s`` [W]."""
         basis = self.boundary_basis(k)
-        transfer = [bc.surfaces.get(name) for name in basis.surfaces]  # a surface left out exchanges nothing
-        h = np.array([0.0 if t is None else t.total for t in transfer])
-        sinks = np.array([0.0 if t is None else t.sink for t in transfer])
+        h, sinks = surface_coefficients(bc, basis.surfaces)
         return basis.exposure.T @ h, basis.exposure.T @ (h * sinks)
 
     def heat_vector(self, bc: BoundaryConditions, k: int | None) -> np.ndarray:
         """Heat [W] into every state entry at position k (None: the cycle average), placed by :func:`heat_inputs`."""
         basis = self.boundary_basis(k)
-        heats = [bc.heats.get(name) for name in basis.sources]  # a source left out gives nothing
-        return basis.distribution.T @ np.array([0.0 if h is None else h.power for h in heats])
+        return basis.distribution.T @ source_powers(bc, basis.sources)
 
     def boundary_basis(self, k: int | None) -> "BoundaryBasis":
         """Where each surface exchanges heat and each source's heat enters, at position k.

@@ -103,6 +103,7 @@ def moment_basis(model: ThermalModel, tolerance: float = TOLERANCE,
     C = np.asarray(model.capacity, dtype=float)
     n_positions = len(model.positions)
     averaged_links = reference_links(model, None)
+    links = [reference_links(model, k) for k in range(n_positions)]
     G_mean = weighted_sum(cycle_weights(n_positions), [model.conductance(k) for k in range(n_positions)])
     fixed, moving = split_inputs(model)
     # the fixed inputs' answers are corrected at a few positions, the moving inputs' at every one
@@ -115,7 +116,7 @@ def moment_basis(model: ThermalModel, tolerance: float = TOLERANCE,
         snapshots.append(x_fixed)
         for k in range(n_positions):
             # one block step toward position k's own operator (its sliding contact and exposure)
-            M_k = model.conductance(k) + sp.diags(reference_links(model, k) + shift * C)
+            M_k = model.conductance(k) + sp.diags(links[k] + shift * C)
             if k in corrected_at:
                 snapshots.append(x_fixed + mean.solve(fixed - M_k @ x_fixed))
             if moving[k].shape[1]:

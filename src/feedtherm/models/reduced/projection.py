@@ -20,7 +20,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ...boundary import BoundaryConditions
-from ..interface import AmbientCoupling, HeatInput, ThermalModel, cycle_weights
+from ..interface import AmbientCoupling, HeatInput, ThermalModel, cycle_weights, source_powers, surface_coefficients
 from .basis import Basis
 
 __all__ = ["ProjectedModel"]
@@ -35,10 +35,9 @@ def _changed(current: sp.spmatrix, reference: sp.spmatrix) -> sp.csr_matrix:
 class ProjectedModel(ThermalModel):
     """``full`` projected onto ``basis`` (see the module notes)."""
 
-    def __init__(self, full: ThermalModel, basis: Basis, name: str = "reduced"):
+    def __init__(self, full: ThermalModel, basis: Basis):
         self.full = full
         self.basis = basis
-        self.name = name
         V = np.ascontiguousarray(basis.vectors)  # sparse @ V copies a Fortran-ordered V on every product
         self.V = V
         self.system = full.system
@@ -115,22 +114,14 @@ class ProjectedModel(ThermalModel):
     def ambient_links(self, bc: BoundaryConditions, k: int | None) -> np.ndarray:
         return self.full.ambient_links(bc, k)
 
-    def _coefficients(self, bc: BoundaryConditions) -> tuple[np.ndarray, np.ndarray]:
-        transfer = [bc.surfaces.get(name) for name in self._reference.surfaces]
-        h = np.array([0.0 if t is None else t.total for t in transfer])
-        sinks = np.array([0.0 if t is None else t.sink for t in transfer])
-        return h, sinks
-
     def ambient_coupling(self, bc: BoundaryConditions, k: int | None) -> AmbientCoupling:
         matrices, rows, areas, _ = self._boundary_pieces(k)
-        h, sinks = self._coefficients(bc)
+        h, sinks = surface_coefficients(bc, self._reference.surfaces)
         return AmbientCoupling(np.tensordot(h, matrices, axes=1), h @ rows, (h * sinks) @ rows,
                                float((h * sinks) @ areas))
 
     def heat_vector(self, bc: BoundaryConditions, k: int | None) -> np.ndarray:
-        entries = self._boundary_pieces(k)[3]
-        heats = [bc.heats.get(name) for name in self._reference.sources]
-        return np.array([0.0 if q is None else q.power for q in heats]) @ entries
+        return source_powers(bc, self._reference.sources) @ self._boundary_pieces(k)[3]
 
     def restrict(self, rows):
         return np.asarray(rows @ self.V)
