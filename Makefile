@@ -24,12 +24,14 @@ validate: $(STAMP)
 	$(BIN)/feedtherm validate paper --mode physics --calibration $(CAL_DIR)
 
 # The report test renders report.html in headless Chromium (Debian package `chromium`); the
-# FE tests need the X/GL libraries that gmsh's wheel links against (Debian packages).
+# FE tests need the X/GL libraries that gmsh's wheel links against (Debian packages), and the
+# FE model's check against CalculiX needs its solver (Debian package `calculix-ccx`).
 GMSH_LIBS := libglu1-mesa libgl1 libopengl0 libxrender1 libxcursor1 libxfixes3 libxext6 libxft2 libxinerama1 libx11-6
 
 setup-test: $(STAMP)
 	command -v chromium >/dev/null || (apt-get update -qq && apt-get install -y -qq chromium >/dev/null)
 	$(BIN)/python -c "import gmsh" 2>/dev/null || (apt-get update -qq && apt-get install -y -qq $(GMSH_LIBS) >/dev/null)
+	command -v ccx >/dev/null || (apt-get update -qq && apt-get install -y -qq calculix-ccx >/dev/null)
 
 test: $(STAMP) setup-test
 	$(BIN)/python -m pytest

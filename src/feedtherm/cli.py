@@ -115,6 +115,33 @@ def cmd_run(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_calculix(args: argparse.Namespace) -> int:
+    from .outputs.calculix_files import write_calculix
+    from .outputs.files import check_output_dir
+    from .outputs.run_files import default_out_dir
+    from .plan import plan_run
+
+    loaded = _load(args.system)
+    condition = _condition(loaded, args.condition)
+    plan = plan_run(loaded, condition=condition, mode=args.mode, model="fem", mesh=args.mesh)
+    out_dir = Path(args.out) if args.out else default_out_dir(args.system, f"{condition}_calculix", args.mode)
+    check_output_dir(out_dir)
+    duration = args.duration if args.duration is not None else plan.segments[-1].t1 - plan.segments[0].t0
+    if args.step > duration:
+        raise FeedthermError(f"--step: {args.step:g} s is longer than the run ({duration:g} s)")
+    model = plan.model.build(loaded.system, plan.options)
+    last = len(model.positions) - 1
+    k = last // 2 if args.position is None else args.position
+    if not 0 <= k <= last:
+        raise FeedthermError(f"--position: {k} is not a grid position of the moving group (0 to {last}; "
+                             f"{last // 2} is mid-stroke)")
+    files = write_calculix(model, plan.segments[0].bc, k, out_dir, condition=condition, time_step=args.step,
+                           duration=duration, output_interval=args.every)
+    print(f"{files[0]}: {model.n_nodes:,} nodes, moving group at position {k} of 0..{last} "
+          f"(offset {model.positions[k] * 1e3:+.1f} mm); run: cd {out_dir} && ccx -i feedtherm")
+    return 0
+
+
 def cmd_benches(args: argparse.Namespace) -> int:
     from .benches import benches
 
@@ -156,6 +183,17 @@ def _positive_int(text: str) -> int:
         value = 0
     if value <= 0:
         raise argparse.ArgumentTypeError(f"must be a positive whole number, got {text!r}")
+    return value
+
+
+def _grid_position(text: str) -> int:
+    """argparse type: a whole number >= 0."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 0, got {text!r}")
     return value
 
 
@@ -408,6 +446,23 @@ def build_parser() -> argparse.ArgumentParser:
                                "go into the report's headline")
     _out_argument(validate, "out/<system>_validation_<mode>")
     validate.set_defaults(func=cmd_validate)
+
+    calculix = sub.add_parser("calculix", help="write the FE model at a condition, the moving group held at one "
+                                               "position, as a CalculiX input deck")
+    _system_argument(calculix)
+    calculix.add_argument("--condition", required=True, help="condition name, e.g. I (its first operating point)")
+    calculix.add_argument("--mesh", choices=MESHES, default="coarse", help="FE mesh density (default coarse)")
+    _mode_argument(calculix)
+    calculix.add_argument("--position", type=_grid_position, metavar="K",
+                          help="grid position of the moving group (default: mid-stroke)")
+    calculix.add_argument("--step", type=_positive_seconds, default=30.0, metavar="S",
+                          help="fixed time increment [s] (default 30)")
+    calculix.add_argument("--duration", type=_positive_seconds, metavar="S",
+                          help="length of the transient [s] (default: the condition's)")
+    calculix.add_argument("--every", type=_positive_seconds, default=600.0, metavar="S",
+                          help="interval of the printed nodal temperatures [s] (default 600)")
+    _out_argument(calculix, "out/<system>_<condition>_calculix_<mode>")
+    calculix.set_defaults(func=cmd_calculix)
 
     bench_list = sub.add_parser("benches", help="list the bundled and plugged-in benches SYSTEM may name")
     bench_list.set_defaults(func=cmd_benches)
