@@ -8,12 +8,15 @@ built in a second); one short FE run checks ``--model reduced`` itself.
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pytest
 import scipy.sparse as sp
 
 from feedtherm.boundary import boundary_conditions
 from feedtherm.models.reduced import ProjectedModel, moment_basis
+from feedtherm.models.reduced.basis import _prune
 from feedtherm.simulate import execute, plan_run
 
 DURATION = 1800.0  # [s]: the nut's warm-up, where the moving heat matters most
@@ -54,6 +57,39 @@ def test_the_basis_size_follows_the_tolerance(full, reduced):
     # every kept singular value is above the tolerance times the largest, the dropped ones below
     s = coarse.singular_values
     assert s.min() >= 1e-2 * s.max() and coarse.size == s.size + 1  # + the uniform state
+
+
+def test_a_basis_is_read_back_from_the_cache_for_the_same_model_only(full, tmp_path, monkeypatch):
+    monkeypatch.setenv("FEEDTHERM_CACHE", str(tmp_path))
+    built = moment_basis(full, tolerance=1e-3)
+    again = moment_basis(full, tolerance=1e-3)
+    assert not built.cached and again.cached
+    assert np.array_equal(again.vectors, built.vectors) and again.snapshots == built.snapshots
+    assert len(list((tmp_path / "bases").glob("*.npz"))) == 1
+    # another tolerance, or a model whose operators differ, is another basis
+    assert not moment_basis(full, tolerance=2e-3).cached
+    monkeypatch.setattr(full, "capacity", full.capacity * 1.01)
+    assert not moment_basis(full, tolerance=1e-3).cached
+    assert len(list((tmp_path / "bases").glob("*.npz"))) == 3
+    # a damaged file is rebuilt, not read
+    monkeypatch.undo()
+    monkeypatch.setenv("FEEDTHERM_CACHE", str(tmp_path))
+    for path in (tmp_path / "bases").glob("*.npz"):
+        path.write_bytes(b"not a basis")
+    rebuilt = moment_basis(full, tolerance=1e-3)
+    assert not rebuilt.cached and np.allclose(rebuilt.vectors, built.vectors)
+
+
+def test_the_basis_cache_keeps_the_most_recently_used_within_its_budget(tmp_path):
+    sizes = {"old": 400, "used": 300, "new": 200}
+    for age, (name, size) in enumerate(sizes.items()):
+        (tmp_path / f"{name}.npz").write_bytes(b"x" * size)
+        os.utime(tmp_path / f"{name}.npz", (1e9 + age, 1e9 + age))
+    (tmp_path / ".killed.123.partial.npz").write_bytes(b"x")
+    os.utime(tmp_path / ".killed.123.partial.npz", (1e9, 1e9))
+    os.utime(tmp_path / "old.npz", (2e9, 2e9))  # read back recently: used last
+    _prune(tmp_path, keep=tmp_path / "new.npz", budget=650)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["new.npz", "old.npz"]  # 200 + 400 ≤ 650; 300 more is not
 
 
 @pytest.mark.parametrize("k", [0, 7, 20, 40])

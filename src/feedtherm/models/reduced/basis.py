@@ -16,6 +16,12 @@ The snapshots are compressed by a proper orthogonal decomposition in the capacit
 product (pyMOR's :func:`~pymor.algorithms.pod.pod`): the basis size is the number of modes
 whose singular values exceed ``tolerance`` times the largest one, not a constant.
 
+A basis depends only on the full model's operators (capacity, conduction and contacts at
+every position, where surfaces and sources act) and on the settings above, so it is kept on
+disk under a digest of all of them (:func:`basis_key`, in ``cache_root()/bases``) and read
+back by the next run of the same model: a description that changes no geometry, material or
+joint (another condition, duty cycle or coefficient) reuses it.
+
 The boundary conditions are not known when the model is built (they follow the operating
 point and, coupled, the temperatures); the snapshots use a reference film coefficient on
 every declared surface (:data:`REFERENCE_HTC`).  The reduced operators themselves take each
@@ -31,12 +37,16 @@ reduction", SIAM J. Sci. Comput. 38 (2016) S194–S216.
 
 from __future__ import annotations
 
+import hashlib
+import os
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import scipy.sparse as sp
 
+from ...constants import cache_root
 from ..integrator import factorize
 from ..interface import ThermalModel, cycle_weights, weighted_sum
 
@@ -51,6 +61,11 @@ TIME_CONSTANTS = (2.0, 60.0, 600.0, 6000.0)
 CORRECTED_POSITIONS = 5
 #: Default relative POD tolerance (singular values below it times the largest are dropped).
 TOLERANCE = 1e-5
+#: Changes whenever the way a basis is built changes, so that older cached bases are not read.
+BASIS_VERSION = 1
+#: The cached bases are kept within this many bytes, the least recently used dropped first
+#: (a fine-mesh basis is about 0.4 GB; the one just written is always kept).
+CACHE_BYTES = 2_000_000_000
 
 
 @dataclass(frozen=True)
@@ -61,7 +76,8 @@ class Basis:
     singular_values: np.ndarray
     tolerance: float
     snapshots: int
-    seconds: float
+    seconds: float  # building it (or, read from the cache, reading it)
+    cached: bool = False
 
     @property
     def size(self) -> int:
@@ -88,9 +104,85 @@ def split_inputs(model: ThermalModel) -> tuple[np.ndarray, list[np.ndarray]]:
     return first[:, same], [b[:, ~same] for b in per_position]
 
 
+def basis_key(model: ThermalModel, tolerance: float, time_constants: tuple[float, ...]) -> str:
+    """A digest of everything :func:`moment_basis` reads: the operators at every position and its settings."""
+    h = hashlib.blake2b(digest_size=20)
+    settings = (BASIS_VERSION, REFERENCE_HTC, CORRECTED_POSITIONS, float(tolerance), tuple(map(float, time_constants)),
+                model.n_nodes, len(model.positions))
+    h.update(repr(settings).encode())
+
+    def add(array: np.ndarray) -> None:
+        h.update(np.ascontiguousarray(array).tobytes())
+
+    add(np.asarray(model.capacity, dtype=float))
+    for k in range(len(model.positions)):
+        for matrix in (model.conductance(k), model.boundary_basis(k).exposure, model.boundary_basis(k).distribution):
+            matrix = sp.csr_matrix(matrix)
+            matrix.sort_indices()
+            for array in (matrix.indptr, matrix.indices, matrix.data):
+                add(array)
+    return h.hexdigest()
+
+
+def basis_cache_path(key: str) -> Path:
+    """Where the basis of digest ``key`` (:func:`basis_key`) is kept."""
+    return cache_root() / "bases" / f"{key}.npz"
+
+
+def _read_cached(path: Path, started: float) -> Basis | None:
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            basis = Basis(data["vectors"], data["singular_values"], float(data["tolerance"]), int(data["snapshots"]),
+                          time.perf_counter() - started, cached=True)
+        os.utime(path)  # recently used: the last to be pruned
+        return basis
+    except (OSError, ValueError, KeyError):  # missing, or damaged
+        return None
+
+
+def _write_cached(path: Path, basis: Basis) -> None:
+    """Save atomically (a reader sees the whole file or none); an unwritable cache only costs the next run time."""
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        partial = path.with_name(f".{path.stem}.{os.getpid()}.partial.npz")
+        np.savez(partial, vectors=basis.vectors, singular_values=basis.singular_values, tolerance=basis.tolerance,
+                 snapshots=basis.snapshots)
+        os.replace(partial, path)
+        _prune(path.parent, keep=path)
+    except OSError:
+        pass
+
+
+def _prune(directory: Path, keep: Path, budget: int = CACHE_BYTES) -> None:
+    """Drop the least recently used bases beyond ``budget`` bytes, and partial files a killed writer left."""
+    now = time.time()
+    for partial in directory.glob(".*.partial.npz"):
+        if now - partial.stat().st_mtime > 3600.0:
+            partial.unlink(missing_ok=True)
+    files = sorted((p for p in directory.glob("*.npz") if p != keep), key=lambda p: p.stat().st_mtime, reverse=True)
+    used = keep.stat().st_size
+    for path in files:
+        used += path.stat().st_size
+        if used > budget:
+            path.unlink(missing_ok=True)
+
+
 def moment_basis(model: ThermalModel, tolerance: float = TOLERANCE,
-                 time_constants: tuple[float, ...] = TIME_CONSTANTS) -> Basis:
-    """The basis of :mod:`this module <.basis>` for ``model`` (module notes)."""
+                 time_constants: tuple[float, ...] = TIME_CONSTANTS, *, use_cache: bool = True) -> Basis:
+    """The basis of :mod:`this module <.basis>` for ``model`` (module notes), from the disk cache when it holds it."""
+    started = time.perf_counter()
+    if not use_cache:
+        return _build(model, tolerance, time_constants)
+    path = basis_cache_path(basis_key(model, tolerance, time_constants))
+    cached = _read_cached(path, started)
+    if cached is not None:
+        return cached
+    basis = _build(model, tolerance, time_constants)
+    _write_cached(path, basis)
+    return basis
+
+
+def _build(model: ThermalModel, tolerance: float, time_constants: tuple[float, ...]) -> Basis:
     from pymor.algorithms.gram_schmidt import gram_schmidt
     from pymor.algorithms.pod import pod
     from pymor.operators.numpy import NumpyMatrixOperator

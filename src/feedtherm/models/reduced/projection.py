@@ -163,4 +163,4 @@ class ProjectedModel(ThermalModel):
         b = self.basis
         return {**self.full.stats, "reduced_from": self.full.n_nodes, "basis_size": b.size,
                 "basis_tolerance": b.tolerance, "basis_snapshots": b.snapshots,
-                "basis_seconds": round(b.seconds, 2)}
+                "basis_seconds": round(b.seconds, 2), "basis_cached": b.cached}
