@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
@@ -100,6 +101,16 @@ class BoundaryBasis:
     sources: list[str]
     exposure: sp.csr_matrix
     distribution: sp.csr_matrix
+
+    @cached_property
+    def exposure_by_node(self) -> sp.csr_matrix:
+        """``exposure.T`` as CSR, kept: links are ``exposure_by_node @ h`` at every evaluation of a coupled run."""
+        return self.exposure.T.tocsr()
+
+    @cached_property
+    def distribution_by_node(self) -> sp.csr_matrix:
+        """``distribution.T`` as CSR, kept (see :attr:`exposure_by_node`)."""
+        return self.distribution.T.tocsr()
 
 
 def surface_coefficients(bc: BoundaryConditions, surfaces: list[str]) -> tuple[np.ndarray, np.ndarray]:
@@ -194,12 +205,12 @@ class ThermalModel(ABC):
         """Node-to-sink conductances ``g`` [W/K] and their heat at the sink temperatures ``g·T_s`` [W]."""
         basis = self.boundary_basis(k)
         h, sinks = surface_coefficients(bc, basis.surfaces)
-        return basis.exposure.T @ h, basis.exposure.T @ (h * sinks)
+        return basis.exposure_by_node @ h, basis.exposure_by_node @ (h * sinks)
 
     def heat_vector(self, bc: BoundaryConditions, k: int | None) -> np.ndarray:
         """Heat [W] into every state entry at position k (None: the cycle average), placed by :func:`heat_inputs`."""
         basis = self.boundary_basis(k)
-        return basis.distribution.T @ source_powers(bc, basis.sources)
+        return basis.distribution_by_node @ source_powers(bc, basis.sources)
 
     def boundary_basis(self, k: int | None) -> "BoundaryBasis":
         """Where each surface exchanges heat and each source's heat enters, at position k.
