@@ -1,0 +1,93 @@
+"""The integrator's direct branch: reused elimination orders, step matrices, and the time loop's
+per-step kernels checked against implicit Euler written out plainly."""
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+from scipy.sparse.linalg import spsolve
+
+from feedtherm.models.integrator import (EliminationOrder, Integrator, PositionPath, _OrderedLU, factorize,
+                                         operator_sum)
+from feedtherm.plan import plan_run
+
+
+def spd(n: int, seed: int, extra: float = 0.0) -> sp.csr_matrix:
+    """A symmetric, diagonally dominant conductance-like matrix with a 2D grid's pattern."""
+    rng = np.random.default_rng(seed)
+    side = int(np.sqrt(n))
+    grid = sp.diags([1.0, 1.0], [1, side], shape=(n, n))
+    weights = sp.triu(grid, format="csr")
+    weights.data = rng.uniform(0.5, 2.0, weights.nnz)
+    W = weights + weights.T
+    return (sp.diags(np.asarray(W.sum(axis=1)).ravel() + 0.1 + extra) - W).tocsr()
+
+
+def test_a_reused_order_gives_the_same_solution_and_fill_as_a_fresh_ordering():
+    first, second = spd(400, 1), spd(400, 1) + sp.diags(np.linspace(0.0, 3.0, 400))  # same pattern, new values
+    fresh = factorize(first)
+    order = EliminationOrder(first, fresh)
+    reused = factorize(second, order)
+    assert isinstance(reused, _OrderedLU)
+    b = np.random.default_rng(2).normal(size=400)
+    np.testing.assert_allclose(reused.solve(b), spsolve(second.tocsc(), b), rtol=1e-12, atol=1e-12)
+    assert reused._lu.L.nnz == factorize(second).L.nnz  # the same fill as ordering it anew
+
+
+def test_an_order_permutes_a_matrix_of_its_pattern_as_indexing_does():
+    A = spd(225, 3)
+    order = EliminationOrder(A, factorize(A))
+    B = (A + sp.diags(np.arange(225.0))).tocsr()
+    expected = B[order.order][:, order.order].toarray()
+    np.testing.assert_array_equal(order.permute(B).toarray(), expected)
+
+
+def test_operator_sum_adds_diagonals_to_a_sparse_matrix():
+    A = spd(100, 4)
+    d1, d2 = np.linspace(1.0, 2.0, 100), np.linspace(-0.5, 0.5, 100)
+    np.testing.assert_allclose(operator_sum(A, d1, d2).toarray(), A.toarray() + np.diag(d1 + d2), rtol=1e-15)
+    missing = sp.csr_matrix(np.triu(np.ones((5, 5)), 1))  # no diagonal stored: added, not gathered
+    np.testing.assert_allclose(operator_sum(missing, np.ones(5)).toarray(), missing.toarray() + np.eye(5))
+    dense = np.eye(3)
+    np.testing.assert_allclose(operator_sum(dense, np.ones(3)), 2.0 * np.eye(3))
+
+
+def test_a_position_is_factorised_with_its_order_once_known(paper):
+    plan = plan_run(paper, condition="I", duration=60.0)
+    model = plan.model.build(paper.system, plan.options)
+    integrator = Integrator(model, plan.options, None)
+    bc = plan.segments[0].bc
+    first = integrator.factors(0, bc, 4, 1.5)
+    again = integrator.factors(0, bc, 4, 0.5)  # another dt: the same pattern
+    assert not isinstance(first, _OrderedLU) and isinstance(again, _OrderedLU)
+    A = integrator._step_matrix(0, bc, 4, 0.5)
+    b = model.capacity * 300.0
+    np.testing.assert_allclose(again.solve(b), spsolve(A.tocsc(), b), rtol=1e-11)
+
+
+@pytest.mark.parametrize("motion", ["resolved", "averaged"])
+def test_the_time_loop_is_implicit_euler_written_out(paper, motion):
+    """An uncoupled run of the fast model against the step equations of the integrator's notes,
+    solved step by step from freshly assembled matrices."""
+    plan = plan_run(paper, condition="I", duration=600.0, motion=motion)
+    model = plan.model.build(paper.system, plan.options)
+    integrator = Integrator(model, plan.options, None)
+    seg = plan.segments[0]
+    T0 = model.uniform_state(293.15)
+    trace = integrator.run(plan.segments, T0, np.array([0.0, 600.0]))
+
+    dt, cells = integrator._step(seg)
+    path, T, t, heat_lost = PositionPath(len(model.positions)), T0.copy(), 0.0, 0.0
+    while t < seg.t1 - 1e-9:
+        step = min(dt, seg.t1 - t)
+        path.advance(cells * step / dt)
+        k = None if motion == "averaged" else path.k
+        G = model.conductance(k) if k is not None else integrator.conductance(None)
+        links, sink_heat = model._links(seg.bc, k)
+        A = (G + sp.diags(model.capacity / step + links)).tocsc()
+        T = spsolve(A, model.capacity / step * T + model.heat_vector(seg.bc, k) + sink_heat)
+        heat_lost += (links @ T - sink_heat.sum()) * step
+        t += step
+    assert len(trace.step_end) == round(600.0 / dt)
+    np.testing.assert_allclose(trace.final_state, T, rtol=0.0, atol=1e-9)
+    assert trace.heat_lost == pytest.approx(heat_lost, rel=1e-10)
+    assert trace.heat_in == pytest.approx(seg.bc.total_heat * 600.0, rel=1e-12)
