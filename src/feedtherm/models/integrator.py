@@ -114,21 +114,24 @@ def factorize(A: sp.spmatrix, order: "EliminationOrder | None" = None):
 class EliminationOrder:
     """The order in which a :func:`factorize` LU eliminated the unknowns, for matrices of one pattern.
 
-    Built from the first factorisation of the pattern; permuting a later matrix (its values
-    change, not its pattern) is then one gather of its values.
+    Kept from the first factorisation of the pattern; the first reuse builds the gather that
+    permutes a matrix of the pattern by its values alone (a run that never refactorises, as a
+    frozen FE run, keeps only the order).
     """
 
-    def __init__(self, A: sp.spmatrix, lu):
+    def __init__(self, lu):
         self.order = np.argsort(lu.perm_c)
-        A = A.tocsr()
-        positions = sp.csr_matrix((np.arange(1.0, A.nnz + 1.0), A.indices, A.indptr), shape=A.shape)
-        permuted = positions[self.order][:, self.order].tocsc()
-        self._take = permuted.data.astype(np.int64) - 1
-        self._indices, self._indptr = permuted.indices, permuted.indptr
+        self._gather = None
 
     def permute(self, A: sp.spmatrix) -> sp.csc_matrix:
         """``A[order][:, order]`` of a matrix with the pattern this order was built from."""
-        return sp.csc_matrix((A.tocsr().data[self._take], self._indices, self._indptr), shape=A.shape)
+        A = A.tocsr()
+        if self._gather is None:
+            positions = sp.csr_matrix((np.arange(1.0, A.nnz + 1.0), A.indices, A.indptr), shape=A.shape)
+            permuted = positions[self.order][:, self.order].tocsc()
+            self._gather = (permuted.data.astype(np.int64) - 1, permuted.indices, permuted.indptr)
+        take, indices, indptr = self._gather
+        return sp.csc_matrix((A.data[take], indices, indptr), shape=A.shape)
 
 
 class _OrderedLU:
@@ -288,7 +291,7 @@ class Integrator:
         pattern = _pattern(A)  # a position's matrices share their pattern whatever the links and dt
         lu = factorize(A, self._orders.get(pattern))
         if pattern not in self._orders:
-            self._orders[pattern] = EliminationOrder(A, lu)
+            self._orders[pattern] = EliminationOrder(lu)
         return lu
 
     # -------------------------------------------------------------- cached pieces
