@@ -432,11 +432,16 @@ class Integrator:
         what the right-hand side takes while the matrix is not refactorised (0 when it is ``bc``'s)."""
         if factorised is bc:
             return np.zeros_like(state)
+        return _apply(self._link_difference(seg_id, bc, factorised, k), state)
+
+    def _link_difference(self, seg_id: int, bc: BoundaryConditions, factorised: BoundaryConditions,
+                         k: int | None) -> Operator:
+        """The links of ``bc`` less those of the factorised step matrix [W/K] at position k (cached)."""
         key = (seg_id, id(bc), id(factorised), k)
         if key not in self._link_changes:
             now, ref = self.loads(seg_id, bc, k).ambient, self.loads(seg_id, factorised, k).ambient
             self._link_changes[key] = now.matrix - ref.matrix
-        return _apply(self._link_changes[key], state)
+        return self._link_changes[key]
 
     def _links_moved(self, old: BoundaryConditions, new: BoundaryConditions) -> bool:
         g_old, g_new = self.model.ambient_links(old, None), self.model.ambient_links(new, None)
@@ -558,8 +563,7 @@ class Integrator:
         if factorised is bc:
             return _Step(cap_dt, loads.heat + loads.ambient.source, lu, bc.total_heat, loads.ambient, None)
         # the links' change since the factorisation, taken at the step's start state
-        self._link_change(seg_id, bc, factorised, k, np.zeros(self.model.n_nodes))
-        change = self._link_changes[(seg_id, id(bc), id(factorised), k)]
+        change = self._link_difference(seg_id, bc, factorised, k)
         rhs_operator = cap_dt - change if np.ndim(cap_dt) == 1 and np.ndim(change) == 1 else \
             operator_sum(cap_dt, -change)
         return _Step(rhs_operator, loads.heat + loads.ambient.source, lu, bc.total_heat, loads.ambient,
