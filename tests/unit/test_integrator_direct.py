@@ -6,8 +6,8 @@ import pytest
 import scipy.sparse as sp
 from scipy.sparse.linalg import spsolve
 
-from feedtherm.models.integrator import (EliminationOrder, Integrator, PositionPath, _OrderedLU, factorize,
-                                         operator_sum)
+from feedtherm.models.direct import EliminationOrder, _OrderedLU, factorize
+from feedtherm.models.integrator import Integrator, PositionPath, operator_sum
 from feedtherm.plan import plan_run
 
 

@@ -1,14 +1,14 @@
 """Time integration shared by the models (implicit Euler), with the moving group reciprocating.
 
 Each step solves ``(C/dt + G(k) + A(k)) T⁺ = C/dt T + q(k) + a(k) T_amb`` (the operators of
-:class:`~feedtherm.models.interface.ThermalModel`) with ``k`` the moving group's grid position at the end of the step.  While the table moves,
-a step advances the group by a whole number of grid positions, so each position's matrix can
-be factorised once and reused (direct solver, a symmetric fill-reducing ordering); large FE
-meshes use Jacobi-preconditioned conjugate gradients on the step's increment instead
-(:mod:`.iterative`), started from the linear extrapolation of the last two states.  Dense operators (a projected model) are solved with a dense LU.  The energy
-account is kept apart from the solver's matrices: heat in from the boundary conditions (not
-the model's heat vector), heat lost from the ambient coupling, heat stored from the
-capacities.
+:class:`~feedtherm.models.interface.ThermalModel`) with ``k`` the moving group's grid
+position at the end of the step.  While the table moves, a step advances the group by a whole
+number of grid positions, so each position's matrix can be factorised once and reused
+(:mod:`.direct`: a symmetric fill-reducing ordering, dense LU for a projected model); large FE
+meshes use conjugate gradients on the step's increment instead (:mod:`.iterative`), started
+from the linear extrapolation of the last two states.  The energy account is kept apart from
+the solver's matrices: heat in from the boundary conditions (not the model's heat vector),
+heat lost from the ambient coupling, heat stored from the capacities.
 """
 
 from __future__ import annotations
@@ -20,8 +20,7 @@ from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.linalg
-from scipy.sparse.linalg import cg, splu
+from scipy.sparse.linalg import cg
 
 from ..boundary import BoundaryConditions, LocalTemperatures
 from ..errors import ModelError
@@ -36,6 +35,7 @@ from .coupling import (
     Coupling,
     TemperatureReadout,
 )
+from .direct import EliminationOrder, _DenseLU, _pattern, factorize
 from .iterative import StepCG, jacobi
 from .interface import AmbientCoupling, Operator, ThermalModel, cycle_weights, weighted_sum
 from .options import ModelOptions
@@ -96,80 +96,6 @@ class PositionPath:
 
     def advance(self, cells: float) -> None:
         self.u += cells
-
-
-def factorize(A: sp.spmatrix, order: "EliminationOrder | None" = None):
-    """Sparse LU of the symmetric positive definite ``A``.
-
-    The minimum-degree ordering of ``A + Aᵀ`` with diagonal pivots keeps the symmetry;
-    on the medium FE mesh it needs 40 % less fill than SuperLU's default column ordering,
-    which is what bounds the memory of one cached factorisation per position.  ``order``
-    (the :class:`EliminationOrder` of an earlier factorisation of a matrix with the same
-    pattern) skips the ordering: the same fill, about 40 % less time on the fast model.
-    """
-    if order is not None:
-        return _OrderedLU(A, order)
-    return splu(A.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
-
-
-class EliminationOrder:
-    """The order in which a :func:`factorize` LU eliminated the unknowns, for matrices of one pattern.
-
-    Kept from the first factorisation of the pattern; the first reuse builds the gather that
-    permutes a matrix of the pattern by its values alone (a run that never refactorises, as a
-    frozen FE run, keeps only the order).
-    """
-
-    def __init__(self, lu):
-        self.order = np.argsort(lu.perm_c)
-        self._gather = None
-
-    def permute(self, A: sp.spmatrix) -> sp.csc_matrix:
-        """``A[order][:, order]`` of a matrix with the pattern this order was built from."""
-        A = A.tocsr()
-        if self._gather is None:
-            positions = sp.csr_matrix((np.arange(1.0, A.nnz + 1.0), A.indices, A.indptr), shape=A.shape)
-            permuted = positions[self.order][:, self.order].tocsc()
-            self._gather = (permuted.data.astype(np.int64) - 1, permuted.indices, permuted.indptr)
-        take, indices, indptr = self._gather
-        return sp.csc_matrix((A.data[take], indices, indptr), shape=A.shape)
-
-
-class _OrderedLU:
-    """SuperLU of ``A`` permuted symmetrically into a known elimination order (no ordering step)."""
-
-    def __init__(self, A: sp.spmatrix, order: EliminationOrder):
-        self.order = order.order
-        self._lu = splu(order.permute(A), permc_spec="NATURAL", diag_pivot_thresh=0.0,
-                        options={"SymmetricMode": True})
-
-    def solve(self, rhs: np.ndarray) -> np.ndarray:
-        solution = np.empty_like(rhs)
-        solution[self.order] = self._lu.solve(rhs[self.order])
-        return solution
-
-
-def _pattern(A: sp.spmatrix) -> str:
-    """A fingerprint of a sparse matrix's pattern (what its elimination order depends on)."""
-    A = A.tocsr()
-    h = hashlib.blake2b(digest_size=16)
-    h.update(np.ascontiguousarray(A.indptr).tobytes())
-    h.update(np.ascontiguousarray(A.indices).tobytes())
-    return h.hexdigest()
-
-
-class _DenseLU:
-    """LAPACK's LU (getrf/getrs) of a dense step matrix, called directly: ``scipy.linalg.lu_solve``
-    copies the factors on every call, which costs more than the solve at a reduced model's size."""
-
-    def __init__(self, A: np.ndarray):
-        getrf, self._getrs = scipy.linalg.get_lapack_funcs(("getrf", "getrs"), (A,))
-        self._lu, self._piv, info = getrf(np.asfortranarray(A, dtype=float))
-        if info != 0:
-            raise ModelError(f"a reduced model's step matrix is singular (LAPACK getrf info {info})")
-
-    def solve(self, rhs: np.ndarray) -> np.ndarray:
-        return self._getrs(self._lu, self._piv, rhs)[0]
 
 
 def operator_sum(*operators: Operator) -> Operator:

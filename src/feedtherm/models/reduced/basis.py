@@ -47,7 +47,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ...constants import cache_root
-from ..integrator import factorize
+from ..direct import factorize
 from ..interface import ThermalModel, cycle_weights, weighted_sum
 
 #: [W/(m²·K)] film coefficient on every surface while the snapshots are taken: still air with
