@@ -4,9 +4,8 @@ Each step solves ``(C/dt + G(k) + A(k)) T⁺ = C/dt T + q(k) + a(k) T_amb`` (the
 :class:`~feedtherm.models.interface.ThermalModel`) with ``k`` the moving group's grid position at the end of the step.  While the table moves,
 a step advances the group by a whole number of grid positions, so each position's matrix can
 be factorised once and reused (direct solver, a symmetric fill-reducing ordering); large FE
-meshes use Jacobi-preconditioned conjugate gradients instead, started from the linear
-extrapolation of the last two states, which is close enough that a step takes tens of
-iterations.  Dense operators (a projected model) are solved with a dense LU.  The energy
+meshes use Jacobi-preconditioned conjugate gradients on the step's increment instead
+(:mod:`.iterative`), started from the linear extrapolation of the last two states.  Dense operators (a projected model) are solved with a dense LU.  The energy
 account is kept apart from the solver's matrices: heat in from the boundary conditions (not
 the model's heat vector), heat lost from the ambient coupling, heat stored from the
 capacities.
@@ -37,12 +36,14 @@ from .coupling import (
     Coupling,
     TemperatureReadout,
 )
+from .iterative import StepCG, jacobi
 from .interface import AmbientCoupling, Operator, ThermalModel, cycle_weights, weighted_sum
 from .options import ModelOptions
 
 #: Above this many unknowns the "auto" solver uses conjugate gradients, not cached LU.
 DIRECT_SOLVER_LIMIT = 60_000
-CG_RTOL = 1e-10
+#: Relative tolerance of a steady solve by conjugate gradients (from zero: relative to the heat that drives it).
+STEADY_CG_RTOL = 1e-10
 
 
 @dataclass(frozen=True)
@@ -209,17 +210,6 @@ def _apply(op: Operator, v: np.ndarray) -> np.ndarray:
     return op * v if np.ndim(op) == 1 else op @ v
 
 
-def jacobi(A: sp.spmatrix) -> sp.linalg.LinearOperator:
-    """The Jacobi (diagonal) preconditioner of ``A``.
-
-    The step matrices are dominated by the capacity term ``C/dt`` on the diagonal, so the
-    diagonal alone is a good preconditioner; smoothed-aggregation multigrid takes fewer
-    iterations but more time per step on the fine mesh (measured, docs/fem-model.md).
-    """
-    inverse_diagonal = 1.0 / A.diagonal()
-    return sp.linalg.LinearOperator(A.shape, matvec=lambda v: inverse_diagonal * v)
-
-
 def _digest(op: Operator) -> str:
     """A fingerprint of an operator's values (vector, sparse or dense matrix)."""
     h = hashlib.blake2b(digest_size=16)
@@ -269,7 +259,7 @@ class Integrator:
         self.coupling = coupling
         self._readout: TemperatureReadout | None = None
         self._lu = {}  # (step-matrix key, dt) → LU factors (direct solver)
-        self._cg = {}  # (step-matrix key, dt) → (matrix, preconditioner) (conjugate gradients)
+        self._cg = {}  # (step-matrix key, dt) → StepCG (conjugate gradients)
         self._conductance = {}  # position (None: cycle average) → conduction operator
         self._loads = {}  # (segment, boundary conditions' id, position) → (boundary conditions, Loads)
         self._matrix_keys = {}  # same keys → key of the step matrix (without C/dt)
@@ -278,6 +268,8 @@ class Integrator:
         solver = options.solver
         self.dense = isinstance(model.conductance(0), np.ndarray)
         self.direct = self.dense or solver == "direct" or (solver == "auto" and model.n_nodes <= DIRECT_SOLVER_LIMIT)
+        self._coarse = None if self.direct else model.coarse_space()
+        self.cg_iterations = 0  # conjugate-gradient iterations of every time step so far
 
     @property
     def solver_name(self) -> str:
@@ -327,19 +319,19 @@ class Integrator:
                 del cache[key]
 
     def solve(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float, rhs: np.ndarray,
-              guess: np.ndarray) -> np.ndarray:
+              start: np.ndarray, guess: np.ndarray | None = None) -> np.ndarray:
+        """The state after a step at position k: ``rhs`` its right-hand side, ``start`` the state it starts
+        from, ``guess`` where the iterations of conjugate gradients start (default: ``start``)."""
         if self.direct:
             return self.factors(seg_id, bc, k, dt).solve(rhs)
         key = (self._matrix_key(seg_id, bc, k), round(dt, 12))
         if key not in self._cg:
-            A = self._step_matrix(seg_id, bc, k, dt).tocsr()
-            self._cg[key] = (A, jacobi(A))
-        A, preconditioner = self._cg[key]
-        solution, info = cg(A, rhs, x0=guess, rtol=CG_RTOL, maxiter=5000, M=preconditioner)
-        if info != 0:
-            raise ModelError(f"--solver cg: conjugate gradients did not converge in {info} iterations of a time step; "
-                             "use --solver direct")
-        return solution
+            self._cg[key] = StepCG(self._step_matrix(seg_id, bc, k, dt), self._coarse)
+        solver = self._cg[key]
+        before = solver.iterations
+        state = solver.solve(rhs, start, guess)
+        self.cg_iterations += solver.iterations - before
+        return state
 
     def factors(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float):
         """The (cached) LU factors of the step matrix at position k (direct solver): ``.solve(rhs)``."""
@@ -466,7 +458,7 @@ class Integrator:
             if key not in self._lu:
                 self._lu[key] = self._factorize(A)
             return self._lu[key].solve(rhs)
-        solution, info = cg(A, rhs, x0=np.zeros_like(rhs), rtol=CG_RTOL, maxiter=50000, M=jacobi(A))
+        solution, info = cg(A, rhs, x0=np.zeros_like(rhs), rtol=STEADY_CG_RTOL, maxiter=50000, M=jacobi(A))
         if info != 0:
             raise ModelError(f"--solver cg: conjugate gradients did not converge in {info} iterations of the steady "
                              "state; use --solver direct")
@@ -524,7 +516,7 @@ class Integrator:
                     T_new = step.lu.solve(rhs)
                 else:
                     guess = T if T_old is None else T + (T - T_old) * (dt / dt_old)
-                    T_new = self.solve(seg_id, factorised, k_step, dt, rhs, guess)
+                    T_new = self.solve(seg_id, factorised, k_step, dt, rhs, T, guess)
                 t_new = t + dt
                 # energy account: heat in from the boundary conditions, losses from the surfaces,
                 # both as the step's equations had them

@@ -262,6 +262,15 @@ class ThermalModel(ABC):
         """The state of a body at one temperature [K] throughout."""
         return np.full(self.n_nodes, float(temperature))
 
+    def coarse_space(self) -> sp.csr_matrix | None:
+        """Columns (one row per state entry) of fields an iterative step solver corrects each step in
+        (:mod:`.iterative`), or None for the uniform field alone.
+
+        The step then conserves energy over every group of entries whose indicator the columns
+        span: a model whose parts are joined by contacts gives each part's uniform field.
+        """
+        return None
+
     def heat_stored(self, state: np.ndarray, start: np.ndarray) -> float:
         """Heat [J] stored between two states."""
         change = state - start

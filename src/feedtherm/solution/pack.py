@@ -71,6 +71,7 @@ def pack_solution(system: FeedSystem, integrator: Integrator, segments: list[Seg
     displacement = displacement_axial(model.screw_edges, screw_T, alpha, system.temperatures.reference,
                                       system.elongation.fixed_at, model.screw_centres)
     info = {**info, "time_step_s": trace.time_step, "steps": len(step_end), "solver": integrator.solver_name,
+            **({"cg_iterations": integrator.cg_iterations} if integrator.cg_iterations else {}),
             "unknowns": model.n_nodes, "cycle_window_s": window}
     mesh = model.field_mesh()
     fields = None

@@ -118,6 +118,15 @@ class FemDiscretization(ThermalModel):
         self._coverage: dict[tuple, np.ndarray] = {}
         self._stats = self._summary(time.perf_counter() - started)
 
+    def coarse_space(self) -> sp.csr_matrix:
+        """Each part's uniform field (one column per part): the iterative solver balances each part's heat."""
+        groups = np.empty(self.n_nodes, dtype=np.intp)
+        for index, name in enumerate(self.part_names):
+            lo, hi = self.mesh.node_ranges[name]
+            groups[lo:hi] = index
+        return sp.csr_matrix((np.ones(self.n_nodes), (np.arange(self.n_nodes), groups)),
+                             shape=(self.n_nodes, len(self.part_names)))
+
     # ------------------------------------------------------------------ set-up
     def _setup_positions(self, axial_cells: int, min_positions: int) -> None:
         kin = self.system.kinematics
