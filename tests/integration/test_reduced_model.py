@@ -154,6 +154,18 @@ def test_readouts_are_the_full_models_of_the_lifted_state(full, reduced):
         assert value == pytest.approx(float(means[part]), rel=1e-12)
 
 
+def test_probes_are_projected_alike_from_the_full_models_rows_or_column_by_column(full, reduced, monkeypatch):
+    rows, offset = full.probe_rows(0)
+    T = np.random.default_rng(4).normal(size=full.n_nodes)
+    assert np.allclose(rows @ T + offset, full.probe(T, 0), rtol=1e-14)
+    from_rows = reduced._probe_rows(9)
+    other = ProjectedModel(full, reduced.basis)
+    monkeypatch.setattr(full, "probe_rows", lambda k: None)  # a model that does not give its rows
+    by_columns = other._probe_rows(9)
+    assert np.allclose(from_rows[0], by_columns[0], rtol=1e-12, atol=1e-15)
+    assert np.allclose(from_rows[1], by_columns[1], rtol=1e-12, atol=1e-15)
+
+
 def test_a_reduced_run_follows_the_full_run(runs):
     full_run, reduced_run = runs
     for name in full_run.sensors:
@@ -177,4 +189,10 @@ def test_the_reduced_fe_model_runs_from_the_command_line_and_follows_the_fe_mode
         assert np.max(np.abs(reduced_run.sensors[name] - full_run.sensors[name])) <= 0.1, name
     assert np.max(np.abs(reduced_run.elongation - full_run.elongation)) <= 0.2e-6
     assert reduced_run.fields is not None and reduced_run.fields.temperatures.shape[1] == fe.n_nodes
+    rows, offset = fe.probe_rows(0)
+    assert fe.probe_rows(17)[0] is rows  # the FE model's readings do not depend on the position
+    T = 293.15 + np.random.default_rng(5).normal(size=fe.n_nodes)
+    read, probed = rows @ T + offset, fe.probe(T, 17)
+    assert np.allclose(read[:-1], probed[:-1], rtol=1e-14, atol=0.0)
+    assert abs(read[-1] - probed[-1]) <= 1e-15  # D [m]: α Σ w (T - T_ref) against α (w @ bins) T - α T_ref Σ w
     assert sp.issparse(fe.conductance(0))
