@@ -283,6 +283,15 @@ class ThermalModel(ABC):
     def probe(self, state: np.ndarray, k: int) -> np.ndarray:
         """Sensor temperatures [K] in ``probe_names`` order, then D [m], at position k."""
 
+    def probe_rows(self, k: int) -> tuple[Operator, np.ndarray] | None:
+        """``(rows, offset)`` with ``probe(T, k) == rows @ T + offset``, or None if the model does not say.
+
+        A projected model multiplies them by its basis once; without them it probes the basis's
+        columns one by one.  A model whose readings do not depend on k returns the same ``rows``
+        object at every position.
+        """
+        return None
+
     @abstractmethod
     def screw_mean(self, states: np.ndarray) -> np.ndarray:
         """Section-mean screw temperature [K] per axial section, shape ``(..., sections)``."""

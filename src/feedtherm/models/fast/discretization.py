@@ -103,6 +103,9 @@ class FastDiscretization(ThermalModel):
     def probe(self, T: np.ndarray, k: int = 0) -> np.ndarray:
         return self._probe @ T + self._probe_offset
 
+    def probe_rows(self, k: int = 0):
+        return self._probe, self._probe_offset
+
     def part_means(self, states: np.ndarray) -> dict[str, np.ndarray]:
         """Capacity-weighted mean temperature of every part."""
         values = np.asarray(states) @ self._means.T

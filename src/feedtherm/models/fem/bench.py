@@ -216,6 +216,7 @@ class FemDiscretization(ThermalModel):
         self._alpha = system.materials[system.parts[screw].material].expansion
         self._d_weights = elongation_row(self.screw_edges, system.elongation.fixed_at, system.elongation.read_at)
         self._t_ref = system.temperatures.reference
+        self._probe_rows = None
         self._part_weights = {}
         for name in mesh.parts:
             nodes = mesh.part_nodes(name)
@@ -342,6 +343,16 @@ class FemDiscretization(ThermalModel):
         points of its own mesh, so the values do not depend on it.
         """
         return np.append(self._probe @ T, self.elongation(T))
+
+    def probe_rows(self, k: int | None = None) -> tuple[sp.csr_matrix, np.ndarray]:
+        """The sensors' rows and D's (:meth:`probe` as ``rows @ T + offset``), the same at every position."""
+        if self._probe_rows is None:
+            d = self._alpha * (self._d_weights @ self._screw_bins)  # D = α (w @ bins) T − α T_ref Σ w
+            rows = sp.vstack([self._probe, sp.csr_matrix(d)]).tocsr()
+            offset = np.zeros(rows.shape[0])
+            offset[-1] = -self._alpha * self._t_ref * float(np.sum(self._d_weights))
+            self._probe_rows = (rows, offset)
+        return self._probe_rows
 
     def part_means(self, states: np.ndarray) -> dict[str, np.ndarray]:
         """Volume mean temperature of every part, shape ``(...)`` per part."""

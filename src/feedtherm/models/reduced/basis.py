@@ -14,7 +14,10 @@ that vector is the balance).
 
 The snapshots are compressed by a proper orthogonal decomposition in the capacity inner
 product (pyMOR's :func:`~pymor.algorithms.pod.pod`): the basis size is the number of modes
-whose singular values exceed ``tolerance`` times the largest one, not a constant.
+whose singular values exceed ``tolerance`` times the largest one, not a constant.  Each
+shift's snapshots are compressed first (:data:`SHIFT_TOLERANCE_FACTOR`), so that neither the
+snapshots of every shift nor their Gram matrix are ever held at once, and the inputs are kept
+sparse: a fine-mesh basis needs one sparse LU alive at a time and a few GB.
 
 A basis depends only on the full model's operators (capacity, conduction and contacts at
 every position, where surfaces and sources act) and on the settings above, so it is kept on
@@ -23,8 +26,10 @@ back by the next run of the same model: a description that changes no geometry, 
 joint (another condition, duty cycle or coefficient) reuses it.
 
 The boundary conditions are not known when the model is built (they follow the operating
-point and, coupled, the temperatures); the snapshots use a reference film coefficient on
-every declared surface (:data:`REFERENCE_HTC`).  The reduced operators themselves take each
+point and, coupled, the temperatures); the snapshots use a reference film coefficient
+(:data:`REFERENCE_HTC`) on every surface whose coefficient follows them, and its own on a
+surface whose coefficient the description fixes (:func:`reference_coefficients`: a foundation
+at 800 W/(m²·K) taken at 10 left the base plate's state out of the span, 0.12 K at T1).  The reduced operators themselves take each
 run's coefficients exactly: they are sums of per-surface projected matrices.
 
 References
@@ -47,7 +52,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ...constants import cache_root
-from ..direct import factorize
+from ..direct import EliminationOrder, factorize
 from ..interface import ThermalModel, cycle_weights, weighted_sum
 
 #: [W/(m²·K)] film coefficient on every surface while the snapshots are taken: still air with
@@ -59,10 +64,14 @@ TIME_CONSTANTS = (2.0, 60.0, 600.0, 6000.0)
 #: Positions (spread over the stroke, the ends included) at which the answers to the inputs that
 #: do not move are corrected toward the position's own operator.
 CORRECTED_POSITIONS = 5
+#: Each shift's snapshots are compressed by a POD of their own before the final one, keeping the
+#: modes above this fraction of the tolerance (times the shift's largest singular value): the
+#: dropped parts change the final singular values by at most 0.1 × tolerance × √shifts of the largest.
+SHIFT_TOLERANCE_FACTOR = 0.1
 #: Default relative POD tolerance (singular values below it times the largest are dropped).
 TOLERANCE = 1e-5
 #: Changes whenever the way a basis is built changes, so that older cached bases are not read.
-BASIS_VERSION = 1
+BASIS_VERSION = 2
 #: The cached bases are kept within this many bytes, the least recently used dropped first
 #: (a fine-mesh basis is about 0.4 GB; the one just written is always kept).
 CACHE_BYTES = 2_000_000_000
@@ -84,30 +93,52 @@ class Basis:
         return self.vectors.shape[1]
 
 
+def reference_coefficients(model: ThermalModel) -> np.ndarray:
+    """Each surface's film coefficient [W/(m²·K)] while the snapshots are taken.
+
+    A surface whose coefficient the description fixes (``convection.kind = "fixed"``: a
+    foundation, a cooled face) takes that coefficient, which no operating point or
+    temperature changes; every other surface :data:`REFERENCE_HTC`.
+    """
+    from ...system.surfaces import FixedConvection
+
+    surfaces = model.system.surfaces
+    out = []
+    for name in model.boundary_basis(0).surfaces:
+        surface = surfaces[name]
+        fixed = isinstance(surface.convection, FixedConvection)
+        out.append(surface.convection.coefficient * surface.chtc_factor if fixed else REFERENCE_HTC)
+    return np.array(out, dtype=float)
+
+
 def reference_links(model: ThermalModel, k: int | None) -> np.ndarray:
-    """Node-to-air conductances [W/K] with :data:`REFERENCE_HTC` on every surface at position k."""
-    return np.asarray(model.boundary_basis(k).exposure.sum(axis=0)).ravel() * REFERENCE_HTC
+    """Node-to-air conductances [W/K] with :func:`reference_coefficients` at position k."""
+    return model.boundary_basis(k).exposure_by_node @ reference_coefficients(model)
 
 
-def inputs(model: ThermalModel, k: int) -> np.ndarray:
-    """The full model's input vectors at position k: each source's heat shares, each surface's sink (n, m)."""
+def inputs(model: ThermalModel, k: int) -> sp.csc_matrix:
+    """The full model's input vectors at position k: each source's heat shares, each surface's sink (n, m), sparse."""
     basis = model.boundary_basis(k)
-    sinks = basis.exposure.T * REFERENCE_HTC
-    return sp.hstack([basis.distribution.T, sinks]).toarray()
+    sinks = basis.exposure_by_node @ sp.diags(reference_coefficients(model))
+    return sp.hstack([basis.distribution_by_node, sinks]).tocsc()
 
 
-def split_inputs(model: ThermalModel) -> tuple[np.ndarray, list[np.ndarray]]:
-    """The inputs that are the same at every position (n, m), and per position those that are not."""
+def split_inputs(model: ThermalModel) -> tuple[sp.csc_matrix, list[sp.csc_matrix]]:
+    """The inputs that are the same at every position (n, m), and per position those that are not (sparse:
+    dense, they would take n × inputs × positions numbers, 1.6 GB on the fine mesh)."""
     per_position = [inputs(model, k) for k in range(len(model.positions))]
     first = per_position[0]
-    same = np.array([all(np.array_equal(b[:, j], first[:, j]) for b in per_position) for j in range(first.shape[1])])
-    return first[:, same], [b[:, ~same] for b in per_position]
+    same = np.ones(first.shape[1], dtype=bool)
+    for b in per_position[1:]:
+        same &= np.asarray(abs(b - first).max(axis=0).todense()).ravel() == 0.0
+    return first[:, np.flatnonzero(same)], [b[:, np.flatnonzero(~same)] for b in per_position]
 
 
 def basis_key(model: ThermalModel, tolerance: float, time_constants: tuple[float, ...]) -> str:
     """A digest of everything :func:`moment_basis` reads: the operators at every position and its settings."""
     h = hashlib.blake2b(digest_size=20)
-    settings = (BASIS_VERSION, REFERENCE_HTC, CORRECTED_POSITIONS, float(tolerance), tuple(map(float, time_constants)),
+    settings = (BASIS_VERSION, tuple(reference_coefficients(model).tolist()), CORRECTED_POSITIONS,
+                SHIFT_TOLERANCE_FACTOR, float(tolerance), tuple(map(float, time_constants)),
                 model.n_nodes, len(model.positions))
     h.update(repr(settings).encode())
 
@@ -185,8 +216,8 @@ def moment_basis(model: ThermalModel, tolerance: float = TOLERANCE,
 def _build(model: ThermalModel, tolerance: float, time_constants: tuple[float, ...]) -> Basis:
     from pymor.algorithms.gram_schmidt import gram_schmidt
     from pymor.algorithms.pod import pod
-    from pymor.operators.numpy import NumpyMatrixOperator
     from pymor.core.logger import set_log_levels
+    from pymor.operators.numpy import NumpyMatrixOperator
     from pymor.vectorarrays.numpy import NumpyVectorSpace
 
     set_log_levels({"pymor": "WARN"})  # its progress lines are not a run's output
@@ -200,31 +231,47 @@ def _build(model: ThermalModel, tolerance: float, time_constants: tuple[float, .
     fixed, moving = split_inputs(model)
     # the fixed inputs' answers are corrected at a few positions, the moving inputs' at every one
     corrected_at = sorted({round(i * (n_positions - 1) / (CORRECTED_POSITIONS - 1)) for i in range(CORRECTED_POSITIONS)})
-    snapshots = []
+    space = NumpyVectorSpace(model.n_nodes)
+    product = NumpyMatrixOperator(sp.diags(C).tocsr())
+    ones = np.ones(model.n_nodes) / np.sqrt(C.sum())
+    order = None  # every shift's matrix has one pattern: its elimination order is computed once
+    blocks, count = [], 0
+    fixed = fixed.toarray()  # (n, fixed inputs): a few, dense
     for tau in (None, *time_constants):
         shift = 0.0 if tau is None else 1.0 / tau
-        mean = factorize((G_mean + sp.diags(averaged_links + shift * C)).tocsc())
+        A = (G_mean + sp.diags(averaged_links + shift * C)).tocsc()
+        mean = factorize(A, order)
+        if order is None:
+            order = EliminationOrder(mean)
         x_fixed = mean.solve(fixed)
-        snapshots.append(x_fixed)
+        snapshots = [x_fixed]
         for k in range(n_positions):
             # one block step toward position k's own operator (its sliding contact and exposure)
             M_k = model.conductance(k) + sp.diags(links[k] + shift * C)
             if k in corrected_at:
                 snapshots.append(x_fixed + mean.solve(fixed - M_k @ x_fixed))
             if moving[k].shape[1]:
-                x = mean.solve(moving[k])
-                snapshots.append(x + mean.solve(moving[k] - M_k @ x))
-    X = np.hstack(snapshots)
-    space = NumpyVectorSpace(model.n_nodes)
-    product = NumpyMatrixOperator(sp.diags(C).tocsr())
-    ones = np.ones(model.n_nodes) / np.sqrt(C.sum())
-    # the uniform part is the first basis vector: take it out of the snapshots, then scale
-    # each snapshot to unit capacity norm so that every input counts alike
-    X = X - np.outer(ones, ones @ (C[:, None] * X))
-    norms = np.sqrt(np.einsum("ij,ij->j", X, C[:, None] * X))
-    kept = norms > 1e-12 * norms.max()  # an input with no response beyond the uniform one
-    X = X[:, kept] / norms[kept]
-    modes, singular_values = pod(space.from_numpy(X), product=product, rtol=tolerance)
+                b = moving[k].toarray()
+                x = mean.solve(b)
+                snapshots.append(x + mean.solve(b - M_k @ x))
+        del mean, x_fixed
+        X = np.hstack(snapshots)
+        del snapshots
+        # the uniform part is the first basis vector: take it out of the snapshots, then scale
+        # each snapshot to unit capacity norm so that every input counts alike
+        X -= np.outer(ones, ones @ (C[:, None] * X))
+        norms = np.sqrt(np.einsum("ij,ij->j", X, C[:, None] * X))
+        kept = norms > 1e-12 * norms.max()  # an input with no response beyond the uniform one
+        X = X[:, kept] / norms[kept]
+        count += X.shape[1]
+        # compressed per shift, far below the tolerance (module notes): only its modes are kept
+        modes, values = pod(space.from_numpy(X), product=product, rtol=SHIFT_TOLERANCE_FACTOR * tolerance)
+        del X
+        blocks.append(modes.to_numpy() * values)
+    Y = np.hstack(blocks)
+    del blocks
+    modes, singular_values = pod(space.from_numpy(Y), product=product, rtol=tolerance)
+    del Y
     vectors = gram_schmidt(space.from_numpy(np.column_stack([ones, modes.to_numpy()])), product=product)
-    return Basis(vectors.to_numpy(), np.asarray(singular_values), tolerance, X.shape[1],
+    return Basis(vectors.to_numpy(), np.asarray(singular_values), tolerance, count,
                  time.perf_counter() - started)

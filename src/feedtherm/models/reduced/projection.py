@@ -55,6 +55,7 @@ class ProjectedModel(ThermalModel):
         self._conductance: dict[int, np.ndarray] = {}
         self._boundary: dict[int | None, tuple] = {}
         self._probes: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        self._projected_probes: dict[int, tuple] = {}  # id(full rows) → (the rows, rows @ V)
         reference = full.boundary_basis(0)
         self._reference = reference
         self._reference_exposure = self._project_exposure(reference.exposure)
@@ -139,6 +140,14 @@ class ProjectedModel(ThermalModel):
     # ------------------------------------------------------------------ readout
     def _probe_rows(self, k: int) -> tuple[np.ndarray, np.ndarray]:
         if k not in self._probes:
+            given = self.full.probe_rows(k)
+            if given is not None:  # rows @ V once per rows object (a model's rows are often the same at every k)
+                rows, offset = given
+                known = self._projected_probes.get(id(rows))
+                if known is None or known[0] is not rows:
+                    known = self._projected_probes[id(rows)] = (rows, np.asarray(rows @ self.V))
+                self._probes[k] = (known[1], np.asarray(offset, dtype=float))
+                return self._probes[k]
             offset = np.asarray(self.full.probe(np.zeros(self.full.n_nodes), k))
             columns = [np.asarray(self.full.probe(self.V[:, j], k)) - offset for j in range(self.n_nodes)]
             self._probes[k] = (np.column_stack(columns), offset)
