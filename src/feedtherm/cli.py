@@ -404,8 +404,10 @@ def build_parser() -> argparse.ArgumentParser:
                      help="the moving nut's position over time (default), or cycle-averaged contacts and heats")
     run.add_argument("--single-drive", action="store_true", help="operate a dual drive as a single (screw-only) drive")
     run.add_argument("--solver", choices=["auto", "direct", "cg"], default="auto",
-                     help="linear solver of the time steps: cached LU per position (direct), Jacobi-preconditioned "
-                          "conjugate gradients (cg), or auto: direct up to 60,000 unknowns")
+                     help="linear solver of the time steps: cached factors per position (direct: PARDISO's "
+                          "Cholesky where installed, SuperLU otherwise), Jacobi-preconditioned conjugate gradients "
+                          "(cg), or auto: direct within half the free memory (without PARDISO: up to 60,000 "
+                          "unknowns), cg beyond")
     run.add_argument("--sample-interval", type=_positive_seconds, default=10.0, metavar="S",
                      help="spacing of the written samples [s] (default: 10)")
     run.add_argument("--no-plots", action="store_true",

@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from feedtherm.boundary import boundary_conditions
+from feedtherm.models import integrator as integrator_module
 from feedtherm.models.options import ModelOptions
 from feedtherm.simulate import simulate, steady_solve
 from feedtherm.system.load import parse_toml, read_text, validate_data
@@ -84,6 +85,20 @@ def test_the_coupled_steady_state_is_a_fixed_point(coupled):
         warm = reading.sources[name] > 303.15
         nu, nu_frozen = (b.heats[name].details["lubricant_viscosity_m2_per_s"] for b in (bc, frozen))
         assert (nu < nu_frozen) == warm, name
+
+
+def test_link_changes_kept_on_the_right_hand_side_give_the_refactorised_answer(coupled, monkeypatch):
+    """A step keeps its factorised matrix while the links moved by less than LINK_REFACTOR of
+    themselves or LINK_RATE_REFACTOR times the capacity, taking the change explicitly; the
+    answer is that of refactorising at every re-evaluation."""
+    kept = simulate(coupled, condition="I")
+    monkeypatch.setattr(integrator_module, "LINK_REFACTOR", 0.0)
+    monkeypatch.setattr(integrator_module, "LINK_RATE_REFACTOR", 0.0)
+    every = simulate(coupled, condition="I")
+    assert every.info["coupling_updates"] == kept.info["coupling_updates"] > 5
+    for name in SENSORS:
+        assert np.max(np.abs(kept.sensors[name] - every.sensors[name])) < 2e-3, name
+    assert np.max(np.abs(kept.elongation - every.elongation)) < 0.01e-6
 
 
 def test_the_coupling_tolerance_converges(coupled):

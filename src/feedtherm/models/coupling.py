@@ -34,6 +34,12 @@ from .options import ModelOptions
 COUPLING_TOLERANCE = ModelOptions.coupling_tolerance
 #: Relative change of a node's link to its sink above which a coupled run refactorises its steps.
 LINK_REFACTOR = 0.2
+#: [1/s] ... once that change is also this rate of the node's heat capacity, ``Δg > rate·C``.
+#: Below it the right-hand side takes the change: stable for steps up to 2/rate = 200 s (the
+#: steps are at most 30 s), and a step matrix hardly changes (a FE node's link is about 0.1 %
+#: of its C/dt).  A rate, not a share of C/dt, so that runs with different steps refactorise
+#: at the same moments (the observed order in time stays the scheme's).
+LINK_RATE_REFACTOR = 0.01
 #: A coupled steady state has converged when no node moves by more than this [K].
 STEADY_TOLERANCE = 1e-4
 STEADY_ITERATIONS = 100

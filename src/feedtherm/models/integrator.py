@@ -13,6 +13,7 @@ heat lost from the ambient coupling, heat stored from the capacities.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import math
 from dataclasses import dataclass, field
@@ -26,6 +27,7 @@ from ..boundary import BoundaryConditions, LocalTemperatures
 from ..errors import ModelError
 from .coupling import (
     LINK_REFACTOR,
+    LINK_RATE_REFACTOR,
     MAX_ACCELERATION,
     MIN_RELAXATION,
     RUNAWAY_ITERATIONS,
@@ -35,12 +37,14 @@ from .coupling import (
     Coupling,
     TemperatureReadout,
 )
+from . import pardiso
 from .direct import EliminationOrder, _DenseLU, _pattern, factorize
 from .iterative import StepCG, jacobi
 from .interface import AmbientCoupling, Operator, ThermalModel, cycle_weights, weighted_sum
 from .options import ModelOptions
 
-#: Above this many unknowns the "auto" solver uses conjugate gradients, not cached LU.
+#: Above this many unknowns the "auto" solver uses conjugate gradients, not cached SuperLU factors
+#: (PARDISO's Cholesky factors, where installed, are kept at any size within a memory budget).
 DIRECT_SOLVER_LIMIT = 60_000
 #: Relative tolerance of a steady solve by conjugate gradients (from zero: relative to the heat that drives it).
 STEADY_CG_RTOL = 1e-10
@@ -193,19 +197,44 @@ class Integrator:
         self._orders = {}  # sparsity pattern → elimination order (direct solver; links and dt keep the pattern)
         solver = options.solver
         self.dense = isinstance(model.conductance(0), np.ndarray)
-        self.direct = self.dense or solver == "direct" or (solver == "auto" and model.n_nodes <= DIRECT_SOLVER_LIMIT)
-        self._coarse = None if self.direct else model.coarse_space()
+        self.pardiso = not self.dense and solver != "cg" and model.n_nodes >= pardiso.MIN_UNKNOWNS \
+            and pardiso.available()
+        self.direct = self.dense or solver == "direct" or (
+            solver == "auto" and (model.n_nodes <= DIRECT_SOLVER_LIMIT or self.pardiso))
+        # "auto" keeps PARDISO's factors within a share of the memory and steps the positions beyond it by cg
+        self._budget = pardiso.memory_budget() if self.pardiso and solver == "auto" else None
+        self._coarse_space = None
+        self.over_budget = 0  # step matrices solved by cg because their factors would exceed the budget
         self.cg_iterations = 0  # conjugate-gradient iterations of every time step so far
 
     @property
     def solver_name(self) -> str:
         if self.dense:
             return "dense LU"
-        return "direct (LU per position)" if self.direct else "cg (Jacobi-preconditioned conjugate gradients)"
+        if not self.direct:
+            return "cg (Jacobi-preconditioned conjugate gradients)"
+        if not self.pardiso:
+            return "direct (LU per position)"
+        beyond = f"; cg for {self.over_budget} step matrices beyond the memory budget" if self.over_budget else ""
+        return f"direct (PARDISO Cholesky per position{beyond})"
+
+    @property
+    def _coarse(self):
+        if self._coarse_space is None:
+            self._coarse_space = self.model.coarse_space()
+        return self._coarse_space
 
     def _factorize(self, A: Operator):
+        """The factors of ``A``, or None when PARDISO's would not fit in the memory budget (cg solves)."""
         if isinstance(A, np.ndarray):
             return _DenseLU(A)
+        if self.pardiso:
+            if self._budget is not None:
+                held = [f.memory for f in self._lu.values() if isinstance(f, pardiso.PardisoCholesky)]
+                if held and sum(held) + max(held) > self._budget:  # a position's factor is about as large
+                    self.over_budget += 1
+                    return None
+            return pardiso.PardisoCholesky(A)
         pattern = _pattern(A)  # a position's matrices share their pattern whatever the links and dt
         lu = factorize(A, self._orders.get(pattern))
         if pattern not in self._orders:
@@ -248,8 +277,9 @@ class Integrator:
               start: np.ndarray, guess: np.ndarray | None = None) -> np.ndarray:
         """The state after a step at position k: ``rhs`` its right-hand side, ``start`` the state it starts
         from, ``guess`` where the iterations of conjugate gradients start (default: ``start``)."""
-        if self.direct:
-            return self.factors(seg_id, bc, k, dt).solve(rhs)
+        lu = self.factors(seg_id, bc, k, dt) if self.direct else None
+        if lu is not None:
+            return lu.solve(rhs)
         key = (self._matrix_key(seg_id, bc, k), round(dt, 12))
         if key not in self._cg:
             self._cg[key] = StepCG(self._step_matrix(seg_id, bc, k, dt), self._coarse)
@@ -260,7 +290,8 @@ class Integrator:
         return state
 
     def factors(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float):
-        """The (cached) LU factors of the step matrix at position k (direct solver): ``.solve(rhs)``."""
+        """The (cached) factors of the step matrix at position k (direct solver): ``.solve(rhs)``;
+        None where they would exceed the memory budget."""
         key = (self._matrix_key(seg_id, bc, k), round(dt, 12))
         if key not in self._lu:
             self._lu[key] = self._factorize(self._step_matrix(seg_id, bc, k, dt))
@@ -336,18 +367,20 @@ class Integrator:
         return bc if self.coupling is None else self.coupling.evaluate(bc, self.readout(state))
 
     def _reevaluate(self, seg_id: int, base: BoundaryConditions, now: LocalTemperatures,
-                    bc: BoundaryConditions, factorised: BoundaryConditions) -> tuple[BoundaryConditions, BoundaryConditions]:
+                    bc: BoundaryConditions, factorised: BoundaryConditions,
+                    transient: bool = False) -> tuple[BoundaryConditions, BoundaryConditions]:
         """Boundary conditions at the reading ``now``, and the ones to factorise the steps with.
 
         The step matrix is refactorised only once a node's link to its sink has moved by more
-        than :data:`~.coupling.LINK_REFACTOR` of its factorised value; until then the steps
-        take the difference on the right-hand side at the state of the step's start (stable,
-        as the difference is a fraction of the implicit links).
+        than :data:`~.coupling.LINK_REFACTOR` of its factorised value and, in a transient, by
+        more than :data:`~.coupling.LINK_RATE_REFACTOR` times its heat capacity; until then the
+        steps take the difference on the right-hand side at the state of the step's start
+        (stable, as the difference is a fraction of the implicit operator).
         """
         evaluated = self.coupling.evaluate(base, now)
         if bc is not factorised:
             self._forget(seg_id, bc)
-        if self._links_moved(factorised, evaluated):
+        if self._links_moved(factorised, evaluated, transient):
             self._forget(seg_id, factorised)
             factorised = evaluated
         return evaluated, factorised
@@ -369,9 +402,13 @@ class Integrator:
             self._link_changes[key] = now.matrix - ref.matrix
         return self._link_changes[key]
 
-    def _links_moved(self, old: BoundaryConditions, new: BoundaryConditions) -> bool:
+    def _links_moved(self, old: BoundaryConditions, new: BoundaryConditions, transient: bool = False) -> bool:
         g_old, g_new = self.model.ambient_links(old, None), self.model.ambient_links(new, None)
-        return bool(np.any(np.abs(g_new - g_old) > LINK_REFACTOR * g_old))
+        change = np.abs(g_new - g_old)
+        moved = change > LINK_REFACTOR * g_old
+        if transient and not self.dense:  # a projected model's links are its full model's
+            moved &= change > LINK_RATE_REFACTOR * np.asarray(self.model.capacity)
+        return bool(np.any(moved))
 
     def readout(self, state: np.ndarray) -> LocalTemperatures:
         """The surfaces' and sources' temperatures of ``state`` (:class:`~.coupling.TemperatureReadout`)."""
@@ -388,7 +425,8 @@ class Integrator:
             key = ("steady", seg_id, id(bc), k)
             if key not in self._lu:
                 self._lu[key] = self._factorize(A)
-            return self._lu[key].solve(rhs)
+            if self._lu[key] is not None:
+                return self._lu[key].solve(rhs)
         solution, info = cg(A, rhs, x0=np.zeros_like(rhs), rtol=STEADY_CG_RTOL, maxiter=50000, M=jacobi(A))
         if info != 0:
             raise ModelError(f"--solver cg: conjugate gradients did not converge in {info} iterations of the steady "
@@ -398,6 +436,12 @@ class Integrator:
     # -------------------------------------------------------------- time loop
     def run(self, segments: list[Segment], initial: np.ndarray, sample_times: np.ndarray,
             progress: Callable[[float], None] | None = None) -> Trace:
+        """Step through ``segments`` from ``initial``, recording at ``sample_times``."""
+        with pardiso.openblas_on_one_thread() if self.pardiso else contextlib.nullcontext():
+            return self._run(segments, initial, sample_times, progress)
+
+    def _run(self, segments: list[Segment], initial: np.ndarray, sample_times: np.ndarray,
+             progress: Callable[[float], None] | None) -> Trace:
         m = self.model
         trace = Trace()
         T = initial.copy()
@@ -429,7 +473,7 @@ class Integrator:
                 if coupled and (reading is None or not resolved or path.u - checked >= period):
                     checked, now = path.u, self.readout(T)
                     if reading is None or now.largest_change(reading) > self.coupling.tolerance:
-                        bc, factorised = self._reevaluate(seg_id, seg.bc, now, bc, factorised)
+                        bc, factorised = self._reevaluate(seg_id, seg.bc, now, bc, factorised, transient=True)
                         steps = {}
                         reading = now
                         trace.coupling_updates += 1

@@ -24,7 +24,7 @@ class ModelOptions:
     max_step: float = 30.0  # [s] upper bound of any step
     motion: Literal["resolved", "averaged"] = "resolved"  # position over time, or cycle-averaged
     averaged_step: float = 10.0  # [s] time step of the cycle-averaged motion
-    solver: Literal["auto", "direct", "cg"] = "auto"  # cached LU per position, or conjugate gradients
+    solver: Literal["auto", "direct", "cg"] = "auto"  # cached factors per position, or conjugate gradients
     snapshot_interval: float = 600.0  # [s] full-field snapshots kept for field output (FE)
     # nonlinear coupling (temperatures.coupling = "nonlinear")
     # [K] largest lag of a surface's or source's temperature before re-evaluation: at 0.5 K the

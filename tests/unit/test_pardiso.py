@@ -1,0 +1,72 @@
+"""PARDISO's Cholesky factors of the step matrices, and the integrator's memory budget for them."""
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+from scipy.sparse.linalg import spsolve
+
+from feedtherm.errors import ModelError
+from feedtherm.models import pardiso
+from feedtherm.plan import plan_run
+from feedtherm.simulate import execute
+
+pytest.importorskip("pypardiso")
+
+
+def spd(n: int, seed: int) -> sp.csr_matrix:
+    """A symmetric, diagonally dominant conductance-like matrix with a 2D grid's pattern."""
+    rng = np.random.default_rng(seed)
+    side = int(np.sqrt(n))
+    weights = sp.triu(sp.diags([1.0, 1.0], [1, side], shape=(n, n)), format="csr")
+    weights.data = rng.uniform(0.5, 2.0, weights.nnz)
+    W = weights + weights.T
+    return (sp.diags(np.asarray(W.sum(axis=1)).ravel() + 0.1) - W).tocsr()
+
+
+def test_the_cholesky_factors_solve_as_a_sparse_lu_does():
+    A = spd(2500, 1)
+    b = np.random.default_rng(2).normal(size=2500)
+    factors = pardiso.PardisoCholesky(A)
+    np.testing.assert_allclose(factors.solve(b), spsolve(A.tocsc(), b), rtol=1e-11, atol=1e-12)
+    assert factors.memory > A.nnz * 8.0 / 2  # at least the upper triangle's values
+    second = pardiso.PardisoCholesky(2.0 * A)  # a second factorisation alive beside the first
+    np.testing.assert_allclose(second.solve(b), 0.5 * factors.solve(b), rtol=1e-11, atol=1e-12)
+
+
+def test_a_matrix_that_is_not_positive_definite_is_refused():
+    A = spd(400, 3) - sp.identity(400) * 50.0
+    with pytest.raises(ModelError, match="not symmetric positive definite"):
+        pardiso.PardisoCholesky(A)
+
+
+def test_the_budget_is_a_share_of_the_memory_available():
+    budget = pardiso.memory_budget()
+    with open("/proc/meminfo") as meminfo:
+        total = next(float(line.split()[1]) * 1024.0 for line in meminfo if line.startswith("MemTotal:"))
+    assert 0.0 < budget <= pardiso.MEMORY_SHARE * total
+
+
+def superlu_and_pardiso(paper, monkeypatch, **plan):
+    """Condition I's first half hour by the fast model, solved by SuperLU and by PARDISO."""
+    monkeypatch.setattr(pardiso, "MIN_UNKNOWNS", 10**9)
+    reference = execute(plan_run(paper, condition="I", duration=1800.0))
+    monkeypatch.setattr(pardiso, "MIN_UNKNOWNS", 0)  # the fast model's matrices by PARDISO, as a fine mesh's are
+    return reference, execute(plan_run(paper, condition="I", duration=1800.0, **plan))
+
+
+def test_a_run_with_pardiso_equals_the_run_with_superlu(paper, monkeypatch):
+    reference, solution = superlu_and_pardiso(paper, monkeypatch)
+    assert reference.info["solver"] == "direct (LU per position)"
+    assert solution.info["solver"] == "direct (PARDISO Cholesky per position)"
+    for name in ("T1", "T2", "T3", "T4", "T5", "D_um"):
+        assert solution.summary_values("final")[name] == pytest.approx(reference.summary_values("final")[name],
+                                                                         abs=1e-9)
+
+
+def test_positions_beyond_the_memory_budget_are_stepped_by_conjugate_gradients(paper, monkeypatch):
+    monkeypatch.setattr(pardiso, "memory_budget", lambda: 1.0)  # room for the first factorisation only
+    reference, budgeted = superlu_and_pardiso(paper, monkeypatch)
+    assert "cg for" in budgeted.info["solver"] and "beyond the memory budget" in budgeted.info["solver"]
+    for name in ("T1", "T2", "T3", "T4", "T5"):
+        assert budgeted.summary_values("final")[name] == pytest.approx(reference.summary_values("final")[name],
+                                                                         abs=1e-3)
