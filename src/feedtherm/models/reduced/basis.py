@@ -53,6 +53,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ...constants import cache_root
+from .. import pardiso
 from ..direct import EliminationOrder, factorize
 from ..interface import ThermalModel, cycle_weights, weighted_sum
 
@@ -241,9 +242,12 @@ def _build(model: ThermalModel, tolerance: float, time_constants: tuple[float, .
     for tau in (None, *time_constants):
         shift = 0.0 if tau is None else 1.0 / tau
         A = (G_mean + sp.diags(averaged_links + shift * C)).tocsc()
-        mean = factorize(A, order)
-        if order is None:
-            order = EliminationOrder(mean)
+        if model.n_nodes >= pardiso.MIN_UNKNOWNS and pardiso.available():  # 1.5 s, not SuperLU's 22 s, at the fine mesh
+            mean = pardiso.PardisoCholesky(A)
+        else:
+            mean = factorize(A, order)
+            if order is None:
+                order = EliminationOrder(mean)
         x_fixed = mean.solve(fixed)
         snapshots = [x_fixed]
         for k in range(n_positions):
