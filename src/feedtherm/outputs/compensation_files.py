@@ -4,7 +4,9 @@ a CSV of the error against K, the figures and the report section as a page.
 Files (all in one directory, replaced as a set):
 
 - ``law.json``: the law asked for (``--sensors``), with lags (:mod:`~feedtherm.analysis.compensation.evaluator`
-  evaluates it); ``law_static.json``: the same sensors without lags;
+  evaluates it); ``law_static.json``: the same sensors without lags; ``law_kalman.json``: the
+  Kalman estimator on the same sensors (:class:`~feedtherm.analysis.compensation.kalman.KalmanLaw`
+  reads it back);
 - ``compensation.json``: settings, the error of every law for K = 1 … 6 and of the description's
   own sensors, the best law with at most 3 sensors, the measured bench, the test machines' factors;
 - ``compensation.csv``: one row per law and K;
@@ -26,7 +28,7 @@ from .files import staged_directory, write_json
 from .report.compensation import compensation_section
 from .report.html import page
 
-COMPENSATION_FILES = ("law.json", "law_static.json", "compensation.json", "compensation.csv", "error_vs_k.png",
+COMPENSATION_FILES = ("law.json", "law_static.json", "law_kalman.json", "compensation.json", "compensation.csv", "error_vs_k.png",
                       "sensor_map.png", "test_cycle.png", "compensation.html")
 CSV_HEADER = ["law", "k", "sensors", "test_rms_um", "test_max_um", "reduction_percent", "validation_rms_um",
               "uncompensated_rms_um"]
@@ -74,12 +76,15 @@ def write_compensation(result: StudyResult, loaded: LoadedSystem, out_dir: Path,
     best = result.best(3)
     figures = {"error_vs_k.png": plots.error_against_k(result),
                "sensor_map.png": plots.sensor_map(loaded.system, result, best.kind),
-               "test_cycle.png": plots.compensated_cycle(result, result.chosen["regression_lags"])}
+               "test_cycle.png": plots.compensated_cycle(result, [result.chosen["regression_lags"],
+                                                                   result.chosen["kalman"]])}
     with staged_directory(out_dir, replaces=COMPENSATION_FILES) as stage:
         write_json(stage / "law.json", law_document(result.chosen["regression_lags"].law, result.candidates,
                                                     {**provenance, "test": result.chosen["regression_lags"].test.as_dict()}))
         write_json(stage / "law_static.json", law_document(result.chosen["regression"].law, result.candidates,
                                                            {**provenance, "test": result.chosen["regression"].test.as_dict()}))
+        write_json(stage / "law_kalman.json", result.chosen["kalman"].law.document(
+            {**provenance, "test": result.chosen["kalman"].test.as_dict()}))
         write_json(stage / "compensation.json", document)
         with open(stage / "compensation.csv", "w", newline="") as handle:
             writer = csv.writer(handle, lineterminator="\n")

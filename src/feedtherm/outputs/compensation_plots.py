@@ -12,8 +12,8 @@ from ..analysis.compensation.study import LawResult, StudyResult
 from ..system.schema import FeedSystem
 
 _DPI = 110
-LAW_LABELS = {"regression": "regression", "regression_lags": "regression with lags"}
-_COLOURS = {"regression": "tab:blue", "regression_lags": "tab:orange"}
+LAW_LABELS = {"regression": "regression", "regression_lags": "regression with lags", "kalman": "Kalman filter"}
+_COLOURS = {"regression": "tab:blue", "regression_lags": "tab:orange", "kalman": "tab:green"}
 
 
 def _figure(figsize):
@@ -102,25 +102,25 @@ def sensor_map(system: FeedSystem, result: StudyResult, kind: str) -> bytes:
     return _png(figure)
 
 
-def compensated_cycle(result: StudyResult, law: LawResult, index: int = 0) -> bytes:
-    """One test cycle: D simulated on its machine variant, D estimated by ``law``, and the residual."""
+def compensated_cycle(result: StudyResult, laws: list[LawResult], index: int = 0) -> bytes:
+    """One test cycle: D simulated on its machine variant, D estimated by each law, and the residuals."""
     record = result.sets["test"].cycles[index]
-    names = result.sets["test"].names
-    columns = [names.index(s) for s in law.sensors]
-    estimate = law.law.predict(record.times, record.sensors[:, columns])
     hours = record.times / 3600
     figure = _figure((8.5, 4.8))
     top, bottom = figure.subplots(2, 1, sharex=True, height_ratios=(2, 1))
     top.plot(hours, record.elongation * 1e6, color="k", label="D on the variant (simulated)")
-    top.plot(hours, estimate * 1e6, color="tab:orange", ls="--", label=f"estimate, {', '.join(law.sensors)}")
     stopped = (record.screw_rpm == 0) & (record.nut_rpm == 0)
     top.fill_between(hours, 0, 1, where=stopped, transform=top.get_xaxis_transform(), color="0.9", label="stopped")
+    for law in laws:
+        estimate = law.law.predict_record(record, result.sets["test"].names)
+        rms = np.sqrt(np.mean((record.elongation - estimate) ** 2)) * 1e6
+        label = f"{LAW_LABELS.get(law.kind, law.kind)} ({', '.join(law.sensors)}): RMS {rms:.2f} µm"
+        top.plot(hours, estimate * 1e6, color=_COLOURS.get(law.kind), ls="--", label=label)
+        bottom.plot(hours, (record.elongation - estimate) * 1e6, color=_COLOURS.get(law.kind))
     top.set_ylabel("D [µm]")
     top.legend(fontsize=7)
-    bottom.plot(hours, (record.elongation - estimate) * 1e6, color="tab:red")
     bottom.axhline(0, color="0.5", lw=0.6)
     bottom.set_ylabel("residual [µm]")
     bottom.set_xlabel("time [h]")
-    top.set_title(f"{record.label}: {LAW_LABELS.get(law.kind, law.kind)}, RMS "
-                  f"{np.sqrt(np.mean((record.elongation - estimate) ** 2)) * 1e6:.2f} µm", fontsize=9)
+    top.set_title(f"{record.label} (a held-out cycle on another machine)", fontsize=9)
     return _png(figure)

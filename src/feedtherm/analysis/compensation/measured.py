@@ -4,19 +4,29 @@ For each measured condition the law reads the measured equilibrium temperatures 
 (Table 6 on the paper's bench; the ambient ``T6`` is the condition's stated ambient, Table 5)
 and predicts D, which is compared with the measured D (Table 7) and beside the deviation of the
 paper's own model (its simulated D − measured D, 2.9 … 6.2 µm).  The measurements are
-equilibrium values, so each is one reading of a machine at rest in its thermal state: the law's
-lags start settled at the first reading (:mod:`.evaluator`), as on a machine that has run at that
-state for long.  Nothing of the measurements enters the fit.
+equilibrium values, so each is one reading of a machine in its thermal equilibrium: a regression
+law's lags start settled at the first reading (:mod:`.evaluator`), as on a machine that has run
+at that state for long; the Kalman estimator reads the same values every :data:`STEP` for
+:data:`HOLD` at the condition's motor speeds, from a machine at the ambient (the paper's runs
+last 3 h), and gives its last estimate.  Nothing of the measurements enters the fit.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from ...constants import AMBIENT_SENSOR, KELVIN_OFFSET
 from ...system.load import LoadedSystem
 from ..measurements import ELONGATION_QUANTITY, MeasurementSet
+from ...constants import RPM_PER_RAD_S
+from .kalman import KalmanLaw
 from .regression import RegressionLaw
+
+#: How long [s] and how often [s] the Kalman estimator reads a condition's equilibrium values.
+HOLD = 3 * 3600.0
+STEP = 60.0
 
 
 @dataclass(frozen=True)
@@ -51,7 +61,8 @@ def measured_inputs(loaded: LoadedSystem, data: MeasurementSet, condition: str) 
     return values
 
 
-def predict_measured(law: RegressionLaw, loaded: LoadedSystem, data: MeasurementSet) -> list[MeasuredPrediction]:
+def predict_measured(law: RegressionLaw | KalmanLaw, loaded: LoadedSystem,
+                     data: MeasurementSet) -> list[MeasuredPrediction]:
     """The law's D at every measured condition whose measurements hold all its inputs and D."""
     out = []
     for condition in data.conditions():
@@ -59,9 +70,22 @@ def predict_measured(law: RegressionLaw, loaded: LoadedSystem, data: Measurement
         elongation = [r for r in data.for_condition(condition) if r.quantity == ELONGATION_QUANTITY]
         if not elongation or any(name not in inputs for name in law.sensors):
             continue
-        readings = [[inputs[name] for name in law.sensors]]
-        predicted = float(law.predict([0.0], readings)[0])
+        if isinstance(law, KalmanLaw):
+            predicted = _held(law, inputs, loaded.system.conditions[condition])
+        else:
+            predicted = float(law.predict([0.0], [[inputs[name] for name in law.sensors]])[0])
         row = elongation[0]
         paper = None if row.reference_simulated is None else row.reference_simulated * 1e-6
         out.append(MeasuredPrediction(condition, predicted, row.measured * 1e-6, paper))
     return out
+
+
+def _held(law: KalmanLaw, inputs: dict[str, float], condition) -> float:
+    """The estimator's D after reading ``inputs`` every STEP for HOLD at the condition's speeds."""
+    estimator = law.estimator()
+    screw, nut = condition.screw_speed * RPM_PER_RAD_S, condition.nut_speed * RPM_PER_RAD_S
+    readings = {name: inputs[name] for name in (*law.sensors, AMBIENT_SENSOR)}
+    d = 0.0
+    for t in np.arange(0.0, HOLD + STEP / 2, STEP):
+        d, _ = estimator.update(float(t), readings, screw, nut)
+    return d

@@ -69,6 +69,10 @@ class RegressionLaw:
         """D [m] at ``times`` from ``readings`` ``(n, k)`` [K] of :attr:`sensors`, in order."""
         return self.bias + features(times, readings, self.lags) @ self.weights.ravel()
 
+    def predict_record(self, record, names: list[str]) -> np.ndarray:
+        """D [m] at every sample of a recorded cycle whose sensor columns are ``names``."""
+        return self.predict(record.times, record.sensors[:, [names.index(s) for s in self.sensors]])
+
 
 def fit_regression(cycles: list[tuple[np.ndarray, np.ndarray, np.ndarray]], sensors: tuple[str, ...],
                    lags: tuple[float, ...] = ()) -> RegressionLaw:

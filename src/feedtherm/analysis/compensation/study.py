@@ -13,19 +13,26 @@ import re
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ...constants import AMBIENT_SENSOR
+from ...boundary.operating import OperatingPoint
+from ...constants import AMBIENT_SENSOR, ELONGATION_PROBE, KELVIN_OFFSET
 from ...errors import FeedthermError
 from ...system.load import LoadedSystem
-from ..candidates import Candidate, candidate_sensors
+from ..candidates import Candidate, candidate_sensors, with_candidates
+from ..random_cycles import SpeedEnvelope
 from .data import CycleSet, StudySettings, simulate_set
+from .kalman import KalmanLaw, KalmanNoise, model_errors, sensor_sigma
 from .metrics import Residuals, residuals
+from .operating_table import build_table
 from .regression import DEFAULT_LAGS, RegressionLaw
-from .selection import fit_on, greedy_selection, predictor
+from .selection import fit_on, greedy_selection
+from .state_space import DEFAULT_ORDER, reduce_model
 
 #: The error against K is shown for K = 1 … this (issue 16), or up to the K asked for.
 CURVE_SENSORS = 6
-#: The laws of a study: name -> lag time constants [s] (:mod:`.regression`).
+#: The regression laws of a study: name -> lag time constants [s] (:mod:`.regression`).
 LAWS = {"regression": (), "regression_lags": DEFAULT_LAGS}
+#: The model-based estimator (:mod:`.kalman`); it reads the sensor sets the lagged regression chose.
+KALMAN = "kalman"
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
@@ -34,9 +41,9 @@ _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 class LawResult:
     """One law: its kind, its sensors, the fitted law and its errors on the held-out cycles."""
 
-    kind: str  # a key of LAWS
+    kind: str  # a key of LAWS, or KALMAN
     sensors: tuple[str, ...]
-    law: RegressionLaw
+    law: RegressionLaw | KalmanLaw
     validation: Residuals
     test: Residuals
 
@@ -120,10 +127,42 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
             chosen[kind] = _judge(kind, fit_on(sets["train"], request, lags), sets)
         if own:
             declared[kind] = _judge(kind, fit_on(sets["train"], own, lags), sets)
+    kalman = kalman_factory(loaded, candidates, sets["train"], settings)
+    curves[KALMAN] = [_judge(KALMAN, kalman(r.sensors), sets) for r in curves["regression_lags"]]
+    chosen[KALMAN] = _judge(KALMAN, kalman(chosen["regression_lags"].sensors), sets)
+    if own:
+        declared[KALMAN] = _judge(KALMAN, kalman(own), sets)
     return StudyResult(settings, candidates, sets, curves, chosen, declared, request)
 
 
-def _judge(kind: str, law: RegressionLaw, sets: dict[str, CycleSet]) -> LawResult:
+def kalman_factory(loaded: LoadedSystem, candidates: dict[str, Candidate], train: CycleSet, settings: StudySettings,
+                   noise: KalmanNoise = KalmanNoise(), order: int = DEFAULT_ORDER):
+    """``sensors -> KalmanLaw``: the reduced model of every candidate and D, reduced once at the
+    middle of the speed envelope and the middle of the cycles' ambient range, its table, and each
+    output's open-loop error over the training cycles (:class:`~.kalman.KalmanLaw`)."""
+    described = with_candidates(loaded, candidates)
+    system = described.system
+    envelope = SpeedEnvelope.of(system)
+    screw = sum(envelope.screw) / 2
+    nut = screw - sum(envelope.relative) / 2 if envelope.dual else 0.0
+    ambient = sum(settings.ranges.ambient_mean) / 2 + KELVIN_OFFSET
+    reference = OperatingPoint(screw, nut, ambient, system.kinematics.lead)
+    outputs = [n for n in candidates if n != AMBIENT_SENSOR] + [ELONGATION_PROBE]
+    model = reduce_model(described, outputs, reference, mode=settings.mode, order=order)
+    table = build_table(system, model.surfaces, model.sources, ambient, mode=settings.mode)
+    errors = model_errors(model, table, train.cycles, train.names)
+    methods = {name: sensor.method for name, sensor in system.sensors.items()}
+
+    def law(sensors: tuple[str, ...]) -> KalmanLaw:
+        own = sensor_sigma(sensors, methods, noise)
+        sigma = tuple(float((o ** 2 + errors.get(s, 0.0) ** 2) ** 0.5) for s, o in zip(sensors, own))
+        return KalmanLaw(model, table, tuple(sensors), sigma, noise)
+
+    return law
+
+
+def _judge(kind: str, law: RegressionLaw | KalmanLaw, sets: dict[str, CycleSet]) -> LawResult:
     names = sets["test"].names
-    return LawResult(kind, law.sensors, law, residuals(predictor(law, names), sets["validation"]),
-                     residuals(predictor(law, names), sets["test"]))
+    return LawResult(kind, tuple(law.sensors), law,
+                     residuals(lambda record: law.predict_record(record, names), sets["validation"]),
+                     residuals(lambda record: law.predict_record(record, names), sets["test"]))

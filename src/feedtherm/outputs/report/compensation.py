@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from .html import number, paragraph, png_image, section, table
 
-LAW_LABELS = {"regression": "regression", "regression_lags": "regression with lags"}
+LAW_LABELS = {"regression": "regression", "regression_lags": "regression with lags", "kalman": "Kalman filter"}
 
 
 def compensation_section(summary: dict, figures: dict[str, bytes]) -> str:
