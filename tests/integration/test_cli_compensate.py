@@ -31,7 +31,7 @@ def test_a_study_writes_its_files_and_one_line(study):
     assert len(lines) == 1 and lines[0].startswith("out/paper_compensation_physics: law on "), lines
     out = cwd / "out" / "paper_compensation_physics"
     assert sorted(p.name for p in out.iterdir()) == sorted(
-        ["law.json", "law_static.json", "compensation.json", "compensation.csv", "error_vs_k.png",
+        ["law.json", "law_static.json", "law_kalman.json", "compensation.json", "compensation.csv", "error_vs_k.png",
          "sensor_map.png", "test_cycle.png", "compensation.html"])
     for name in ("error_vs_k.png", "sensor_map.png", "test_cycle.png"):
         assert (out / name).read_bytes()[:8] == PNG_MAGIC
