@@ -286,9 +286,12 @@ def cmd_validate(args: argparse.Namespace) -> int:
     from .outputs.calibration_files import read_calibration_summary
 
     calibration = read_calibration_summary(Path(args.calibration)) if args.calibration else None
+    from .outputs.compensation_files import read_compensation_summary
+
+    compensation = read_compensation_summary(Path(args.compensation)) if args.compensation else None
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
         validation = validate(loaded, mode=args.mode, model=args.model, mesh=args.mesh, measured=args.measured,
-                              progress=progress, calibration=calibration)
+                              progress=progress, calibration=calibration, compensation=compensation)
     write_validation(validation, out_dir)
     print_validation(validation, out_dir)
     return 0
@@ -489,6 +492,9 @@ def build_parser() -> argparse.ArgumentParser:
     validate.add_argument("--calibration", metavar="DIR",
                           help="output folder of `feedtherm calibrate --cross-validate`: its held-out figures "
                                "go into the report's headline")
+    validate.add_argument("--compensation", metavar="DIR",
+                          help="output folder of `feedtherm compensate`: its laws and figures become the report's "
+                               "compensation section")
     _out_argument(validate, "out/<system>_validation_<mode>")
     validate.set_defaults(func=cmd_validate)
 

@@ -63,3 +63,23 @@ def test_bad_input_is_one_line_exit_2_and_nothing_written(tmp_path, args, messag
     lines = result.stderr.splitlines()
     assert len(lines) == 1 and message in lines[0], result.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+def test_validate_refuses_a_folder_without_a_study_in_one_line(tmp_path):
+    result = subprocess.run([sys.executable, "-m", "feedtherm", "validate", "--compensation", str(tmp_path / "none"),
+                             "--out", "report"], capture_output=True, text=True, timeout=120, cwd=tmp_path)
+    assert result.returncode == 2
+    assert result.stderr.splitlines() == [f"feedtherm: error: --compensation: {tmp_path / 'none' / 'compensation.json'} "
+                                          "not found (give the output folder of `feedtherm compensate`)"]
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_the_study_reads_back_as_a_report_section(study):
+    from feedtherm.outputs.compensation_files import read_compensation_summary
+    from feedtherm.outputs.report.compensation import compensation_section
+
+    cwd, _ = study
+    read = read_compensation_summary(cwd / "out" / "paper_compensation_physics")
+    assert sorted(read["figures"]) == ["error_vs_k.png", "sensor_map.png", "test_cycle.png"]
+    html = compensation_section(read["summary"], read["figures"])
+    assert html.count("data:image/png;base64") == 3 and "Kalman filter" in html

@@ -108,3 +108,27 @@ def summary_line(out_dir: Path, result: StudyResult, wall_time_s: float) -> str:
     return (f"{out_dir}: law on {', '.join(chosen.sensors)}: held-out RMS {chosen.test.rms * 1e6:.2f} µm, "
             f"max {chosen.test.max * 1e6:.2f} µm ({100 * chosen.test.reduction:.1f} % less than uncompensated); "
             f"written in {wall_time_s:.1f} s")
+
+
+FIGURES = ("error_vs_k.png", "sensor_map.png", "test_cycle.png")
+
+
+def read_compensation_summary(folder: Path) -> dict:
+    """``{"summary": compensation.json, "figures": {name: PNG bytes}}`` of a study's folder;
+    one-line errors naming what is wrong (``feedtherm validate --compensation DIR``)."""
+    import json
+
+    from ..errors import FeedthermError
+
+    path = Path(folder) / "compensation.json"
+    if not path.is_file():
+        raise FeedthermError(f"--compensation: {path} not found (give the output folder of `feedtherm compensate`)")
+    try:
+        document = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        raise FeedthermError(f"--compensation: {path} is not readable JSON ({exc})") from None
+    missing = [key for key in ("settings", "curves", "best", "sets") if key not in (document if isinstance(document, dict) else {})]
+    if missing:
+        raise FeedthermError(f"--compensation: {path} lacks {', '.join(missing)}; is it a compensation.json?")
+    figures = {name: (Path(folder) / name).read_bytes() for name in FIGURES if (Path(folder) / name).is_file()}
+    return {"summary": document, "figures": figures}
