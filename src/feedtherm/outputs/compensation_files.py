@@ -105,9 +105,10 @@ def write_compensation(result: StudyResult, loaded: LoadedSystem, out_dir: Path,
 def summary_line(out_dir: Path, result: StudyResult, wall_time_s: float) -> str:
     """One line: the law asked for, its held-out error, where the files are."""
     chosen = result.chosen["regression_lags"]
+    reduction = 100 * chosen.test.reduction
+    change = f"{reduction:.1f} % less than" if reduction >= 0 else f"{-reduction:.0f} % more than"
     return (f"{out_dir}: law on {', '.join(chosen.sensors)}: held-out RMS {chosen.test.rms * 1e6:.2f} µm, "
-            f"max {chosen.test.max * 1e6:.2f} µm ({100 * chosen.test.reduction:.1f} % less than uncompensated); "
-            f"written in {wall_time_s:.1f} s")
+            f"max {chosen.test.max * 1e6:.2f} µm ({change} uncompensated); written in {wall_time_s:.1f} s")
 
 
 FIGURES = ("error_vs_k.png", "sensor_map.png", "test_cycle.png")

@@ -216,7 +216,8 @@ class KalmanLaw:
         return {
             "format": FORMAT, "version": VERSION, "kind": "kalman",
             "output": {"name": "D", "unit": "m", "meaning": "the screw's thermal elongation; correct the axis by -D"},
-            "inputs": [{"name": s, "unit": "K", "sigma_K": sg} for s, sg in zip(self.sensors, self.sigma)]
+            "inputs": [{"name": s, "unit": "K", "sigma_K": sg} for s, sg in zip(self.sensors, self.sigma)
+                       if s != AMBIENT_SENSOR]
                       + [{"name": AMBIENT_SENSOR, "unit": "K", "role": "ambient (model input)"}],
             "speeds": "screw_rpm and nut_rpm commanded over the interval ending at each reading",
             "model": {"surfaces": m.surfaces, "sources": m.sources,
