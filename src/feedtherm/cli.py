@@ -286,9 +286,12 @@ def cmd_validate(args: argparse.Namespace) -> int:
     from .outputs.calibration_files import read_calibration_summary
 
     calibration = read_calibration_summary(Path(args.calibration)) if args.calibration else None
+    from .outputs.compensation_files import read_compensation_summary
+
+    compensation = read_compensation_summary(Path(args.compensation)) if args.compensation else None
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
         validation = validate(loaded, mode=args.mode, model=args.model, mesh=args.mesh, measured=args.measured,
-                              progress=progress, calibration=calibration)
+                              progress=progress, calibration=calibration, compensation=compensation)
     write_validation(validation, out_dir)
     print_validation(validation, out_dir)
     return 0
@@ -349,6 +352,51 @@ def cmd_infer(args: argparse.Namespace) -> int:
                "prior_width": args.prior_width}
     write_inference(results, out_dir, context)
     print_inference(results, out_dir)
+    return 0
+
+
+def _integer(text: str) -> int:
+    """argparse type: a whole number (any sign)."""
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a whole number, got {text!r}") from None
+
+
+def cmd_compensate(args: argparse.Namespace) -> int:
+    from .analysis.candidates import candidate_sensors
+    from .analysis.compensation.data import StudySettings
+    from .analysis.compensation.study import parse_sensors
+    from .analysis.random_cycles import CycleRanges
+    from .models.registry import model_entry
+    from .outputs.files import check_output_dir
+    from .outputs.run_files import default_out_dir
+
+    started = time.perf_counter()
+    loaded = _load(args.system)
+    _require_paper_table(loaded, args.mode)
+    model_entry(args.model)
+    request = parse_sensors(args.sensors, candidate_sensors(loaded.system))
+    ranges = CycleRanges() if args.duration is None else CycleRanges(duration=args.duration)
+    settings = StudySettings(cycles=args.cycles, seed=args.seed, ranges=ranges, model=args.model, mode=args.mode,
+                             mesh=args.mesh if args.model != "fast" else None)
+    out_dir = Path(args.out) if args.out else default_out_dir(args.system, "compensation", args.mode)
+    check_output_dir(out_dir)
+    from .analysis.compensation.measured import predict_measured
+    from .analysis.compensation.study import run_study
+    from .analysis.validation import measurements_of
+    from .outputs.compensation_files import summary_line, write_compensation
+
+    try:  # the measured bench, where the description has measurements (read before the long run)
+        data = measurements_of(loaded, None)
+    except FeedthermError:
+        data = None
+    with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
+        result = run_study(loaded, settings, request, progress)
+    measured = {} if data is None else {kind: predict_measured(r.law, loaded, data)
+                                         for kind, r in result.declared.items()}
+    write_compensation(result, loaded, out_dir, measured=measured)
+    print(summary_line(out_dir, result, time.perf_counter() - started))
     return 0
 
 
@@ -446,6 +494,9 @@ def build_parser() -> argparse.ArgumentParser:
     validate.add_argument("--calibration", metavar="DIR",
                           help="output folder of `feedtherm calibrate --cross-validate`: its held-out figures "
                                "go into the report's headline")
+    validate.add_argument("--compensation", metavar="DIR",
+                          help="output folder of `feedtherm compensate`: its laws and figures become the report's "
+                               "compensation section")
     _out_argument(validate, "out/<system>_validation_<mode>")
     validate.set_defaults(func=cmd_validate)
 
@@ -508,6 +559,22 @@ def build_parser() -> argparse.ArgumentParser:
     _mode_argument(calibrate)
     _out_argument(calibrate, "out/<system>_calibration_<mode>")
     calibrate.set_defaults(func=cmd_calibrate)
+
+    compensate = sub.add_parser("compensate", help="fit thermal-error compensation laws on random simulated cycles, "
+                                                   "choose sensor positions, judge them on other machines of the design")
+    _system_argument(compensate)
+    compensate.add_argument("--sensors", default="3", metavar="K|NAME,...",
+                            help="K sensors chosen greedily, or candidate names such as T1,T3 (default 3)")
+    compensate.add_argument("--cycles", type=_positive_int, default=8, metavar="N",
+                            help="cycles in each of the training, validation and test sets (default 8)")
+    compensate.add_argument("--seed", type=_integer, default=0, metavar="S", help="seed of every random draw (default 0)")
+    compensate.add_argument("--duration", type=_positive_seconds, metavar="S",
+                            help="length of every cycle [s] (default 28800, one shift)")
+    compensate.add_argument("--model", default="fast", help="a model of `feedtherm models` (default fast)")
+    compensate.add_argument("--mesh", choices=MESHES, default="coarse", help="FE mesh density (with --model fem)")
+    _mode_argument(compensate)
+    _out_argument(compensate, "out/<system>_compensation_<mode>")
+    compensate.set_defaults(func=cmd_compensate)
     return parser
 
 

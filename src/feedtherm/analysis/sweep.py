@@ -17,7 +17,7 @@ from __future__ import annotations
 import itertools
 import math
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation
 
@@ -215,18 +215,15 @@ def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", d
         steady temperatures [°C] and D [µm], equilibrium time [s] (None if not reached) and
         the relative energy-balance error.
     """
-    from ..simulate import simulate  # the model is loaded only when a sweep really runs
-
     sensors = list(sensor_labels(loaded))
     lead = loaded.system.kinematics.lead
     points = grid.points()
     # Every condition is built (and so validated) before the first run.
     variants = [with_condition(loaded, CONDITION_NAME, screw, nut, ambient, duration) for screw, nut, ambient in points]
+    runs = [SweepRun(variant, {"condition": CONDITION_NAME, "mode": mode, "duration": duration, "motion": motion})
+            for variant in variants]
     rows = []
-    for index, ((screw, nut, ambient), variant) in enumerate(zip(points, variants)):
-        inner = None if progress is None else _share(progress, index, len(points))
-        solution = simulate(variant, condition=CONDITION_NAME, mode=mode, duration=duration, motion=motion,
-                            progress=inner)
+    for (screw, nut, ambient), solution in zip(points, run_batch(runs, progress)):
         final, steady = solution.summary_values("final"), solution.summary_values("steady")
         row = {"screw_rpm": screw, "nut_rpm": nut, "ambient_C": ambient, "table_speed_m_per_min": (screw - nut) * lead}
         row.update({f"final_{name}": float(final[name]) for name in sensors})
@@ -236,9 +233,31 @@ def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", d
         row["equilibrium_time_s"] = None if solution.equilibrium_time is None else float(solution.equilibrium_time)
         row["energy_balance_error"] = float(solution.energy.relative_error)
         rows.append(row)
-        if progress is not None:
-            progress((index + 1) / len(points))
     return rows
+
+
+@dataclass(frozen=True)
+class SweepRun:
+    """One run of a batch: a description and the keyword arguments of :func:`~feedtherm.simulate.simulate`."""
+
+    loaded: LoadedSystem
+    arguments: dict
+
+
+def run_batch(runs: list[SweepRun], progress: Callable[[float], None] | None = None) -> Iterator:
+    """Simulate each run in turn, yielding its :class:`~feedtherm.solution.Solution` as it ends.
+
+    The one loop of every batch of runs (the sweep's grid, the training and held-out cycles of a
+    compensation study): runs are independent, so this is where a parallel executor goes.
+    ``progress`` gets the fraction of the whole batch done (0-1).
+    """
+    from ..simulate import simulate  # the model is loaded only when a batch really runs
+
+    for index, run in enumerate(runs):
+        inner = None if progress is None else _share(progress, index, len(runs))
+        yield simulate(run.loaded, progress=inner, **run.arguments)
+        if progress is not None:
+            progress((index + 1) / len(runs))
 
 
 def _share(progress: Callable[[float], None], index: int, count: int) -> Callable[[float], None]:

@@ -70,6 +70,8 @@ class Validation:
     consistency: ConsistencyReport | None = None  # the measurements' own consistency check
     inferred: list[Inference] = field(default_factory=list)  # heats inferred from each condition's measurements
     calibration: dict | None = None  # calibration.json of a `feedtherm calibrate --cross-validate` run
+    # a `feedtherm compensate` folder: {"summary": compensation.json, "figures": {png name: bytes}}
+    compensation: dict | None = None
 
     def largest(self, kind: str) -> Comparison:
         """The comparison with the largest |deviation| among temperatures or elongations."""

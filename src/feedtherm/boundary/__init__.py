@@ -146,7 +146,9 @@ def _paper(system: FeedSystem, point: OperatingPoint, heats, surfaces):
     ref_heats, ref_surfaces = _physics(system, reference, with_radiation=False)
     printed_heat, printed_chtc = _printed(system)
     heats = {
-        name: replace(h, power=scaled(printed_heat[name], h.power, ref_heats[name].power))
+        # the physics ratio cancels a heat_factor, so it multiplies the printed value
+        name: replace(h, power=scaled(printed_heat[name], h.power, ref_heats[name].power)
+                      * system.sources[name].heat_factor)
         if name in printed_heat else h
         for name, h in heats.items()
     }

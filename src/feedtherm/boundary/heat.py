@@ -115,7 +115,15 @@ def source_heats(system: FeedSystem, point: OperatingPoint,
         if isinstance(src, MotorSource):
             with named_failure(f"sources.{name}"):
                 heats[name] = _motor(name, src, point, shaft_torque[src.shaft], temperature(name))
-    return {name: heats[name] for name in sources}  # declaration order
+    # a source's heat_factor scales its heat alone: the torques it put on its shaft stay
+    return {name: _scaled(heats[name], sources[name].heat_factor) for name in sources}  # declaration order
+
+
+def _scaled(heat: SourceHeat, factor: float) -> SourceHeat:
+    if factor == 1.0:
+        return heat
+    return SourceHeat(heat.name, heat.power * factor, heat.into, heat.speed_rpm,
+                      {**heat.details, "heat_factor": factor})
 
 
 def _sliding_screw(name, src: SlidingScrewSource, point, axial_force, shaft_torque, temperature) -> SourceHeat:

@@ -337,9 +337,14 @@ class FeedSystem(Strict):
     def _omit_a_still_room(self, handler):
         # ``room`` left at its default (still air) is left out, so that descriptions written
         # before it existed keep their serialised form and hash (the benches' frozen provenance).
+        # Likewise a source's heat_factor at 1 (added for perturbation studies).
         data = handler(self)
         if isinstance(data, dict) and self.room == Room():
             data.pop("room", None)
+        if isinstance(data, dict) and isinstance(data.get("sources"), dict):
+            for name, source in data["sources"].items():
+                if isinstance(source, dict) and source.get("heat_factor") == 1.0 and self.sources[name].heat_factor == 1.0:
+                    del source["heat_factor"]
         return data
 
     @field_validator("materials", "parts", "sources", "surfaces", "sensors", "conditions")

@@ -49,6 +49,10 @@ ShaftName = Literal["screw", "nut"]
 class _Source(Strict):
     into: dict[str, Fraction]  # part name -> share of the heat
     description: str = ""
+    # Multiplies the heat the source's model gives (not the torques it puts on its shaft): set by
+    # perturbation studies ("another machine of the same design", analysis/machine_variants.py).
+    # Left out of the serialised description at 1 (FeedSystem), so the benches' hashes stay.
+    heat_factor: PosDimensionless = 1.0
 
     @field_validator("into")
     @classmethod

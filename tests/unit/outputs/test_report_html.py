@@ -293,3 +293,20 @@ def test_headline_without_a_calibration_says_how_to_get_one():
 
     html = headline_section(synthetic_validation())
     assert "No calibration was given" in html and "--calibration" in html
+
+
+def test_a_compensation_study_becomes_the_last_section_with_its_numbers_escaped():
+    entry = {"law": "regression_lags", "sensors": ["screw_top_x100", "<T1>"], "validation_rms_um": 0.41,
+             "test": {"rms_um": 0.49, "max_um": 2.34, "reduction_percent": 98.9}}
+    summary = {"settings": {"cycles": 8, "model": "fast", "mode": "physics", "seed": 0, "spread": 0.2},
+               "sets": {"test": {"uncompensated_rms_um": 44.7, "uncompensated_max_um": 79.2}},
+               "curves": {"regression_lags": [entry]}, "declared": {}, "best": entry,
+               "measured": {"regression_lags": {"law": "regression_lags", "sensors": ["T1"], "conditions": [
+                   {"condition": "I", "measured_um": 29.9, "predicted_um": 46.1, "deviation_um": 16.2,
+                    "paper_deviation_um": 2.9}]}}}
+    html = render_report(synthetic_validation(compensation={"summary": summary, "figures": {}}))
+    assert html.index('id="compensation"') > html.index('id="assumptions"')  # after the last of the others
+    section = html[html.index('id="compensation"'):]
+    assert "&lt;T1&gt;" in section and "<T1>" not in section
+    assert "0.49" in section and "2.34" in section and "98.9" in section and "+16.2" in section and "+2.9" in section
+    assert 'id="compensation"' not in render_report(synthetic_validation())

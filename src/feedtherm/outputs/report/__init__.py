@@ -10,7 +10,7 @@ the paper's in-sample) · 3. deviation tables · 4. sensor curves (Fig. 10) · 5
 (Fig. 11) · 6. equilibrium time · 7. final values against speed and ambient · 8. dual against
 single drive · 9. heat budget · 10. inferred heat per source · 11. measurement consistency ·
 12. sensitivity ranking · 13. the paper's inconsistencies · 14. calibrated values ·
-15. assumptions and provenance.
+15. assumptions and provenance · 16. thermal-error compensation (with ``validate --compensation``).
 
 Modules: ``html`` (escaping builders and the page), ``figures`` (the PNGs), ``data`` (shared
 numbers), and one module per group of sections (``comparison``, ``fidelity``, ``transients``,
@@ -28,6 +28,7 @@ from pathlib import Path
 from ...analysis.validation_types import Validation
 from ...errors import FeedthermError
 from .comparison import deviations_section, title_section
+from .compensation import compensation_section
 from .context import assumptions_section, calibrated_section, inconsistencies_section, sensitivity_section
 from .fidelity import consistency_section, headline_section, inferred_heat_section
 from .html import page
@@ -57,6 +58,8 @@ _SECTIONS = (
 def render_report(validation: Validation, *, generated: datetime | None = None) -> str:
     """The report as one HTML document (a string)."""
     body = title_section(validation, generated) + "".join(build(validation) for build in _SECTIONS)
+    if validation.compensation is not None:  # a `feedtherm compensate` folder given to `validate --compensation`
+        body += compensation_section(validation.compensation["summary"], validation.compensation["figures"])
     return page(f"feedtherm validation — {validation.system_name}", body)
 
 

@@ -1,0 +1,142 @@
+"""Candidate sensor positions: named points on the exposed surfaces of every part.
+
+A compensation law reads a few temperature sensors; which few is a choice
+(:mod:`~feedtherm.analysis.compensation.selection`).  The candidates it chooses from are made
+here from the geometry alone, by one rule:
+
+- on each box of a part, points on its top face (``top``) and its two side faces (``side_neg_y``,
+  ``side_pos_y``): at the face's centre, or, for a face longer than :data:`SPAN_FOR_THREE` along x,
+  at a quarter, a half and three quarters of its length (``_x<mm>`` from the machine origin);
+- on each cylinder along x, points on its top line: every :data:`SCREW_PITCH` along a long
+  cylinder (the screw: an infrared reading, as the paper's T4), else at mid-length;
+- each point :data:`DEPTH` under its face (a sensor reads the wall it is glued to), and kept only
+  where the face is exposed: :data:`DEPTH` outside it there is no part that moves with it (a part
+  passing by, such as the table over a rail, does not hide a surface for good);
+- the description's own sensors (T1-T5 on the paper bench) and the ambient ``T6`` are candidates
+  under their names.
+
+Names are ``<part>[_b<box>|_c<cylinder>]_<face>[_x<mm>]``, e.g. ``front_housing_b0_top``,
+``screw_top_x200``, ``screw_top_xm50`` (at x = −50 mm).
+The candidates enter a run as extra sensors of the description (:func:`with_candidates`), so
+every model probes them the way it probes T1-T5.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..constants import AMBIENT_SENSOR
+from ..system.geometry import contains
+from ..system.load import LoadedSystem
+from ..system.schema import Box, Cylinder, FeedSystem, Sensor
+from ..system.variants import with_values
+
+#: Depth of a candidate under its face [m]: a PT100 reads the wall it is glued to.
+DEPTH = 1e-3
+#: A face longer than this along x gets three points instead of one [m] (a base, a rail, a table).
+SPAN_FOR_THREE = 0.25
+#: Spacing of the points along a long cylinder (the screw) [m].
+SCREW_PITCH = 0.05
+#: A cylinder longer than this gets points every :data:`SCREW_PITCH` [m].
+LONG_CYLINDER = 0.3
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """A candidate sensor: its part, position [m] (moving parts: at mid-stroke) and where it is."""
+
+    name: str
+    part: str
+    position: tuple[float, float, float]
+    where: str  # "top", "side_neg_y", ..., "declared" (a sensor of the description), "ambient"
+
+
+def candidate_sensors(system: FeedSystem) -> dict[str, Candidate]:
+    """Every candidate of ``system``: its declared sensors first (ambient included), then the generated points."""
+    out: dict[str, Candidate] = {}
+    for name, sensor in system.sensors.items():
+        if name != AMBIENT_SENSOR:
+            out[name] = Candidate(name, sensor.part, tuple(sensor.position), "declared")
+    # the air: every run reports it (Solution.sensors), at no point of a part
+    out[AMBIENT_SENSOR] = Candidate(AMBIENT_SENSOR, "", (float("nan"),) * 3, "ambient")
+    for part_name, part in system.parts.items():
+        several = len(part.boxes) > 1
+        for i, box in enumerate(part.boxes):
+            prefix = f"{part_name}_b{i}" if several else part_name
+            for face, points in _box_points(box).items():
+                for suffix, point in points:
+                    _keep(out, system, part_name, f"{prefix}_{face}{suffix}", point, face)
+        for i, cyl in enumerate(part.cylinders):
+            if cyl.axis != "x":
+                continue
+            prefix = f"{part_name}_c{i}" if len(part.cylinders) > 1 else part_name
+            for suffix, point in _cylinder_points(cyl):
+                _keep(out, system, part_name, f"{prefix}_top{suffix}", point, "top")
+    return out
+
+
+def with_candidates(loaded: LoadedSystem, candidates: dict[str, Candidate]) -> LoadedSystem:
+    """``loaded`` with every candidate as a sensor (the declared sensors keep their entries)."""
+    sensors = dict(loaded.system.sensors)
+    screw = loaded.system.kinematics.screw
+    for name, candidate in candidates.items():
+        if name not in sensors and candidate.where != "ambient":  # the screw turns: read without contact, as the paper's T4
+            sensors[name] = Sensor(part=candidate.part, position=[f"{v!r} m" for v in candidate.position],
+                                   method="infrared" if candidate.part == screw else "contact",
+                                   description=f"candidate: {candidate.part}, {candidate.where}")
+    return with_values(loaded, {"sensors": sensors}, origin_suffix="candidate sensors")
+
+
+def _box_points(box: Box) -> dict[str, list[tuple[str, tuple[float, float, float]]]]:
+    (x0, y0, z0), (sx, sy, sz) = box.origin, box.size
+    xs = [x0 + sx * f for f in ((0.25, 0.5, 0.75) if sx > SPAN_FOR_THREE else (0.5,))]
+    label = (lambda x: f"_{_x_label(x)}") if len(xs) > 1 else (lambda x: "")
+    yc, zc = y0 + sy / 2, z0 + sz / 2
+    return {
+        "top": [(label(x), (x, yc, z0 + sz - DEPTH)) for x in xs],
+        "side_neg_y": [(label(x), (x, y0 + DEPTH, zc)) for x in xs],
+        "side_pos_y": [(label(x), (x, y0 + sy - DEPTH, zc)) for x in xs],
+    }
+
+
+def _x_label(x: float) -> str:
+    """``x200`` for 200 mm, ``xm50`` for -50 mm (names are identifiers)."""
+    mm = round(x * 1e3)
+    return f"x{mm:d}" if mm >= 0 else f"xm{-mm:d}"
+
+
+def _cylinder_points(cyl: Cylinder) -> list[tuple[str, tuple[float, float, float]]]:
+    x0, y0, z0 = cyl.origin
+    z = z0 + cyl.outer_diameter / 2 - DEPTH
+    if cyl.length > LONG_CYLINDER:
+        first = -(-x0 // SCREW_PITCH) * SCREW_PITCH  # the first multiple of the pitch on the cylinder
+        xs, x = [], first
+        while x <= x0 + cyl.length + 1e-12:
+            xs.append(round(x, 9))
+            x += SCREW_PITCH
+        return [(f"_{_x_label(x)}", (x, y0, z)) for x in xs]
+    return [("", (x0 + cyl.length / 2, y0, z))]
+
+
+def _keep(out: dict[str, Candidate], system: FeedSystem, part_name: str, name: str,
+          point: tuple[float, float, float], face: str) -> None:
+    """Add the candidate where its face is exposed to the air (see the module's notes)."""
+    part = system.parts[part_name]
+    if not contains(part, point, tol=0.0):
+        return
+    outside = _outward(point, face, 2 * DEPTH)
+    if contains(part, outside, tol=0.0):
+        return  # the face is fused to another primitive of the part
+    for other_name, other in system.parts.items():
+        if other_name != part_name and other.moving == part.moving and contains(other, outside, tol=0.0):
+            return
+    out[name] = Candidate(name, part_name, tuple(float(v) for v in point), face)
+
+
+def _outward(point, face: str, distance: float) -> tuple[float, float, float]:
+    x, y, z = point
+    if face == "side_neg_y":
+        return (x, y - distance, z)
+    if face == "side_pos_y":
+        return (x, y + distance, z)
+    return (x, y, z + distance)  # top of a box, top line of a cylinder along x

@@ -1,0 +1,8 @@
+"""Thermal-error compensation: from a few sensor temperatures to the screw's elongation D.
+
+- :mod:`.data`: random training and held-out cycles run through a model with every candidate sensor;
+- :mod:`.regression`: the industry baseline, multiple linear regression with optional lags;
+- :mod:`.selection`: greedy forward choice of K sensors on held-out error;
+- :mod:`.metrics`: residual error of a law over cycles (RMS, maximum, reduction);
+- :mod:`.law` and :mod:`.evaluator`: the law as a JSON document, and its evaluation on a stream.
+"""

@@ -1,0 +1,147 @@
+"""Training and held-out data of a compensation study: random cycles run through a model.
+
+Three sets of cycles, each drawn from its own stream of the study's seed
+(:func:`~feedtherm.analysis.random_cycles.cycle_seed`):
+
+- ``train`` (stream 0): cycles on the nominal description — what a law is fitted on;
+- ``validation`` (stream 1): cycles on machine variants (another machine of the same design,
+  :mod:`~feedtherm.analysis.machine_variants`, one draw per cycle) — what the sensor selection
+  compares candidate sets on;
+- ``test`` (stream 2): further cycles on further variants — what the reported figures come from,
+  never seen while fitting or choosing.
+
+Every cycle runs with every candidate sensor (:mod:`~feedtherm.analysis.candidates`) through
+:func:`~feedtherm.analysis.sweep.run_batch`, the loop of ``feedtherm sweep``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ...constants import RPM_PER_RAD_S
+from ...errors import FeedthermError
+from ...system.load import LoadedSystem
+from ...system.schema import DutyCycle
+from ...system.variants import with_values
+from ..candidates import Candidate, with_candidates
+from ..machine_variants import DEFAULT_SPREAD, draw_variant
+from ..random_cycles import CycleRanges, cycle_seed, random_cycle
+from ..sweep import SweepRun, run_batch
+
+#: The three sets of a study and their seed streams.
+STREAMS = {"train": 0, "validation": 1, "test": 2}
+#: Offset of the streams the machine variants are drawn from (independent of the cycles' draws).
+VARIANT_STREAM = 100
+#: The name under which a cycle is added to the description's duty cycles.
+CYCLE_NAME = "compensation_cycle"
+
+
+@dataclass(frozen=True)
+class StudySettings:
+    """How a study's cycles are made and run.
+
+    ``sample_interval`` 60 s: what a controller's thermal compensation reads (temperatures every
+    few seconds to a minute, against time constants of 10-60 min); ``motion = "averaged"``: the
+    cycle-averaged contacts and heats, as ``feedtherm sweep`` (the final values differ from the
+    resolved motion by well under 1 % of D on the paper bench, docs/sweep.md), and a law corrects
+    the slow thermal drift, not the ripple within one stroke.
+    """
+
+    cycles: int = 8
+    seed: int = 0
+    ranges: CycleRanges = CycleRanges()
+    spread: float = DEFAULT_SPREAD
+    sample_interval: float = 60.0
+    model: str = "fast"
+    mode: str = "physics"
+    motion: str = "averaged"
+    mesh: str | None = None
+
+    def __post_init__(self) -> None:
+        if isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer)):
+            raise FeedthermError(f"--seed: {self.seed!r} is not an integer")
+        if isinstance(self.cycles, bool) or not isinstance(self.cycles, (int, np.integer)) or self.cycles < 1:
+            raise FeedthermError(f"--cycles: {self.cycles!r} is not a positive integer")
+        if not self.sample_interval > 0:
+            raise FeedthermError("the sample interval must be positive")
+
+
+@dataclass(frozen=True)
+class CycleRecord:
+    """One simulated cycle: series at the sample times, SI units.
+
+    ``sensors[:, j]`` is candidate ``j``'s temperature [K]; ``elongation`` D [m]; the motor speeds
+    [rpm] are those commanded over the sample's preceding interval (what a controller knows).
+    """
+
+    label: str
+    times: np.ndarray
+    sensors: np.ndarray
+    elongation: np.ndarray
+    screw_rpm: np.ndarray
+    nut_rpm: np.ndarray
+    variant: dict | None = None
+    cycle: DutyCycle | None = field(default=None, repr=False)
+
+
+@dataclass(frozen=True)
+class CycleSet:
+    """The cycles of one set, with the candidates' names (the columns of every ``sensors``)."""
+
+    name: str
+    names: list[str]
+    cycles: list[CycleRecord]
+
+    def stacked(self) -> tuple[np.ndarray, np.ndarray]:
+        """All samples of all cycles: sensors ``(n, candidates)`` [K] and D ``(n,)`` [m]."""
+        return (np.vstack([c.sensors for c in self.cycles]), np.concatenate([c.elongation for c in self.cycles]))
+
+
+def speeds_at(cycle: DutyCycle, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Screw and nut speed [rpm] holding over the interval that ends at each time (the first: at 0)."""
+    starts = np.array([s.start for s in cycle.segments])
+    index = np.clip(np.searchsorted(starts, np.asarray(times), side="left") - 1, 0, len(starts) - 1)
+    screw = np.array([s.screw_speed for s in cycle.segments]) * RPM_PER_RAD_S
+    nut = np.array([s.nut_speed for s in cycle.segments]) * RPM_PER_RAD_S
+    return screw[index], nut[index]
+
+
+def simulate_set(loaded: LoadedSystem, candidates: dict[str, Candidate], settings: StudySettings, name: str,
+                 progress: Callable[[float], None] | None = None) -> CycleSet:
+    """Draw and simulate the cycles of set ``name`` (``train``, ``validation`` or ``test``).
+
+    The training set runs the nominal description; the others run one machine variant per cycle.
+    """
+    stream = STREAMS[name]
+    base = with_candidates(loaded, candidates)
+    runs, cycles, variants = [], [], []
+    for index in range(settings.cycles):
+        cycle = random_cycle(loaded.system, cycle_seed(settings.seed, stream, index), settings.ranges,
+                             description=f"{name} cycle {index} of seed {settings.seed}")
+        variant = None
+        described = base
+        if name != "train":
+            variant = draw_variant(loaded, cycle_seed(settings.seed, VARIANT_STREAM + stream, index), settings.spread)
+            described = variant.apply(base, label=f"{name} machine {index}")
+        described = with_values(described, {"duty_cycles": {**described.system.duty_cycles, CYCLE_NAME: cycle}},
+                                origin_suffix=f"{name} cycle {index}")
+        runs.append(SweepRun(described, {"cycle": CYCLE_NAME, "mode": settings.mode, "model": settings.model,
+                                         "motion": settings.motion, "mesh": settings.mesh,
+                                         "sample_interval": settings.sample_interval}))
+        cycles.append(cycle)
+        variants.append(variant)
+    names = list(candidates)
+    records = []
+    for index, solution in enumerate(run_batch(runs, progress)):
+        missing = [n for n in names if n not in solution.sensors]
+        if missing:  # pragma: no cover - every candidate is a sensor of the run
+            raise FeedthermError(f"the run did not report {', '.join(missing)}")
+        screw, nut = speeds_at(cycles[index], solution.times)
+        records.append(CycleRecord(
+            f"{name}-{index:03d}", np.asarray(solution.times, float),
+            np.column_stack([solution.sensors[n] for n in names]), np.asarray(solution.elongation, float),
+            screw, nut, None if variants[index] is None else variants[index].as_dict(), cycles[index]))
+    return CycleSet(name, names, records)

@@ -1,0 +1,265 @@
+"""The model-based estimator: a Kalman filter on the reduced state-space model, D as its output.
+
+State ``x = [ζ, δ]``: the reduced temperature field ``ζ`` (:mod:`.state_space`) and one relative
+heat error ``δ_j`` per source (the heat is ``q_j (1 + δ_j)``): another machine of the design
+differs from the model by its losses first, and a persistent error is what a filter must learn
+rather than treat as noise.  Over each sample interval ``Δt`` the motor speeds and the ambient
+(the sensor ``T6``, an input) are held; the operating point gives ``h`` and ``q`` from the law's
+table (:mod:`.operating_table`), and the step is exact for held inputs:
+
+.. math:: ζ^+ = A_d ζ + Γ (B_q q + T_∞ f) + Γ B_q \\mathrm{diag}(q)\\, δ, \\qquad δ^+ = δ + w_δ,
+
+with ``A_d = e^{AΔt}`` and ``Γ = A^{-1}(A_d - I)``.  The sensors read ``y = C_y ζ + d_y + v``;
+the standard Kalman recursion [1]_ (prediction, then the update with the readings) runs at each
+sample, and the estimate of D is ``C_D ζ + d_D`` with its variance ``C_D P_ζζ C_Dᵀ``.  The gains
+depend on the operating point (a standstill leaves ``δ`` unobservable), so they are computed
+online from the declared noise (:class:`KalmanNoise`); for ~40 states that is a few
+40 × 40 products per reading.
+
+References
+----------
+.. [1] R. E. Kalman, "A new approach to linear filtering and prediction problems", J. Basic
+   Eng. 82(1), 35-45 (1960); the discrete form as in D. Simon, Optimal State Estimation,
+   Wiley (2006), §5.1.
+.. [2] J. Mayr et al., "Thermal issues in machine tools", CIRP Annals 61(2) (2012), §4.3:
+   model-based (observer) compensation with few sensors.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sl
+
+from ...constants import AMBIENT_SENSOR, ELONGATION_PROBE
+from .operating_table import OperatingTable
+from .state_space import ReducedModel
+
+
+@dataclass(frozen=True)
+class KalmanNoise:
+    """The filter's declared uncertainties (standard deviations), with their reasons.
+
+    - ``contact`` 0.1 K: a PT100 of IEC 60751 class A is within ±(0.15 + 0.002|t|) K, about
+      ±0.2 K at 30 °C; taken as a uniform bound, its standard uncertainty is 0.12 K;
+    - ``infrared`` 0.3 K: an infrared reading of a turning screw (emissivity, reflections);
+      a pyrometer's repeatability is 0.1-0.5 K;
+    - ``heat_prior`` 0.115: the relative heat error of another machine, ±20 % uniform
+      (:mod:`..machine_variants`) has a standard deviation of 0.2/√3;
+    - ``heat_drift`` 0.05 per √h: the losses drift as lubricant and seals warm and age, and the
+      frozen coefficients miss the coupling of the heats to temperature (a few % per 10 K);
+    - ``heat_noise`` 0.1: a white relative heat error held over each sample (load changes within
+      a sample that the commanded speeds do not show);
+    - ``air_noise`` 1 K: the surfaces' coefficients are ±20 % uncertain too; on a surface 5 K
+      above the air that is the heat flow of a 1 K error of the air it sees, held over a sample;
+    - ``initial`` 1 K: the machine starts at the ambient, known to within 1 K throughout.
+    """
+
+    contact: float = 0.1
+    infrared: float = 0.3
+    heat_prior: float = 0.2 / np.sqrt(3.0)
+    heat_drift: float = 0.05
+    heat_noise: float = 0.1
+    air_noise: float = 1.0
+    initial: float = 1.0
+
+    def as_dict(self) -> dict:
+        return {"contact_K": self.contact, "infrared_K": self.infrared, "heat_prior": self.heat_prior,
+                "heat_drift_per_sqrt_h": self.heat_drift, "heat_noise": self.heat_noise, "air_noise_K": self.air_noise,
+                "initial_K": self.initial}
+
+
+class KalmanEstimator:
+    """The filter on ``sensors`` (names among ``model.outputs``; ``T6`` is the ambient input, not a reading).
+
+    Parameters
+    ----------
+    model : ReducedModel
+    table : OperatingTable
+    sensors : sequence of str
+    sigma : sequence of float
+        Each sensor's standard uncertainty [K] (:class:`KalmanNoise`).
+    noise : KalmanNoise
+    """
+
+    def __init__(self, model: ReducedModel, table: OperatingTable, sensors, sigma, noise: KalmanNoise = KalmanNoise()):
+        self.model, self.table, self.noise = model, table, noise
+        self.sensors = [s for s in sensors if s != AMBIENT_SENSOR]
+        self.sigma = np.array([sg for s, sg in zip(sensors, sigma) if s != AMBIENT_SENSOR], dtype=float)
+        rows = [model.outputs.index(s) for s in self.sensors]
+        d = model.outputs.index(ELONGATION_PROBE)
+        self.r, self.m = model.order, len(model.sources)
+        self.H = np.hstack([model.Cy[rows], np.zeros((len(rows), self.m))])
+        self.h_offset = model.dy[rows]
+        self.c_d = model.Cy[d]
+        self.d_offset = float(model.dy[d])
+        self._steps: dict = {}
+        self.reset()
+
+    def reset(self) -> None:
+        self.x: np.ndarray | None = None
+        self.P: np.ndarray | None = None
+        self.time: float | None = None
+
+    def _step(self, dt: float, screw_rpm: float, nut_rpm: float):
+        key = (round(dt, 9), round(screw_rpm, 6), round(nut_rpm, 6))
+        if key not in self._steps:
+            h, q = self.table.at(screw_rpm, nut_rpm)
+            A, f = self.model.matrices(h)
+            Ad = sl.expm(A * dt)
+            Gamma = np.linalg.solve(A, Ad - np.eye(self.r))
+            F = np.eye(self.r + self.m)
+            F[:self.r, :self.r] = Ad
+            F[:self.r, self.r:] = Gamma @ (self.model.Bq * q[None, :])
+            n = self.noise
+            heat = Gamma @ (self.model.Bq * (n.heat_noise * q)[None, :])
+            air = (Gamma @ f) * n.air_noise
+            Q = np.zeros_like(F)
+            Q[:self.r, :self.r] = heat @ heat.T + np.outer(air, air)
+            Q[self.r:, self.r:] = np.eye(self.m) * n.heat_drift ** 2 * dt / 3600.0
+            pad = np.zeros(self.m)
+            self._steps[key] = (F, np.concatenate([Gamma @ (self.model.Bq @ q), pad]),
+                                np.concatenate([Gamma @ f, pad]), Q)
+        return self._steps[key]
+
+    def update(self, time: float, readings: dict[str, float], screw_rpm: float, nut_rpm: float) -> tuple[float, float]:
+        """D [m] and its standard deviation [m] after the readings [K] at ``time`` [s].
+
+        ``screw_rpm``, ``nut_rpm``: the speeds commanded since the previous reading; ``readings``
+        must hold every sensor and ``T6`` (the ambient).
+        """
+        ambient = float(readings[AMBIENT_SENSOR])
+        if self.x is None:
+            zeta = self.model.uniform * ambient
+            self.x = np.concatenate([zeta, np.zeros(self.m)])
+            u = self.model.uniform[:, None] * self.noise.initial
+            self.P = np.zeros((self.r + self.m, self.r + self.m))
+            self.P[:self.r, :self.r] = u @ u.T + np.eye(self.r) * (1e-6 * self.noise.initial ** 2)
+            self.P[self.r:, self.r:] = np.eye(self.m) * self.noise.heat_prior ** 2
+        else:
+            dt = float(time) - self.time
+            if not dt > 0:
+                raise ValueError(f"readings must come in increasing time, got {time} after {self.time}")
+            F, heat, air, Q = self._step(dt, screw_rpm, nut_rpm)
+            self.x = F @ self.x + heat + air * ambient
+            self.P = F @ self.P @ F.T + Q
+        self.time = float(time)
+        if self.sensors:
+            y = np.array([readings[s] for s in self.sensors], dtype=float)
+            S = self.H @ self.P @ self.H.T + np.diag(self.sigma ** 2)
+            gain = np.linalg.solve(S, self.H @ self.P).T
+            self.x = self.x + gain @ (y - self.H @ self.x - self.h_offset)
+            identity = np.eye(len(self.x))
+            KH = identity - gain @ self.H
+            self.P = KH @ self.P @ KH.T + gain @ np.diag(self.sigma ** 2) @ gain.T  # Joseph form: stays symmetric PSD
+        zeta = self.x[:self.r]
+        var = float(self.c_d @ self.P[:self.r, :self.r] @ self.c_d)
+        return float(self.c_d @ zeta + self.d_offset), float(np.sqrt(max(var, 0.0)))
+
+    @property
+    def heat_errors(self) -> np.ndarray:
+        """The estimated relative heat errors ``δ`` per source."""
+        return self.x[self.r:] if self.x is not None else np.zeros(self.m)
+
+
+def sensor_sigma(names, methods: dict[str, str], noise: KalmanNoise = KalmanNoise()) -> list[float]:
+    """Each sensor's standard uncertainty from its method (``contact`` or ``infrared``)."""
+    return [noise.infrared if methods.get(n) == "infrared" else noise.contact for n in names]
+
+
+def run_filter(estimator: KalmanEstimator, times, readings: np.ndarray, names: list[str], screw_rpm, nut_rpm):
+    """D [m] and its standard deviation [m] at every sample of a recorded cycle (columns ``names``)."""
+    estimator.reset()
+    needed = [*estimator.sensors, AMBIENT_SENSOR]
+    columns = {n: names.index(n) for n in needed}
+    out = np.zeros((len(times), 2))
+    for n, t in enumerate(times):
+        values = {name: readings[n, j] for name, j in columns.items()}
+        out[n] = estimator.update(t, values, screw_rpm[n], nut_rpm[n])
+    return out[:, 0], out[:, 1]
+
+
+# --------------------------------------------------------------------------- the law and its document
+
+FORMAT = "feedtherm-compensation-law"
+VERSION = 1
+
+
+@dataclass(frozen=True)
+class KalmanLaw:
+    """A fitted estimator: the reduced model read at ``sensors``, its table and its noise.
+
+    ``sigma`` [K] per sensor: the sensor's own uncertainty (:class:`KalmanNoise`) combined with
+    the reduced model's RMS error at that output over the training cycles run open loop
+    (:func:`model_errors`): the filter is told how far its model is from the (nonlinear) machine
+    it was fitted on, so it does not trust a reading its model cannot explain.
+    """
+
+    model: ReducedModel
+    table: OperatingTable
+    sensors: tuple[str, ...]
+    sigma: tuple[float, ...]
+    noise: KalmanNoise = KalmanNoise()
+
+    def estimator(self) -> KalmanEstimator:
+        return KalmanEstimator(self.model, self.table, self.sensors, self.sigma, self.noise)
+
+    def predict_record(self, record, names: list[str]) -> np.ndarray:
+        """D [m] at every sample of a recorded cycle (columns ``names``)."""
+        return run_filter(self.estimator(), record.times, record.sensors, names, record.screw_rpm, record.nut_rpm)[0]
+
+    def document(self, provenance: dict | None = None) -> dict:
+        """The JSON-able document (SI units) that :meth:`from_document` reads back."""
+        m = self.model
+        keep = [m.outputs.index(s) for s in (*self.sensors, ELONGATION_PROBE) if s != AMBIENT_SENSOR]
+        return {
+            "format": FORMAT, "version": VERSION, "kind": "kalman",
+            "output": {"name": "D", "unit": "m", "meaning": "the screw's thermal elongation; correct the axis by -D"},
+            "inputs": [{"name": s, "unit": "K", "sigma_K": sg} for s, sg in zip(self.sensors, self.sigma)
+                       if s != AMBIENT_SENSOR]
+                      + [{"name": AMBIENT_SENSOR, "unit": "K", "role": "ambient (model input)"}],
+            "speeds": "screw_rpm and nut_rpm commanded over the interval ending at each reading",
+            "model": {"surfaces": m.surfaces, "sources": m.sources,
+                      "outputs": [m.outputs[i] for i in keep],
+                      "A0": m.A0.tolist(), "A_surface": m.A_surface.tolist(), "f_surface": m.f_surface.tolist(),
+                      "Bq": m.Bq.tolist(), "Cy": m.Cy[keep].tolist(), "dy": m.dy[keep].tolist(),
+                      "uniform": m.uniform.tolist(), "hankel": m.hankel.tolist()},
+            "table": self.table.as_dict(),
+            "noise": self.noise.as_dict(),
+            "provenance": provenance or {},
+        }
+
+    @classmethod
+    def from_document(cls, document: dict) -> "KalmanLaw":
+        if document.get("format") != FORMAT or document.get("kind") != "kalman":
+            raise ValueError("not a feedtherm Kalman law document")
+        d = document["model"]
+        model = ReducedModel(d["surfaces"], d["sources"], d["outputs"], np.array(d["A0"]), np.array(d["A_surface"]),
+                             np.array(d["f_surface"]), np.array(d["Bq"]), np.array(d["Cy"]), np.array(d["dy"]),
+                             np.array(d["uniform"]), np.array(d["hankel"]))
+        n = document["noise"]
+        noise = KalmanNoise(n["contact_K"], n["infrared_K"], n["heat_prior"], n["heat_drift_per_sqrt_h"],
+                            n["heat_noise"], n["air_noise_K"], n["initial_K"])
+        inputs = [i for i in document["inputs"] if i["name"] != AMBIENT_SENSOR]
+        return cls(model, OperatingTable.from_dict(document["table"]), tuple(i["name"] for i in inputs),
+                   tuple(float(i["sigma_K"]) for i in inputs), noise)
+
+
+def model_errors(model: ReducedModel, table: OperatingTable, cycles, names: list[str]) -> dict[str, float]:
+    """RMS difference [K, or m for D] between the reduced model run open loop (only the ambient
+    read) and each output of the training cycles."""
+    estimator = KalmanEstimator(model, table, [], [])
+    squares = np.zeros(len(model.outputs))
+    count = 0
+    columns = [names.index(o) if o != ELONGATION_PROBE else None for o in model.outputs]
+    ambient = names.index(AMBIENT_SENSOR)
+    for record in cycles:
+        estimator.reset()
+        for n, t in enumerate(record.times):
+            estimator.update(t, {AMBIENT_SENSOR: record.sensors[n, ambient]}, record.screw_rpm[n], record.nut_rpm[n])
+            y = model.Cy @ estimator.x[:estimator.r] + model.dy
+            truth = np.array([record.elongation[n] if j is None else record.sensors[n, j] for j in columns])
+            squares += (y - truth) ** 2
+            count += 1
+    return dict(zip(model.outputs, np.sqrt(squares / max(count, 1))))

@@ -1,0 +1,114 @@
+"""Sensor placement: greedy forward selection of K sensors on held-out error.
+
+Starting from no sensor, each step adds the candidate whose law, refitted on the training
+cycles, gives the smallest RMS residual on the *validation* cycles (machine variants the law
+was not fitted on); the sets for K = 1, 2, ... are nested.  The figures a study reports come
+from a third set of cycles (:mod:`.data`), so the choice itself is not judged on the data it
+was made on.
+
+Why greedy forward selection on held-out error rather than an information criterion (D-optimal
+design on the model's sensitivities): the question is which sensors make the *law* accurate on
+another machine, and the held-out residual measures exactly that, including the model mismatch
+of the variants; a D-optimal criterion measures how well the sensors identify the nominal
+model's states and says nothing of the law's error under mismatch.  Greedy selection is the
+usual approach of thermal-error studies (Mayr et al. 2012, §4.1 [1]_); it is not guaranteed to
+find the best set of K, and the report shows the error against K so its steps can be judged.
+
+References
+----------
+.. [1] J. Mayr et al., "Thermal issues in machine tools", CIRP Annals 61(2), 771-791 (2012).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...errors import FeedthermError
+from .data import CycleSet
+from .regression import RegressionLaw, features, fit_regression
+
+
+@dataclass(frozen=True)
+class SelectionStep:
+    """The sensors chosen for K = len(sensors), the law fitted on them and its validation RMS [m]."""
+
+    sensors: tuple[str, ...]
+    law: RegressionLaw
+    validation_rms: float
+
+
+def _feature_cube(cycles: CycleSet, lags: tuple[float, ...]) -> list[np.ndarray]:
+    """Per cycle, the regressors of every candidate: ``(n, candidates, 1 + len(lags))``."""
+    m = 1 + len(lags)
+    return [features(c.times, c.sensors, lags).reshape(len(c.times), len(cycles.names), m) for c in cycles.cycles]
+
+
+def _fit(cube: list[np.ndarray], targets: list[np.ndarray], chosen: list[int]):
+    X = np.vstack([f[:, chosen, :].reshape(len(f), -1) for f in cube])
+    y = np.concatenate(targets)
+    mx, my = X.mean(axis=0), y.mean()
+    w, *_ = np.linalg.lstsq(X - mx, y - my, rcond=None)
+    return w, float(my - mx @ w)
+
+
+def greedy_selection(train: CycleSet, validation: CycleSet, max_sensors: int, lags: tuple[float, ...] = (),
+                     allowed: list[str] | None = None, start: tuple[str, ...] = ()) -> list[SelectionStep]:
+    """Nested sensor sets for K = 1 … ``max_sensors`` (see the module's notes).
+
+    Parameters
+    ----------
+    train, validation : CycleSet
+        The same candidates (columns) in both.
+    max_sensors : int
+    lags : tuple of float
+        The lags of every law (:mod:`.regression`).
+    allowed : list of str, optional
+        Candidates to choose from (default: all).
+    start : tuple of str
+        Sensors every set contains (counted in K).
+    """
+    names = train.names
+    if validation.names != names:
+        raise FeedthermError("the training and validation sets have different candidates")
+    pool = list(names if allowed is None else allowed)
+    if not 1 <= max_sensors <= len(pool):
+        raise FeedthermError(f"--sensors: K = {max_sensors} but there are {len(pool)} candidates")
+    train_cube, val_cube = _feature_cube(train, lags), _feature_cube(validation, lags)
+    train_y = [c.elongation for c in train.cycles]
+    val_y = [c.elongation for c in validation.cycles]
+    val_all = np.concatenate(val_y)
+    chosen = [names.index(s) for s in start]
+    steps = []
+    while len(chosen) < max_sensors:
+        best = None
+        for name in pool:
+            j = names.index(name)
+            if j in chosen:
+                continue
+            trial = [*chosen, j]
+            w, b = _fit(train_cube, train_y, trial)
+            pred = np.concatenate([f[:, trial, :].reshape(len(f), -1) @ w + b for f in val_cube])
+            rms = float(np.sqrt(np.mean((val_all - pred) ** 2)))
+            if best is None or rms < best[0]:
+                best = (rms, j)
+        chosen.append(best[1])
+        sensors = tuple(names[j] for j in chosen)
+        steps.append(SelectionStep(sensors, fit_on(train, sensors, lags), best[0]))
+    return steps
+
+
+def fit_on(train: CycleSet, sensors: tuple[str, ...], lags: tuple[float, ...] = ()) -> RegressionLaw:
+    """The regression law on the named sensors, fitted on ``train``."""
+    unknown = [s for s in sensors if s not in train.names]
+    if unknown:
+        raise FeedthermError(f"--sensors: no candidate {unknown[0]!r}")
+    columns = [train.names.index(s) for s in sensors]
+    return fit_regression([(c.times, c.sensors[:, columns], c.elongation) for c in train.cycles], tuple(sensors), lags)
+
+
+def predictor(law: RegressionLaw, names: list[str]):
+    """``record -> D̂`` of ``law`` for cycles whose columns are ``names``."""
+    columns = [names.index(s) for s in law.sensors]
+    return lambda record: law.predict(record.times, record.sensors[:, columns])

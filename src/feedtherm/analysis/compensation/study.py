@@ -1,0 +1,168 @@
+"""A compensation study: cycles, sensor selection for K = 1 … 6, laws judged on held-out machines.
+
+:func:`parse_sensors` checks ``--sensors`` (a count K, or names of candidates) before anything
+runs; :func:`run_study` simulates the three sets of cycles (:mod:`.data`), chooses sensors
+greedily for the static and the lagged regression (:mod:`.selection`), fits the law asked for,
+the law on the description's own sensors (T1-T5 on the paper bench) for comparison, and
+judges each on the test cycles (:mod:`.metrics`).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from ...boundary.operating import OperatingPoint
+from ...constants import AMBIENT_SENSOR, ELONGATION_PROBE, KELVIN_OFFSET
+from ...errors import FeedthermError
+from ...system.load import LoadedSystem
+from ..candidates import Candidate, candidate_sensors, with_candidates
+from ..random_cycles import SpeedEnvelope
+from .data import CycleSet, StudySettings, simulate_set
+from .kalman import KalmanLaw, KalmanNoise, model_errors, sensor_sigma
+from .metrics import Residuals, residuals
+from .operating_table import build_table
+from .regression import DEFAULT_LAGS, RegressionLaw
+from .selection import fit_on, greedy_selection
+from .state_space import DEFAULT_ORDER, reduce_model
+
+#: The error against K is shown for K = 1 … this (issue 16), or up to the K asked for.
+CURVE_SENSORS = 6
+#: The regression laws of a study: name -> lag time constants [s] (:mod:`.regression`).
+LAWS = {"regression": (), "regression_lags": DEFAULT_LAGS}
+#: The model-based estimator (:mod:`.kalman`); it reads the sensor sets the lagged regression chose.
+KALMAN = "kalman"
+
+_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+
+
+@dataclass(frozen=True)
+class LawResult:
+    """One law: its kind, its sensors, the fitted law and its errors on the held-out cycles."""
+
+    kind: str  # a key of LAWS, or KALMAN
+    sensors: tuple[str, ...]
+    law: RegressionLaw | KalmanLaw
+    validation: Residuals
+    test: Residuals
+
+    @property
+    def k(self) -> int:
+        return len(self.sensors)
+
+
+@dataclass(frozen=True)
+class StudyResult:
+    settings: StudySettings
+    candidates: dict[str, Candidate]
+    sets: dict[str, CycleSet]
+    curves: dict[str, list[LawResult]]  # law kind -> the greedy sets for K = 1 … n
+    chosen: dict[str, LawResult]  # law kind -> the law asked for (K greedy sensors, or the named ones)
+    declared: dict[str, LawResult]  # law kind -> the law on the description's own sensors
+    request: int | tuple[str, ...]
+
+    def best(self, max_sensors: int = 3) -> LawResult:
+        """The law with the smallest validation RMS among the curves' laws of at most ``max_sensors`` sensors."""
+        pool = [r for curve in self.curves.values() for r in curve if r.k <= max_sensors]
+        return min(pool, key=lambda r: r.validation.rms)
+
+
+def parse_sensors(text: str, candidates: dict[str, Candidate]) -> int | tuple[str, ...]:
+    """``--sensors``: a count K (1 … the number of candidates) or comma-separated candidate names.
+
+    Raises
+    ------
+    FeedthermError
+        One line: K not a positive whole number or larger than the candidates, an unknown name
+        (with the closest ones), a name listed twice.
+    """
+    text = text.strip()
+    if re.fullmatch(r"[+-]?\d+", text):
+        k = int(text)
+        if k < 1:
+            raise FeedthermError(f"--sensors: K must be at least 1, got {k}")
+        if k > len(candidates):
+            raise FeedthermError(f"--sensors: K = {k} but there are {len(candidates)} candidate positions")
+        return k
+    names = tuple(item.strip() for item in text.split(","))
+    for name in names:
+        if not name or not _NAME.fullmatch(name):
+            raise FeedthermError(f"--sensors: {text!r} is neither a count nor a list of sensor names")
+        if name not in candidates:
+            raise FeedthermError(f"--sensors: no candidate sensor {name!r}{_closest(name, candidates)}")
+    if len(set(names)) != len(names):
+        raise FeedthermError(f"--sensors: a sensor is listed twice in {text!r}")
+    return names
+
+
+def _closest(name: str, candidates: dict[str, Candidate]) -> str:
+    import difflib
+
+    close = difflib.get_close_matches(name, list(candidates), n=3)
+    return f"; did you mean {', '.join(close)}?" if close else ""
+
+
+def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tuple[str, ...],
+              progress: Callable[[float], None] | None = None) -> StudyResult:
+    """Simulate the cycles, choose sensors, fit and judge the laws (see the module's notes)."""
+    candidates = candidate_sensors(loaded.system)
+    if isinstance(request, int) and request > len(candidates):
+        raise FeedthermError(f"--sensors: K = {request} but there are {len(candidates)} candidate positions")
+    sets = {}
+    names = ("train", "validation", "test")
+    for i, name in enumerate(names):
+        inner = None if progress is None else (lambda f, i=i: progress((i + f) / len(names)))
+        sets[name] = simulate_set(loaded, candidates, settings, name, inner)
+    n_curve = max(CURVE_SENSORS, request if isinstance(request, int) else 0)
+    n_curve = min(n_curve, len(candidates))
+    curves, chosen, declared = {}, {}, {}
+    own = tuple(n for n in loaded.system.sensors if n != AMBIENT_SENSOR)
+    for kind, lags in LAWS.items():
+        steps = greedy_selection(sets["train"], sets["validation"], n_curve, lags)
+        curves[kind] = [_judge(kind, step.law, sets) for step in steps]
+        if isinstance(request, int):
+            chosen[kind] = curves[kind][request - 1]
+        else:
+            chosen[kind] = _judge(kind, fit_on(sets["train"], request, lags), sets)
+        if own:
+            declared[kind] = _judge(kind, fit_on(sets["train"], own, lags), sets)
+    kalman = kalman_factory(loaded, candidates, sets["train"], settings)
+    curves[KALMAN] = [_judge(KALMAN, kalman(r.sensors), sets) for r in curves["regression_lags"]]
+    chosen[KALMAN] = _judge(KALMAN, kalman(chosen["regression_lags"].sensors), sets)
+    if own:
+        declared[KALMAN] = _judge(KALMAN, kalman(own), sets)
+    return StudyResult(settings, candidates, sets, curves, chosen, declared, request)
+
+
+def kalman_factory(loaded: LoadedSystem, candidates: dict[str, Candidate], train: CycleSet, settings: StudySettings,
+                   noise: KalmanNoise = KalmanNoise(), order: int = DEFAULT_ORDER):
+    """``sensors -> KalmanLaw``: the reduced model of every candidate and D, reduced once at the
+    middle of the speed envelope and the middle of the cycles' ambient range, its table, and each
+    output's open-loop error over the training cycles (:class:`~.kalman.KalmanLaw`)."""
+    described = with_candidates(loaded, candidates)
+    system = described.system
+    envelope = SpeedEnvelope.of(system)
+    screw = sum(envelope.screw) / 2
+    nut = screw - sum(envelope.relative) / 2 if envelope.dual else 0.0
+    ambient = sum(settings.ranges.ambient_mean) / 2 + KELVIN_OFFSET
+    reference = OperatingPoint(screw, nut, ambient, system.kinematics.lead)
+    outputs = [n for n in candidates if n != AMBIENT_SENSOR] + [ELONGATION_PROBE]
+    model = reduce_model(described, outputs, reference, mode=settings.mode, order=order)
+    table = build_table(system, model.surfaces, model.sources, ambient, mode=settings.mode)
+    errors = model_errors(model, table, train.cycles, train.names)
+    methods = {name: sensor.method for name, sensor in system.sensors.items()}
+
+    def law(sensors: tuple[str, ...]) -> KalmanLaw:
+        own = sensor_sigma(sensors, methods, noise)
+        sigma = tuple(float((o ** 2 + errors.get(s, 0.0) ** 2) ** 0.5) for s, o in zip(sensors, own))
+        return KalmanLaw(model, table, tuple(sensors), sigma, noise)
+
+    return law
+
+
+def _judge(kind: str, law: RegressionLaw | KalmanLaw, sets: dict[str, CycleSet]) -> LawResult:
+    names = sets["test"].names
+    return LawResult(kind, tuple(law.sensors), law,
+                     residuals(lambda record: law.predict_record(record, names), sets["validation"]),
+                     residuals(lambda record: law.predict_record(record, names), sets["test"]))

@@ -1,0 +1,135 @@
+"""`feedtherm compensate` outputs: the laws (JSON a controller evaluates), the study's summary,
+a CSV of the error against K, the figures and the report section as a page.
+
+Files (all in one directory, replaced as a set):
+
+- ``law.json``: the law asked for (``--sensors``), with lags (:mod:`~feedtherm.analysis.compensation.evaluator`
+  evaluates it); ``law_static.json``: the same sensors without lags; ``law_kalman.json``: the
+  Kalman estimator on the same sensors (:class:`~feedtherm.analysis.compensation.kalman.KalmanLaw`
+  reads it back);
+- ``compensation.json``: settings, the error of every law for K = 1 … 6 and of the description's
+  own sensors, the best law with at most 3 sensors, the measured bench, the test machines' factors;
+- ``compensation.csv``: one row per law and K;
+- ``error_vs_k.png``, ``sensor_map.png``, ``test_cycle.png`` and ``compensation.html`` (the report's section).
+"""
+
+from __future__ import annotations
+
+import csv
+from dataclasses import asdict
+from pathlib import Path
+
+from ..analysis.compensation.law import law_document
+from ..analysis.compensation.measured import MeasuredPrediction
+from ..analysis.compensation.study import LawResult, StudyResult
+from ..system.load import LoadedSystem
+from . import compensation_plots as plots
+from .files import staged_directory, write_json
+from .report.compensation import compensation_section
+from .report.html import page
+
+COMPENSATION_FILES = ("law.json", "law_static.json", "law_kalman.json", "compensation.json", "compensation.csv", "error_vs_k.png",
+                      "sensor_map.png", "test_cycle.png", "compensation.html")
+CSV_HEADER = ["law", "k", "sensors", "test_rms_um", "test_max_um", "reduction_percent", "validation_rms_um",
+              "uncompensated_rms_um"]
+
+
+def _entry(result: LawResult) -> dict:
+    return {"law": result.kind, "sensors": list(result.sensors), "validation_rms_um": result.validation.rms * 1e6,
+            "test": result.test.as_dict()}
+
+
+def summary(result: StudyResult, loaded: LoadedSystem, measured: dict[str, list[MeasuredPrediction]]) -> dict:
+    """The study as a JSON-able document (µm at output)."""
+    settings = asdict(result.settings)
+    best = result.best(3)
+    test = result.curves["regression"][0].test
+    return {
+        "system": loaded.origin,
+        "description_sha256": loaded.sha256,
+        "settings": settings,
+        "request": result.request if isinstance(result.request, int) else list(result.request),
+        "candidates": {name: {"part": c.part, "where": c.where, "position_m": list(c.position)}
+                       for name, c in result.candidates.items()},
+        "sets": {"test": {"uncompensated_rms_um": test.uncompensated_rms * 1e6,
+                          "uncompensated_max_um": test.uncompensated_max * 1e6,
+                          "machines": [c.variant for c in result.sets["test"].cycles]}},
+        "curves": {kind: [_entry(r) for r in curve] for kind, curve in result.curves.items()},
+        "chosen": {kind: _entry(r) for kind, r in result.chosen.items()},
+        "declared": {kind: _entry(r) for kind, r in result.declared.items()},
+        "best": _entry(best),
+        "measured": {kind: {"law": kind, "sensors": list(result.declared[kind].sensors),
+                            "conditions": [m.as_dict() for m in rows]} for kind, rows in measured.items()},
+    }
+
+
+def write_compensation(result: StudyResult, loaded: LoadedSystem, out_dir: Path, *,
+                       measured: dict[str, list[MeasuredPrediction]] | None = None) -> list[Path]:
+    """Write the study's files (see the module's notes) into ``out_dir``; return their paths.
+
+    ``measured``: law kind -> its predictions of the measured bench (the law on the description's
+    own sensors, :mod:`~feedtherm.analysis.compensation.measured`).
+    """
+    document = summary(result, loaded, measured or {})
+    provenance = {"system": loaded.origin, "description_sha256": loaded.sha256,
+                  "settings": document["settings"], "fitted_on": "nominal model, training cycles"}
+    best = result.best(3)
+    figures = {"error_vs_k.png": plots.error_against_k(result),
+               "sensor_map.png": plots.sensor_map(loaded.system, result, best.kind),
+               "test_cycle.png": plots.compensated_cycle(result, [result.chosen["regression_lags"],
+                                                                   result.chosen["kalman"]])}
+    with staged_directory(out_dir, replaces=COMPENSATION_FILES) as stage:
+        write_json(stage / "law.json", law_document(result.chosen["regression_lags"].law, result.candidates,
+                                                    {**provenance, "test": result.chosen["regression_lags"].test.as_dict()}))
+        write_json(stage / "law_static.json", law_document(result.chosen["regression"].law, result.candidates,
+                                                           {**provenance, "test": result.chosen["regression"].test.as_dict()}))
+        write_json(stage / "law_kalman.json", result.chosen["kalman"].law.document(
+            {**provenance, "test": result.chosen["kalman"].test.as_dict()}))
+        write_json(stage / "compensation.json", document)
+        with open(stage / "compensation.csv", "w", newline="") as handle:
+            writer = csv.writer(handle, lineterminator="\n")
+            writer.writerow(CSV_HEADER)
+            for kind, curve in result.curves.items():
+                for r in curve:
+                    writer.writerow([kind, r.k, " ".join(r.sensors), f"{r.test.rms * 1e6:.4f}", f"{r.test.max * 1e6:.4f}",
+                                     f"{100 * r.test.reduction:.2f}", f"{r.validation.rms * 1e6:.4f}",
+                                     f"{r.test.uncompensated_rms * 1e6:.4f}"])
+        for name, png in figures.items():
+            (stage / name).write_bytes(png)
+        html = page(f"feedtherm: compensation, {loaded.system.meta.name}", compensation_section(document, figures))
+        (stage / "compensation.html").write_text(html, encoding="utf-8")
+        names = sorted(p.name for p in stage.iterdir())
+    return [Path(out_dir) / name for name in names]
+
+
+def summary_line(out_dir: Path, result: StudyResult, wall_time_s: float) -> str:
+    """One line: the law asked for, its held-out error, where the files are."""
+    chosen = result.chosen["regression_lags"]
+    reduction = 100 * chosen.test.reduction
+    change = f"{reduction:.1f} % less than" if reduction >= 0 else f"{-reduction:.0f} % more than"
+    return (f"{out_dir}: law on {', '.join(chosen.sensors)}: held-out RMS {chosen.test.rms * 1e6:.2f} µm, "
+            f"max {chosen.test.max * 1e6:.2f} µm ({change} uncompensated); written in {wall_time_s:.1f} s")
+
+
+FIGURES = ("error_vs_k.png", "sensor_map.png", "test_cycle.png")
+
+
+def read_compensation_summary(folder: Path) -> dict:
+    """``{"summary": compensation.json, "figures": {name: PNG bytes}}`` of a study's folder;
+    one-line errors naming what is wrong (``feedtherm validate --compensation DIR``)."""
+    import json
+
+    from ..errors import FeedthermError
+
+    path = Path(folder) / "compensation.json"
+    if not path.is_file():
+        raise FeedthermError(f"--compensation: {path} not found (give the output folder of `feedtherm compensate`)")
+    try:
+        document = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        raise FeedthermError(f"--compensation: {path} is not readable JSON ({exc})") from None
+    missing = [key for key in ("settings", "curves", "best", "sets") if key not in (document if isinstance(document, dict) else {})]
+    if missing:
+        raise FeedthermError(f"--compensation: {path} lacks {', '.join(missing)}; is it a compensation.json?")
+    figures = {name: (Path(folder) / name).read_bytes() for name in FIGURES if (Path(folder) / name).is_file()}
+    return {"summary": document, "figures": figures}

@@ -1,0 +1,89 @@
+"""The model-based estimator (issue 16): it tracks a simulated run whose sensors carry noise within
+its own predicted uncertainty, learns a heat error, and its exported document gives the same D."""
+
+import json
+
+import numpy as np
+import pytest
+
+from feedtherm.analysis.compensation.kalman import KalmanEstimator, KalmanLaw, run_filter
+from feedtherm.analysis.compensation.operating_table import build_table
+from feedtherm.analysis.compensation.state_space import coefficients, reduce_model
+from feedtherm.boundary import boundary_conditions_at
+from feedtherm.boundary.operating import OperatingPoint
+from feedtherm.simulate import simulate
+from feedtherm.system.load import load_system
+from feedtherm.system.variants import with_values
+
+SENSORS = ["T1", "T2", "T3", "T4", "T5"]
+NOISE_K = 0.1
+
+
+@pytest.fixture(scope="module")
+def frozen():
+    """The bench at frozen coefficients: the linear model the filter's model reduces."""
+    return with_values(load_system("paper"), {"temperatures.coupling": "frozen"})
+
+
+@pytest.fixture(scope="module")
+def law(frozen):
+    model = reduce_model(frozen, [*SENSORS, "D"], OperatingPoint(1116.0, 1080.0, 293.15, 0.010))
+    table = build_table(frozen.system, model.surfaces, model.sources, 293.15)
+    return KalmanLaw(model, table, tuple(SENSORS), (NOISE_K,) * len(SENSORS))
+
+
+@pytest.fixture(scope="module")
+def run(frozen):
+    """Condition II's speeds for 2 h on another machine: front bearing +15 %, thread -15 %; noisy sensors."""
+    machine = with_values(frozen, {"sources.front_bearing.heat_factor": 1.15, "sources.screw_nut.heat_factor": 0.85})
+    solution = simulate(machine, condition="II", duration=7200.0, motion="averaged", sample_interval=60.0)
+    rng = np.random.default_rng(0)
+    names = [*SENSORS, "T6"]
+    readings = np.column_stack([solution.sensors[n] for n in names])
+    readings[:, :len(SENSORS)] += rng.normal(0.0, NOISE_K, (len(readings), len(SENSORS)))
+    return solution, names, readings
+
+
+def test_the_filter_tracks_a_noisy_run_within_its_own_uncertainty(law, run):
+    solution, names, readings = run
+    estimator = law.estimator()
+    speeds = np.full(len(readings), 1116.0), np.full(len(readings), 1080.0)
+    d, sd = run_filter(estimator, solution.times, readings, names, *speeds)
+    error = d - solution.elongation
+    assert np.sqrt(np.mean(error ** 2)) < 0.5e-6  # D itself rises by ~35 µm
+    assert np.mean(np.abs(error) <= 2 * sd) >= 0.9
+    z = np.sqrt(np.mean((error / sd) ** 2))
+    assert 0.3 < z < 1.5, z  # neither overconfident nor uselessly wide
+    learned = dict(zip(law.model.sources, estimator.heat_errors))
+    assert learned["front_bearing"] == pytest.approx(0.15, abs=0.05)
+
+
+def test_the_exported_document_gives_the_same_estimates(law, run):
+    solution, names, readings = run
+    again = KalmanLaw.from_document(json.loads(json.dumps(law.document())))
+    speeds = np.full(len(readings), 1116.0), np.full(len(readings), 1080.0)
+    first = run_filter(law.estimator(), solution.times, readings, names, *speeds)
+    second = run_filter(again.estimator(), solution.times, readings, names, *speeds)
+    np.testing.assert_allclose(second[0], first[0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(second[1], first[1], rtol=0, atol=1e-12)
+
+
+def test_the_reduced_model_is_stable_and_holds_a_machine_at_the_ambient(law):
+    model = law.model
+    for h in (law.table.h_stopped, law.table.h[0, 0], law.table.h[-1, -1]):
+        A, f = model.matrices(h)
+        assert np.linalg.eigvalsh((A + A.T) / 2).max() < 0
+        # at 25 °C throughout, without heat, nothing moves: A ζ + T∞ f = 0
+        np.testing.assert_allclose(A @ (model.uniform * 298.15) + 298.15 * f, 0.0, atol=1e-9 * np.abs(f).max() * 298)
+
+
+def test_the_table_interpolates_heats_and_coefficients_within_one_percent(frozen, law):
+    table = law.table
+    screw, relative = (table.screw_rpm[1] + table.screw_rpm[2]) / 2, (table.relative_rpm[1] + table.relative_rpm[2]) / 2
+    h, q = table.at(screw, screw - relative)
+    bc = boundary_conditions_at(frozen.system, OperatingPoint(screw, screw - relative, table.ambient, 0.010))
+    h_true, q_true = coefficients(bc, law.model.surfaces, law.model.sources)
+    np.testing.assert_allclose(q, q_true, rtol=0.01)
+    np.testing.assert_allclose(h, h_true, rtol=0.01)
+    h0, q0 = table.at(0.0, 0.0)
+    assert np.all(q0 == 0.0) and np.all(h0 > 0.0)  # a standstill: no heat, natural convection
