@@ -15,6 +15,7 @@ import pytest
 import scipy.sparse as sp
 
 from feedtherm.boundary import boundary_conditions
+from feedtherm.models import registry
 from feedtherm.models.reduced import ProjectedModel, moment_basis
 from feedtherm.models.integrator import Integrator
 from feedtherm.models.reduced import basis as basis_module
@@ -189,6 +190,19 @@ def test_the_reduced_fe_model_runs_from_the_command_line_and_follows_the_fe_mode
         assert np.max(np.abs(reduced_run.sensors[name] - full_run.sensors[name])) <= 0.1, name
     assert np.max(np.abs(reduced_run.elongation - full_run.elongation)) <= 0.2e-6
     assert reduced_run.fields is not None and reduced_run.fields.temperatures.shape[1] == fe.n_nodes
+    # the next run reads the projected model back and never builds the FE model
+    assert not stats["projection_cached"]
+
+    def no_fe_model(*args):
+        raise AssertionError("a cached reduced model built its FE model")
+
+    monkeypatch.setattr(registry, "_fem", no_fe_model)
+    again = execute(reduced_plan)
+    assert again.info["mesh_statistics"]["projection_cached"]
+    for name in reduced_run.sensors:
+        np.testing.assert_allclose(again.sensors[name], reduced_run.sensors[name], rtol=0.0, atol=1e-10)
+    np.testing.assert_array_equal(again.fields.temperatures, reduced_run.fields.temperatures)
+    np.testing.assert_array_equal(again.fields.tets, reduced_run.fields.tets)
     rows, offset = fe.probe_rows(0)
     assert fe.probe_rows(17)[0] is rows  # the FE model's readings do not depend on the position
     T = 293.15 + np.random.default_rng(5).normal(size=fe.n_nodes)
