@@ -190,7 +190,6 @@ class Integrator:
         self._loads = {}  # (segment, boundary conditions' id, position) → (boundary conditions, Loads)
         self._matrix_keys = {}  # same keys → key of the step matrix (without C/dt)
         self._link_changes = {}  # (segment, evaluated bc's id, factorised bc's id, position) → link difference
-        self._node_links = {}  # boundary conditions' id → (them, their cycle-averaged node links)
         self._orders = {}  # sparsity pattern → elimination order (direct solver; links and dt keep the pattern)
         solver = options.solver
         self.dense = isinstance(model.conductance(0), np.ndarray)
@@ -241,7 +240,6 @@ class Integrator:
             del self._loads[key]
         stale -= set(self._matrix_keys.values())
         self._link_changes.clear()
-        self._node_links.pop(id(bc), None)
         for cache in (self._lu, self._cg):
             for key in [key for key in cache if key[0] in stale or key[1:3] == (seg_id, id(bc))]:
                 del cache[key]
@@ -372,15 +370,8 @@ class Integrator:
         return self._link_changes[key]
 
     def _links_moved(self, old: BoundaryConditions, new: BoundaryConditions) -> bool:
-        g_old, g_new = self.links(old), self.links(new)
+        g_old, g_new = self.model.ambient_links(old, None), self.model.ambient_links(new, None)
         return bool(np.any(np.abs(g_new - g_old) > LINK_REFACTOR * g_old))
-
-    def links(self, bc: BoundaryConditions) -> np.ndarray:
-        """The cycle-averaged node links of ``bc`` (cached: the factorised ones are compared with every
-        evaluation's, and a node per vertex makes each 2 ms on the fine FE mesh)."""
-        if id(bc) not in self._node_links:
-            self._node_links[id(bc)] = (bc, self.model.ambient_links(bc, None))  # holding bc keeps its id
-        return self._node_links[id(bc)][1]
 
     def readout(self, state: np.ndarray) -> LocalTemperatures:
         """The surfaces' and sources' temperatures of ``state`` (:class:`~.coupling.TemperatureReadout`)."""

@@ -59,8 +59,9 @@ class TetSeriesWriter:
 
     def __init__(self, n_points: int, tets: np.ndarray, cell_data: dict[str, np.ndarray]):
         tets = np.asarray(tets)
-        index = np.int32 if n_points < np.iinfo(np.int32).max else np.int64  # half the bytes of int64
         m = len(tets)
+        # vertex indices and offsets (up to 4 m) in int32 where they fit: half the bytes of int64
+        index = np.int32 if max(n_points, 4 * m) < np.iinfo(np.int32).max else np.int64
         self.n_points, self.n_cells = int(n_points), m
         shared = [("connectivity", tets.astype(index).ravel(), 1),
                   ("offsets", (4 * np.arange(1, m + 1)).astype(index), 1),
