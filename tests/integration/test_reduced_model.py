@@ -15,10 +15,12 @@ import pytest
 import scipy.sparse as sp
 
 from feedtherm.boundary import boundary_conditions
+from feedtherm.models import registry
 from feedtherm.models.reduced import ProjectedModel, moment_basis
 from feedtherm.models.integrator import Integrator
 from feedtherm.models.reduced import basis as basis_module
-from feedtherm.models.reduced.basis import _prune, inputs, reference_coefficients, split_inputs
+from feedtherm.models.reduced.basis import inputs, reference_coefficients, split_inputs
+from feedtherm.models.reduced.disk import prune
 from feedtherm.simulate import execute, plan_run
 
 DURATION = 1800.0  # [s]: the nut's warm-up, where the moving heat matters most
@@ -126,7 +128,7 @@ def test_the_basis_cache_keeps_the_most_recently_used_within_its_budget(tmp_path
     (tmp_path / ".killed.123.partial.npz").write_bytes(b"x")
     os.utime(tmp_path / ".killed.123.partial.npz", (1e9, 1e9))
     os.utime(tmp_path / "old.npz", (2e9, 2e9))  # read back recently: used last
-    _prune(tmp_path, keep=tmp_path / "new.npz", budget=650)
+    prune(tmp_path, keep=tmp_path / "new.npz", budget=650)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["new.npz", "old.npz"]  # 200 + 400 ≤ 650; 300 more is not
 
 
@@ -159,9 +161,8 @@ def test_probes_are_projected_alike_from_the_full_models_rows_or_column_by_colum
     T = np.random.default_rng(4).normal(size=full.n_nodes)
     assert np.allclose(rows @ T + offset, full.probe(T, 0), rtol=1e-14)
     from_rows = reduced._probe_rows(9)
-    other = ProjectedModel(full, reduced.basis)
     monkeypatch.setattr(full, "probe_rows", lambda k: None)  # a model that does not give its rows
-    by_columns = other._probe_rows(9)
+    by_columns = ProjectedModel(full, reduced.basis)._probe_rows(9)
     assert np.allclose(from_rows[0], by_columns[0], rtol=1e-12, atol=1e-15)
     assert np.allclose(from_rows[1], by_columns[1], rtol=1e-12, atol=1e-15)
 
@@ -189,6 +190,19 @@ def test_the_reduced_fe_model_runs_from_the_command_line_and_follows_the_fe_mode
         assert np.max(np.abs(reduced_run.sensors[name] - full_run.sensors[name])) <= 0.1, name
     assert np.max(np.abs(reduced_run.elongation - full_run.elongation)) <= 0.2e-6
     assert reduced_run.fields is not None and reduced_run.fields.temperatures.shape[1] == fe.n_nodes
+    # the next run reads the projected model back and never builds the FE model
+    assert not stats["projection_cached"]
+
+    def no_fe_model(*args):
+        raise AssertionError("a cached reduced model built its FE model")
+
+    monkeypatch.setattr(registry, "_fem", no_fe_model)
+    again = execute(reduced_plan)
+    assert again.info["mesh_statistics"]["projection_cached"]
+    for name in reduced_run.sensors:
+        np.testing.assert_allclose(again.sensors[name], reduced_run.sensors[name], rtol=0.0, atol=1e-10)
+    np.testing.assert_array_equal(again.fields.temperatures, reduced_run.fields.temperatures)
+    np.testing.assert_array_equal(again.fields.tets, reduced_run.fields.tets)
     rows, offset = fe.probe_rows(0)
     assert fe.probe_rows(17)[0] is rows  # the FE model's readings do not depend on the position
     T = 293.15 + np.random.default_rng(5).normal(size=fe.n_nodes)

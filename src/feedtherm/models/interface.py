@@ -195,7 +195,8 @@ class ThermalModel(ABC):
 
     def ambient_links(self, bc: BoundaryConditions, k: int | None) -> np.ndarray:
         """Conductance [W/K] of every node to its surface's sink (convection + radiation)."""
-        return self._links(bc, k)[0]
+        basis = self.boundary_basis(k)  # the links alone: a coupled run compares them at every evaluation
+        return basis.exposure_by_node @ surface_coefficients(bc, basis.surfaces)[0]
 
     def ambient_coupling(self, bc: BoundaryConditions, k: int | None) -> AmbientCoupling:
         """The ambient operator of the step equations at position k (None: the cycle average)."""

@@ -49,18 +49,35 @@ def _fast(system: FeedSystem, options: ModelOptions) -> ThermalModel:
     return FastDiscretization(system, options)
 
 
+def _fem_arguments(options: ModelOptions) -> dict:
+    """The options the FE model is built from (and all of them: the reduced model's cache key names these)."""
+    return {"density": options.mesh, "axial_cells": options.axial_cells, "min_positions": options.steps_per_stroke}
+
+
 def _fem(system: FeedSystem, options: ModelOptions) -> ThermalModel:
     from .fem.bench import FemDiscretization
 
-    return FemDiscretization(system, options.mesh, axial_cells=options.axial_cells,
-                             min_positions=options.steps_per_stroke)
+    return FemDiscretization(system, **_fem_arguments(options))
 
 
 def _reduced(system: FeedSystem, options: ModelOptions) -> ThermalModel:
-    from .reduced import ProjectedModel, moment_basis
+    from .reduced.store import cached_projected_model
 
-    full = _fem(system, options)
-    return ProjectedModel(full, moment_basis(full, tolerance=options.reduction_tolerance))
+    return cached_projected_model(system, options.reduction_tolerance, lambda: _fem(system, options),
+                                  lambda: _reduced_inputs(system, options))
+
+
+def _reduced_inputs(system: FeedSystem, options: ModelOptions) -> dict | None:
+    """What the reduced model's full FE model is built from (models/reduced/store.py): the description's
+    content, the mesh file's digest (None while it does not exist) and the FE model's arguments."""
+    from .fem.geometry import mesh_cache_path
+    from .reduced.store import file_digest
+
+    mesh = file_digest(mesh_cache_path(system, options.mesh))
+    if mesh is None:
+        return None
+    return {"system": system.model_dump(mode="json"), "mesh_file": mesh,
+            "full_model": {"name": "fem", **_fem_arguments(options)}}
 
 
 _BUILT_IN = (

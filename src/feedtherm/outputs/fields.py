@@ -4,7 +4,8 @@ A run of the finite element model carries its fields as a
 :class:`~feedtherm.solution.fields.FieldSeries`: the mesh at rest,
 which parts move with the worktable, and per snapshot the nodal temperatures, the moving
 group's offset along x and the screw's axial displacement.  :func:`write_pvd` writes it as a
-ParaView time series (meshio writes the ``.vtu`` files, the ``.pvd`` collection is plain XML);
+ParaView time series (:mod:`.vtu` writes the ``.vtu`` files, the mesh's arrays encoded once for
+all of them; the ``.pvd`` collection is plain XML);
 :mod:`feedtherm.outputs.field_images` draws it as PNG images.
 
 :func:`boundary_triangles` (the outer faces of a tetrahedral mesh) serves the images.
@@ -19,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from ..solution.fields import FieldSeries
+from .vtu import TetSeriesWriter
 
 __all__ = [
     "FieldSeries",
@@ -71,13 +73,12 @@ def write_pvd(series: FieldSeries, out_dir: Path) -> list[Path]:
 
     Returns the paths written: the ``.pvd`` first, then the ``.vtu`` files in time order.
     """
-    import meshio
-
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     names = vtu_names(series.n_snapshots)
+    writer = TetSeriesWriter(len(series.points), series.tets, {PART_FIELD: series.part_id.astype(np.int32)})
     for snapshot, name in enumerate(names):
-        meshio.write(out_dir / name, snapshot_mesh(series, snapshot), file_format="vtu")
+        writer.write(out_dir / name, series.displaced_points(snapshot), {TEMPERATURE_FIELD: series.celsius(snapshot)})
     pvd = out_dir / PVD_NAME
     _write_collection(pvd, series, names)
     _remove_stale_snapshots(out_dir, set(names))

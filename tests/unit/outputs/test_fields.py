@@ -246,3 +246,28 @@ def test_screw_deformation_needs_screw_data(series, tmp_path):
     empty = make_series(screw_x=np.empty(0), screw_displacement=np.empty((3, 0)))
     with pytest.raises(ValueError, match="no screw displacement"):
         plot_screw_deformation(empty, tmp_path / "s.png")
+
+
+def test_vtu_blocks_split_over_many_zlib_streams_read_back(series, tmp_path, monkeypatch):
+    """An array longer than one block (every array of a fine mesh) is split into several zlib streams:
+    VTK and meshio must read them back joined, in order."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+
+    from feedtherm.outputs import vtu
+
+    monkeypatch.setattr(vtu, "BLOCK_BYTES", 100)  # not a multiple of 8: values straddle the blocks
+    write_pvd(series, tmp_path)
+    path = tmp_path / "fields_0002.vtu"
+    mesh = meshio.read(path)
+    np.testing.assert_array_equal(mesh.cells_dict["tetra"], series.tets)
+    np.testing.assert_array_equal(mesh.points, series.displaced_points(2))
+    np.testing.assert_array_equal(mesh.point_data["temperature_C"], series.celsius(2))
+    reader = vtkXMLUnstructuredGridReader()
+    reader.SetFileName(str(path))
+    reader.Update()
+    assert reader.GetErrorCode() == 0
+    grid = reader.GetOutput()
+    np.testing.assert_array_equal(vtk_to_numpy(grid.GetPoints().GetData()), series.displaced_points(2))
+    np.testing.assert_array_equal(vtk_to_numpy(grid.GetPointData().GetArray("temperature_C")), series.celsius(2))
+    np.testing.assert_array_equal(vtk_to_numpy(grid.GetCellData().GetArray("part_id")), series.part_id)

@@ -34,7 +34,7 @@ from ...constants import cache_root
 from ...errors import ModelError
 from ...system.schema import Cylinder, FeedSystem, Part
 
-__all__ = ["DENSITIES", "Density", "PartMesh", "BenchMesh", "mesh_size", "mesh_system", "cache_dir"]
+__all__ = ["DENSITIES", "Density", "PartMesh", "BenchMesh", "mesh_size", "mesh_system", "mesh_cache_path", "cache_dir"]
 
 MESH_VERSION = 1  #: bump when the meshing changes, so old cache files are not reused
 MM = 1e-3  # gmsh works in millimetres (its tolerances suit them); the result is in metres
@@ -136,11 +136,16 @@ def _geometry_key(system: FeedSystem, density: str, sizes: dict[str, float]) -> 
     return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()[:16]
 
 
+def mesh_cache_path(system: FeedSystem, density: str) -> Path:
+    """Where the mesh of ``system`` at ``density`` is (or would be) cached: named by its geometry's digest."""
+    sizes = {name: mesh_size(system, name, density) for name in system.parts}
+    return cache_dir() / f"{_geometry_key(system, density, sizes)}-{density}.npz"
+
+
 def mesh_system(system: FeedSystem, density: str, *, use_cache: bool = True) -> BenchMesh:
     """Mesh every part of ``system`` at ``density`` (from the cache when it holds it)."""
     sizes = {name: mesh_size(system, name, density) for name in system.parts}
-    key = _geometry_key(system, density, sizes)
-    path = cache_dir() / f"{key}-{density}.npz"
+    path = mesh_cache_path(system, density)
     names = list(system.parts)
     if use_cache and path.exists():
         data = np.load(path, allow_pickle=False)

@@ -44,7 +44,6 @@ reduction", SIAM J. Sci. Comput. 38 (2016) S194–S216.
 from __future__ import annotations
 
 import hashlib
-import os
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -56,6 +55,7 @@ from ...constants import cache_root
 from .. import pardiso
 from ..direct import EliminationOrder, factorize
 from ..interface import ThermalModel, cycle_weights, weighted_sum
+from .disk import read_npz, write_npz
 
 #: [W/(m²·K)] film coefficient on every surface while the snapshots are taken: still air with
 #: radiation from a metal surface is 5-15; the runs' own coefficients enter the reduced operators.
@@ -74,9 +74,6 @@ SHIFT_TOLERANCE_FACTOR = 0.1
 TOLERANCE = 1e-5
 #: Changes whenever the way a basis is built changes, so that older cached bases are not read.
 BASIS_VERSION = 2
-#: The cached bases are kept within this many bytes, the least recently used dropped first
-#: (a fine-mesh basis is about 0.4 GB; the one just written is always kept).
-CACHE_BYTES = 2_000_000_000
 
 
 @dataclass(frozen=True)
@@ -163,41 +160,13 @@ def basis_cache_path(key: str) -> Path:
 
 
 def _read_cached(path: Path, started: float) -> Basis | None:
-    try:
-        with np.load(path, allow_pickle=False) as data:
-            basis = Basis(data["vectors"], data["singular_values"], float(data["tolerance"]), int(data["snapshots"]),
-                          time.perf_counter() - started, cached=True)
-        os.utime(path)  # recently used: the last to be pruned
-        return basis
-    except (OSError, ValueError, KeyError):  # missing, or damaged
-        return None
+    return read_npz(path, lambda data: Basis(data["vectors"], data["singular_values"], float(data["tolerance"]),
+                                             int(data["snapshots"]), time.perf_counter() - started, cached=True))
 
 
 def _write_cached(path: Path, basis: Basis) -> None:
-    """Save atomically (a reader sees the whole file or none); an unwritable cache only costs the next run time."""
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        partial = path.with_name(f".{path.stem}.{os.getpid()}.partial.npz")
-        np.savez(partial, vectors=basis.vectors, singular_values=basis.singular_values, tolerance=basis.tolerance,
-                 snapshots=basis.snapshots)
-        os.replace(partial, path)
-        _prune(path.parent, keep=path)
-    except OSError:
-        pass
-
-
-def _prune(directory: Path, keep: Path, budget: int = CACHE_BYTES) -> None:
-    """Drop the least recently used bases beyond ``budget`` bytes, and partial files a killed writer left."""
-    now = time.time()
-    for partial in directory.glob(".*.partial.npz"):
-        if now - partial.stat().st_mtime > 3600.0:
-            partial.unlink(missing_ok=True)
-    files = sorted((p for p in directory.glob("*.npz") if p != keep), key=lambda p: p.stat().st_mtime, reverse=True)
-    used = keep.stat().st_size
-    for path in files:
-        used += path.stat().st_size
-        if used > budget:
-            path.unlink(missing_ok=True)
+    write_npz(path, {"vectors": basis.vectors, "singular_values": basis.singular_values,
+                     "tolerance": basis.tolerance, "snapshots": basis.snapshots})
 
 
 def moment_basis(model: ThermalModel, tolerance: float = TOLERANCE,

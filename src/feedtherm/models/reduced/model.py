@@ -1,0 +1,146 @@
+"""The reduced model: a :class:`~.projection.Projection` as a :class:`~feedtherm.models.interface.ThermalModel`.
+
+The shared integrator runs it as any model: dense operators of the basis's size per position,
+the boundary conditions weighing the projected exposures and entries by their coefficients
+and heats (:mod:`.projection`).  The full model is not needed to run: a model read from the
+disk cache (:mod:`.store`) builds it only if a caller asks for something the projection does
+not hold (a surface's nodes, a position's boundary basis), once.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import numpy as np
+
+from ...boundary import BoundaryConditions
+from ...system.schema import FeedSystem
+from ..interface import AmbientCoupling, HeatInput, ThermalModel, cycle_weights, source_powers, surface_coefficients
+from .basis import Basis
+from .projection import Projection, project
+
+__all__ = ["ProjectedModel"]
+
+
+class ProjectedModel(ThermalModel):
+    """``full`` projected onto ``basis``; :meth:`from_projection` makes one of a projection alone."""
+
+    def __init__(self, full: ThermalModel, basis: Basis):
+        self._setup(project(full, basis), full.system, full=full)
+
+    @classmethod
+    def from_projection(cls, projection: Projection, system: FeedSystem,
+                        build_full: Callable[[], ThermalModel], **stats) -> "ProjectedModel":
+        """A model of ``projection`` (of ``system``'s full model); ``build_full()`` builds that full model
+        if a caller needs it; ``stats`` are added to :attr:`stats` (where the projection came from)."""
+        model = cls.__new__(cls)
+        model._setup(projection, system, build_full=build_full, extra_stats=stats)
+        return model
+
+    def _setup(self, projection: Projection, system: FeedSystem, *, full: ThermalModel | None = None,
+               build_full: Callable[[], ThermalModel] | None = None, extra_stats: dict | None = None) -> None:
+        self.projection = p = projection
+        self._full, self._build_full = full, build_full
+        self._extra_stats = dict(extra_stats or {})
+        self.system = system
+        self.basis = p.basis
+        self.V = p.V
+        self.n_nodes = p.V.shape[1]
+        self.capacity = np.ones(self.n_nodes)  # Vᵀ C V = I: the basis is capacity-orthonormal
+        self.positions = p.positions
+        self.dx = p.dx
+        self.probe_names = list(p.probe_names)
+        self.screw_edges = p.screw_edges
+        self.screw_centres = p.screw_centres
+        self._surfaces, self._sources = list(p.surfaces), list(p.sources)
+        self._weights = cycle_weights(len(p.positions))
+        self._averaged: dict[str, np.ndarray] = {}
+        self._weighted = (None, None)  # (coefficients, Σ h_i Vᵀ diag(e_i0) V) of the latest evaluation
+
+    @property
+    def full(self) -> ThermalModel:
+        """The full model (built on first use when this model was read from the cache)."""
+        if self._full is None:
+            self._full = self._build_full()
+        return self._full
+
+    # ------------------------------------------------------------------ operators
+    def _at(self, name: str, k: int | None) -> np.ndarray:
+        """Array ``name`` of the projection (positions first) at position k, or its cycle average."""
+        values = getattr(self.projection, name)
+        if k is not None:
+            return values[k]
+        if name not in self._averaged:
+            self._averaged[name] = np.tensordot(self._weights, values, axes=1)
+        return self._averaged[name]
+
+    def conductance(self, k: int) -> np.ndarray:
+        return self.projection.conductance[k]
+
+    def ambient_coupling(self, bc: BoundaryConditions, k: int | None) -> AmbientCoupling:
+        h, sinks = surface_coefficients(bc, self._surfaces)
+        moving = self.projection.moving_surfaces
+        matrix = self._weighted_exposure(h) + np.tensordot(h[moving], self._at("exposure_change", k), axes=1)
+        rows = self._at("exposure_rows", k)
+        return AmbientCoupling(matrix, h @ rows, (h * sinks) @ rows, float((h * sinks) @ self._at("exposure_areas", k)))
+
+    def _weighted_exposure(self, h: np.ndarray) -> np.ndarray:
+        """Σ h_i Vᵀ diag(e_i0) V, kept for the latest coefficients: a coupled run asks for every
+        position with one evaluation's coefficients before the next."""
+        latest, matrix = self._weighted
+        if latest is None or not np.array_equal(latest, h):
+            matrix = np.tensordot(h, self.projection.exposure, axes=1)
+            self._weighted = (h.copy(), matrix)
+        return matrix
+
+    def heat_vector(self, bc: BoundaryConditions, k: int | None) -> np.ndarray:
+        return source_powers(bc, self._sources) @ self._at("entries", k)
+
+    def boundary_basis(self, k: int | None):
+        return self.projection.averaged if k is None else self.full.boundary_basis(k)
+
+    def surface_exposure(self, name: str, k: int):
+        return self.full.surface_exposure(name, k)
+
+    def heat_distribution(self, heat: HeatInput, k: int) -> np.ndarray:
+        return self.V.T @ self.full.heat_distribution(heat, k)
+
+    # ------------------------------------------------------------------ states
+    def restrict(self, rows):
+        return np.asarray(rows @ self.V)
+
+    def full_state(self, state: np.ndarray) -> np.ndarray:
+        return self.V @ state
+
+    def uniform_state(self, temperature: float) -> np.ndarray:
+        # the uniform state is the basis's first vector, so this is exact
+        C = self.projection.full_capacity
+        return self.V.T @ (C * np.full(C.size, float(temperature)))
+
+    def heat_stored(self, state: np.ndarray, start: np.ndarray) -> float:
+        return float(self.projection.stored @ (state - start))
+
+    # ------------------------------------------------------------------ readout
+    def _probe_rows(self, k: int) -> tuple[np.ndarray, np.ndarray]:
+        return self.projection.probe_rows[k], self.projection.probe_offsets[k]
+
+    def probe(self, state: np.ndarray, k: int = 0) -> np.ndarray:
+        rows, offset = self._probe_rows(k)
+        return rows @ state + offset
+
+    def screw_mean(self, states: np.ndarray) -> np.ndarray:
+        return np.asarray(states) @ self.projection.screw
+
+    def part_means(self, states: np.ndarray) -> dict[str, np.ndarray]:
+        states = np.asarray(states)
+        return {name: states @ v for name, v in self.projection.parts.items()}
+
+    def field_mesh(self):
+        return self.projection.field_mesh
+
+    @property
+    def stats(self) -> dict:
+        b = self.basis
+        return {**self.projection.full_stats, "reduced_from": int(self.projection.full_capacity.size),
+                "basis_size": b.size, "basis_tolerance": b.tolerance, "basis_snapshots": b.snapshots,
+                "basis_seconds": round(b.seconds, 2), "basis_cached": b.cached, **self._extra_stats}

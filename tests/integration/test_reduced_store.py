@@ -1,0 +1,178 @@
+"""The projected-model cache (models/reduced/store.py): a run of a cached reduced model is the run of
+the model it was saved from, without building the full model; its key changes with anything the
+full model, its basis or its projection are built from.
+
+The fast model serves as the full model (built in a second): the cache does not know which model
+it projects.  The FE model's own path (the registry's key inputs, a cached run that never builds
+the FE model) is checked at the end, on a fake mesh file for the key and in
+tests/integration/test_reduced_model.py for a run.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from feedtherm.models import registry
+from feedtherm.models.options import ModelOptions
+from feedtherm.models.reduced import store
+from feedtherm.models.reduced.store import cached_projected_model, projection_key
+from feedtherm.simulate import execute, plan_run
+
+DURATION = 1200.0  # [s]
+TOLERANCE = 1e-3  # a small basis: the check is about the cache, not the basis
+
+
+@pytest.fixture(scope="module")
+def plan(paper):
+    return plan_run(paper, condition="I", duration=DURATION)
+
+
+class Builds:
+    """The full model's factory, counting its calls."""
+
+    def __init__(self, plan):
+        self.plan, self.count = plan, 0
+
+    def __call__(self):
+        self.count += 1
+        return self.plan.model.build(self.plan.loaded.system, self.plan.options)
+
+
+def _inputs(paper):
+    return lambda: {"system": paper.system.model_dump(mode="json"), "full_model": "fast"}
+
+
+def _cached(plan, paper, builds):
+    return cached_projected_model(paper.system, TOLERANCE, builds, _inputs(paper))
+
+
+def _assert_same_run(a, b):
+    for name in a.sensors:
+        np.testing.assert_allclose(b.sensors[name], a.sensors[name], rtol=0.0, atol=1e-10, err_msg=name)
+    np.testing.assert_allclose(b.elongation, a.elongation, rtol=0.0, atol=1e-16)
+    np.testing.assert_allclose(b.screw_temperature, a.screw_temperature, rtol=0.0, atol=1e-10)
+
+
+def test_a_cached_model_runs_as_the_one_it_was_saved_from_without_building_the_full_model(plan, paper, tmp_path,
+                                                                                         monkeypatch):
+    monkeypatch.setenv("FEEDTHERM_CACHE", str(tmp_path))
+    builds = Builds(plan)
+    built = _cached(plan, paper, builds)
+    assert builds.count == 1 and not built.stats["projection_cached"]
+    (path,) = (tmp_path / "projections").glob("*.npz")
+    cached = _cached(plan, paper, builds)
+    assert builds.count == 1 and cached.stats["projection_cached"]  # read back: no full model built
+    _assert_same_run(execute(plan, model=built), execute(plan, model=cached))
+    assert builds.count == 1  # the run asked for nothing the projection does not hold
+    # what it does not hold, it takes from the full model, built once on demand
+    np.testing.assert_array_equal(cached.boundary_basis(3).exposure.toarray(),
+                                  built.full.boundary_basis(3).exposure.toarray())
+    cached.surface_exposure(next(iter(paper.system.surfaces)), 5)
+    assert builds.count == 2
+    assert path.exists() and len(list((tmp_path / "projections").glob("*.npz"))) == 1
+
+
+@pytest.mark.parametrize("damage", ["garbage", "truncated", "renamed"])
+def test_a_damaged_or_foreign_file_is_rebuilt(plan, paper, tmp_path, monkeypatch, damage):
+    monkeypatch.setenv("FEEDTHERM_CACHE", str(tmp_path))
+    builds = Builds(plan)
+    reference = execute(plan, model=_cached(plan, paper, builds))
+    (path,) = (tmp_path / "projections").glob("*.npz")
+    if damage == "garbage":
+        path.write_bytes(b"not a projection")
+    elif damage == "truncated":  # a file cut short (the writes are atomic: a disk's fault, not ours)
+        path.write_bytes(path.read_bytes()[: path.stat().st_size // 2])
+    else:  # another model's file under this key's name
+        cached_projected_model(paper.system, 2 * TOLERANCE, builds, _inputs(paper))
+        (other_path,) = set((tmp_path / "projections").glob("*.npz")) - {path}
+        other_path.replace(path)
+    count = builds.count
+    rebuilt = _cached(plan, paper, builds)
+    assert builds.count == count + 1 and not rebuilt.stats["projection_cached"]
+    _assert_same_run(reference, execute(plan, model=rebuilt))
+    assert _cached(plan, paper, builds).stats["projection_cached"]  # the rebuilt file is read back
+
+
+# ---------------------------------------------------------------------------- the key
+
+
+@pytest.fixture
+def fe_key(paper, tmp_path, monkeypatch):
+    """The registry's key of the reduced FE model, with mesh files of our own (no meshing)."""
+    from feedtherm.models.fem.geometry import mesh_cache_path
+
+    monkeypatch.setenv("FEEDTHERM_CACHE", str(tmp_path))
+
+    def key(system=paper.system, options=ModelOptions(), mesh_bytes=b"mesh"):
+        path = mesh_cache_path(system, options.mesh)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_bytes(mesh_bytes)
+        return projection_key(registry._reduced_inputs(system, options), options.reduction_tolerance)
+
+    return key
+
+
+def _with(model, **changes):
+    return model.model_copy(update=changes)
+
+
+def test_the_key_changes_with_anything_the_projection_is_built_from(paper, fe_key, monkeypatch):
+    system = paper.system
+    base = fe_key()
+    assert fe_key() == base  # the same inputs, the same key
+    material = system.parts[system.kinematics.screw].material
+    box = system.parts["base"].boxes[0]
+    variants = {
+        "a material's conductivity": fe_key(_with(system, materials={
+            **system.materials, material: _with(system.materials[material], conductivity=50.0)})),
+        "a part's geometry": fe_key(_with(system, parts={
+            **system.parts, "base": _with(system.parts["base"], boxes=[_with(box, size=(1.01, *box.size[1:])),
+                                                                       *system.parts["base"].boxes[1:]])})),
+        "a joint's resistance": fe_key(_with(system, joints=[_with(system.joints[0], tcr=system.joints[0].tcr * 2),
+                                                             *system.joints[1:]])),
+        "the mesh file": fe_key(mesh_bytes=b"another mesh"),
+        "the mesh density": fe_key(options=ModelOptions(mesh="medium")),
+        "the screw's sections": fe_key(options=ModelOptions(axial_cells=120)),
+        "the positions": fe_key(options=ModelOptions(steps_per_stroke=40)),
+        "the tolerance": fe_key(options=ModelOptions(reduction_tolerance=2e-4)),
+    }
+    with monkeypatch.context() as m:
+        m.setattr(store, "package_digest", lambda: "another feedtherm")
+        variants["the package's code"] = fe_key()
+    with monkeypatch.context() as m:
+        versions = {**store.library_versions(), "scipy": "0.0"}
+        m.setattr(store, "library_versions", lambda: versions)
+        variants["a library's version"] = fe_key()
+    for name, key in variants.items():
+        assert key != base, name
+    assert len(set(variants.values())) == len(variants)
+    # what the full model is not built from leaves the key alone: the solver of the time steps
+    assert fe_key(options=ModelOptions(solver="direct", coupling_tolerance=0.5)) == base
+
+
+def test_without_its_mesh_file_the_key_waits_for_the_build(paper, tmp_path, monkeypatch):
+    monkeypatch.setenv("FEEDTHERM_CACHE", str(tmp_path))
+    assert registry._reduced_inputs(paper.system, ModelOptions()) is None
+
+
+def test_the_package_digest_covers_every_module(monkeypatch, tmp_path):
+    package = tmp_path / "feedtherm"
+    (package / "models").mkdir(parents=True)
+    (package / "models" / "a.py").write_text("x = 1\n")
+    (package / "__pycache__").mkdir()
+    (package / "__pycache__" / "a.cpython-311.pyc").write_bytes(b"compiled")
+    monkeypatch.setattr(store, "_PACKAGE", package)
+    digests = []
+    for change in (None, "bytecode", "code", "new module"):
+        if change == "bytecode":
+            (package / "__pycache__" / "a.cpython-311.pyc").write_bytes(b"recompiled")
+        elif change == "code":
+            (package / "models" / "a.py").write_text("x = 2\n")
+        elif change == "new module":
+            (package / "b.py").write_text("")
+        store.package_digest.cache_clear()
+        digests.append(store.package_digest())
+    store.package_digest.cache_clear()
+    assert digests[0] == digests[1]  # bytecode is not code
+    assert len({digests[1], digests[2], digests[3]}) == 3
