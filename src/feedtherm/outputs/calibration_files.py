@@ -21,7 +21,7 @@ from ..errors import FeedthermError
 from ..system.load import LoadedSystem, read_text
 from ..system.quantities import registry
 from ..system.variants import split_path
-from .files import staged_directory, write_json
+from .files import read_study_summary, staged_directory, write_json
 
 PREDICTION_HEADER = ["condition", "quantity", "unit", "predicted", "measured", "deviation", "interval95", "flag"]
 #: Every file a calibration can write: crossval.csv only with cross-validation.
@@ -30,19 +30,8 @@ CALIBRATION_FILES = ("calibrated.toml", "calibration.json", "heldout.csv", "cros
 
 def read_calibration_summary(folder: Path) -> dict:
     """calibration.json of a calibration's output folder; one-line errors naming what is wrong."""
-    import json
-
-    path = Path(folder) / "calibration.json"
-    if not path.is_file():
-        raise FeedthermError(f"--calibration: {path} not found (give the output folder of `feedtherm calibrate`)")
-    try:
-        summary = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError) as exc:
-        raise FeedthermError(f"--calibration: {path} is not readable JSON ({exc})") from None
-    missing = [key for key in ("fit_conditions", "parameters", "held_out") if key not in (summary if isinstance(summary, dict) else {})]
-    if missing:
-        raise FeedthermError(f"--calibration: {path} lacks {', '.join(missing)}; is it a calibration.json?")
-    return summary
+    return read_study_summary(folder, "calibration.json", "--calibration", "calibrate",
+                              ("fit_conditions", "parameters", "held_out"))
 
 
 def calibrated_toml(original: LoadedSystem, result: CalibrationResult) -> str:

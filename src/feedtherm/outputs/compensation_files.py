@@ -24,7 +24,7 @@ from ..analysis.compensation.measured import MeasuredPrediction
 from ..analysis.compensation.study import LawResult, StudyResult
 from ..system.load import LoadedSystem
 from . import compensation_plots as plots
-from .files import staged_directory, write_json
+from .files import read_study_summary, staged_directory, write_json
 from .report.compensation import compensation_section
 from .report.html import page
 
@@ -117,19 +117,7 @@ FIGURES = ("error_vs_k.png", "sensor_map.png", "test_cycle.png")
 def read_compensation_summary(folder: Path) -> dict:
     """``{"summary": compensation.json, "figures": {name: PNG bytes}}`` of a study's folder;
     one-line errors naming what is wrong (``feedtherm validate --compensation DIR``)."""
-    import json
-
-    from ..errors import FeedthermError
-
-    path = Path(folder) / "compensation.json"
-    if not path.is_file():
-        raise FeedthermError(f"--compensation: {path} not found (give the output folder of `feedtherm compensate`)")
-    try:
-        document = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError) as exc:
-        raise FeedthermError(f"--compensation: {path} is not readable JSON ({exc})") from None
-    missing = [key for key in ("settings", "curves", "best", "sets") if key not in (document if isinstance(document, dict) else {})]
-    if missing:
-        raise FeedthermError(f"--compensation: {path} lacks {', '.join(missing)}; is it a compensation.json?")
+    document = read_study_summary(folder, "compensation.json", "--compensation", "compensate",
+                                  ("settings", "curves", "best", "sets"))
     figures = {name: (Path(folder) / name).read_bytes() for name in FIGURES if (Path(folder) / name).is_file()}
     return {"summary": document, "figures": figures}

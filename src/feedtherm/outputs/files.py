@@ -306,3 +306,23 @@ def _remove_if_empty(directories: list[Path]) -> None:
             path.rmdir()
         except OSError:
             return
+
+
+def read_study_summary(folder: Path, name: str, option: str, command: str, keys: tuple[str, ...]) -> dict:
+    """The JSON summary ``name`` another command wrote into ``folder``, for ``option``.
+
+    One-line errors name what is wrong: the file missing (and which command writes it), not
+    JSON, or without the ``keys`` such a summary has.
+    """
+    path = Path(folder) / name
+    if not path.is_file():
+        raise FeedthermError(f"{option}: {path} not found (give the output folder of `feedtherm {command}`)")
+    try:
+        document = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        raise FeedthermError(f"{option}: {path} is not readable JSON ({exc})") from None
+    missing = [key for key in keys if key not in (document if isinstance(document, dict) else {})]
+    if missing:
+        raise FeedthermError(f"{option}: {path} lacks {', '.join(missing)}; is it a {name}?")
+    return document
+
