@@ -203,27 +203,38 @@ def _positive_seconds(text: str) -> float:
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:
-    from .analysis.sweep import parse_grid, run_sweep, sensor_labels
+    from .analysis.execution import resolve_execution
+    from .analysis.sweep import SweepFailed, parse_grid, run_sweep, sensor_labels
     from .outputs.files import check_output_dir
     from .outputs.run_files import default_out_dir
     from .system.schema import DEFAULT_DURATION_S
 
     started = time.perf_counter()
+    execution = resolve_execution(args.workers, args.scheduler)
     loaded = _load(args.system)
     grid = parse_grid(args.screw_rpm, args.nut_rpm, args.ambient, drive=loaded.system.kinematics.drive)
     _require_paper_table(loaded, args.mode)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "sweep", args.mode)
     check_output_dir(out_dir)
     # The model is imported only inside run_sweep: every input error above comes first.
+    failures = []
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
-        rows = run_sweep(loaded, grid, mode=args.mode, duration=args.duration, motion=args.motion, progress=progress)
+        try:
+            rows = run_sweep(loaded, grid, mode=args.mode, duration=args.duration, motion=args.motion,
+                             progress=progress, execution=execution)
+        except SweepFailed as failed:  # the points that ran are written; each failed one is a line
+            rows, failures = failed.rows, failed.failures
     from .outputs.sweep_files import summary_line, sweep_title, write_sweep
 
     duration = args.duration if args.duration is not None else DEFAULT_DURATION_S
-    write_sweep(rows, sensor_labels(loaded), out_dir,
-                title=sweep_title(loaded.system.meta.name, args.mode, args.motion, duration))
-    print(summary_line(out_dir, len(rows), time.perf_counter() - started))
-    return 0
+    if rows:
+        write_sweep(rows, sensor_labels(loaded), out_dir,
+                    title=sweep_title(loaded.system.meta.name, args.mode, args.motion, duration))
+        print(summary_line(out_dir, len(rows), time.perf_counter() - started))
+    for failure in failures:
+        print(f"feedtherm: error: {failure}", file=sys.stderr)
+    # 1, not 2: the input was valid and the points that ran are written (2 means nothing was).
+    return 1 if failures else 0
 
 
 class _LazyProgress:
@@ -419,6 +430,16 @@ def _out_argument(parser: argparse.ArgumentParser, default: str) -> None:
     parser.add_argument("--out", metavar="DIR", help=f"output directory (default: {default})")
 
 
+def _execution_arguments(parser: argparse.ArgumentParser) -> None:
+    where = parser.add_mutually_exclusive_group()
+    where.add_argument("--workers", type=_positive_int, metavar="N",
+                       help="run the points on a local Dask cluster of N worker processes (default: one after "
+                            "another in this process; the results are the same)")
+    where.add_argument("--scheduler", metavar="ADDRESS",
+                       help="run the points on the running Dask scheduler at ADDRESS, e.g. tcp://10.0.0.5:8786 "
+                            "(default: $DASK_SCHEDULER_ADDRESS when set); its workers need feedtherm installed")
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="feedtherm", description="Thermal model of machine-tool feed drives.")
     parser.add_argument("--version", action="version", version=f"feedtherm {__version__}")
@@ -482,6 +503,7 @@ def build_parser() -> argparse.ArgumentParser:
                        help="length of every run [s] (default: a condition's, 10800)")
     sweep.add_argument("--motion", choices=["resolved", "averaged"], default="averaged",
                        help="cycle-averaged contacts and heats (default, fast), or the nut's position over time")
+    _execution_arguments(sweep)
     _out_argument(sweep, "out/<system>_sweep_<mode>")
     sweep.set_defaults(func=cmd_sweep)
 

@@ -25,6 +25,7 @@ from ..errors import FeedthermError
 from ..constants import AMBIENT_SENSOR, KELVIN_OFFSET
 from ..system.load import LoadedSystem
 from ..system.variants import with_condition
+from .execution import Execution, TaskFailure, run_ordered
 
 #: A sweep runs at most this many grid points (a typo such as ``0:3000:1`` should not start 3000 runs).
 MAX_POINTS = 500
@@ -191,7 +192,8 @@ def columns(sensors: list[str]) -> list[str]:
 
 
 def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", duration: float | None = None,
-              motion: str = "averaged", progress: Callable[[float], None] | None = None) -> list[dict]:
+              motion: str = "averaged", progress: Callable[[float], None] | None = None,
+              execution: Execution = Execution()) -> list[dict]:
     """Simulate every point of ``grid`` as a constant condition; one row dict per point.
 
     Parameters
@@ -206,6 +208,8 @@ def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", d
         See :func:`~feedtherm.simulate.simulate`; averaged is much faster for long sweeps.
     progress : callable, optional
         Called with the fraction of the whole sweep done (0–1).
+    execution : Execution, optional
+        Where the runs go (:mod:`.execution`); serial by default.  The rows are the same.
 
     Returns
     -------
@@ -214,16 +218,26 @@ def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", d
         ambient [°C], table speed [m/min] (signed, ``(n_screw − n_nut) · lead``), final and
         steady temperatures [°C] and D [µm], equilibrium time [s] (None if not reached) and
         the relative energy-balance error.
+
+    Raises
+    ------
+    SweepFailed
+        When some points failed: it carries the rows of the others (in grid order) and one
+        :class:`~feedtherm.analysis.execution.TaskFailure` per failed point.
     """
     sensors = list(sensor_labels(loaded))
     lead = loaded.system.kinematics.lead
     points = grid.points()
     # Every condition is built (and so validated) before the first run.
     variants = [with_condition(loaded, CONDITION_NAME, screw, nut, ambient, duration) for screw, nut, ambient in points]
-    runs = [SweepRun(variant, {"condition": CONDITION_NAME, "mode": mode, "duration": duration, "motion": motion})
-            for variant in variants]
-    rows = []
-    for (screw, nut, ambient), solution in zip(points, run_batch(runs, progress)):
+    runs = [SweepRun(variant, {"condition": CONDITION_NAME, "mode": mode, "duration": duration, "motion": motion},
+                     label=point_label(screw, nut, ambient))
+            for variant, (screw, nut, ambient) in zip(variants, points)]
+    rows, failures = [], []
+    for (screw, nut, ambient), solution in zip(points, run_batch(runs, progress, execution)):
+        if isinstance(solution, TaskFailure):
+            failures.append(solution)
+            continue
         final, steady = solution.summary_values("final"), solution.summary_values("steady")
         row = {"screw_rpm": screw, "nut_rpm": nut, "ambient_C": ambient, "table_speed_m_per_min": (screw - nut) * lead}
         row.update({f"final_{name}": float(final[name]) for name in sensors})
@@ -233,33 +247,54 @@ def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", d
         row["equilibrium_time_s"] = None if solution.equilibrium_time is None else float(solution.equilibrium_time)
         row["energy_balance_error"] = float(solution.energy.relative_error)
         rows.append(row)
+    if failures:
+        raise SweepFailed(rows, failures, len(points))
     return rows
+
+
+def point_label(screw: float, nut: float, ambient: float) -> str:
+    """A grid point in words, as a failure names it."""
+    return f"point screw {_fmt(screw)} rpm, nut {_fmt(nut)} rpm, ambient {_fmt(ambient)} °C"
+
+
+class SweepFailed(FeedthermError):
+    """Some points of a sweep failed; ``rows`` holds the others' rows, ``failures`` one entry per failed point."""
+
+    def __init__(self, rows: list[dict], failures: list[TaskFailure], total: int):
+        super().__init__(f"{len(failures)} of {total} sweep points failed; the first: {failures[0]}")
+        self.rows, self.failures, self.total = rows, failures, total
 
 
 @dataclass(frozen=True)
 class SweepRun:
-    """One run of a batch: a description and the keyword arguments of :func:`~feedtherm.simulate.simulate`."""
+    """One run of a batch: a description, the keyword arguments of :func:`~feedtherm.simulate.simulate`
+    and what the run is, in words (named when the run fails)."""
 
     loaded: LoadedSystem
     arguments: dict
+    label: str = ""
+
+    def describe(self) -> str:
+        return self.label or self.loaded.origin
 
 
-def run_batch(runs: list[SweepRun], progress: Callable[[float], None] | None = None) -> Iterator:
-    """Simulate each run in turn, yielding its :class:`~feedtherm.solution.Solution` as it ends.
+def run_batch(runs: list[SweepRun], progress: Callable[[float], None] | None = None,
+              execution: Execution = Execution()) -> Iterator:
+    """Simulate every run; yield its :class:`~feedtherm.solution.Solution`, in the order of ``runs``.
 
     The one loop of every batch of runs (the sweep's grid, the training and held-out cycles of a
-    compensation study): runs are independent, so this is where a parallel executor goes.
-    ``progress`` gets the fraction of the whole batch done (0-1).
+    compensation study).  ``execution`` says where the runs go (:mod:`.execution`: serial by
+    default, or on a Dask cluster); the results and their order are the same either way.  A run
+    that fails yields a :class:`~feedtherm.analysis.execution.TaskFailure` naming the run in its
+    place, and the other runs go on.  ``progress`` gets the fraction of the whole batch done (0-1).
     """
+    for _, result in run_ordered(_simulate, runs, execution=execution, describe=SweepRun.describe,
+                                 progress=progress, passes_progress=True):
+        yield result
+
+
+def _simulate(run: SweepRun, progress: Callable[[float], None] | None = None):
+    """One run of a batch, wherever it executes (a worker imports this by name)."""
     from ..simulate import simulate  # the model is loaded only when a batch really runs
 
-    for index, run in enumerate(runs):
-        inner = None if progress is None else _share(progress, index, len(runs))
-        yield simulate(run.loaded, progress=inner, **run.arguments)
-        if progress is not None:
-            progress((index + 1) / len(runs))
-
-
-def _share(progress: Callable[[float], None], index: int, count: int) -> Callable[[float], None]:
-    """One run's progress as its share of the whole sweep."""
-    return lambda fraction: progress((index + min(max(fraction, 0.0), 1.0)) / count)
+    return simulate(run.loaded, progress=progress, **run.arguments)

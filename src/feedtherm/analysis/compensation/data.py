@@ -29,6 +29,7 @@ from ...system.variants import with_values
 from ..candidates import Candidate, with_candidates
 from ..machine_variants import DEFAULT_SPREAD, draw_variant
 from ..random_cycles import CycleRanges, cycle_seed, random_cycle
+from ..execution import TaskFailure
 from ..sweep import SweepRun, run_batch
 
 #: The three sets of a study and their seed streams.
@@ -130,12 +131,15 @@ def simulate_set(loaded: LoadedSystem, candidates: dict[str, Candidate], setting
                                 origin_suffix=f"{name} cycle {index}")
         runs.append(SweepRun(described, {"cycle": CYCLE_NAME, "mode": settings.mode, "model": settings.model,
                                          "motion": settings.motion, "mesh": settings.mesh,
-                                         "sample_interval": settings.sample_interval}))
+                                         "sample_interval": settings.sample_interval},
+                             label=f"{name} cycle {index} of seed {settings.seed}"))
         cycles.append(cycle)
         variants.append(variant)
     names = list(candidates)
     records = []
     for index, solution in enumerate(run_batch(runs, progress)):
+        if isinstance(solution, TaskFailure):  # a study needs every cycle: the first failure ends it
+            raise FeedthermError(str(solution))
         missing = [n for n in names if n not in solution.sensors]
         if missing:  # pragma: no cover - every candidate is a sensor of the run
             raise FeedthermError(f"the run did not report {', '.join(missing)}")

@@ -1,0 +1,115 @@
+"""The execution layer of batches: the choice of executor, results in input order, failures kept."""
+
+import math
+import sys
+import time
+
+import pytest
+
+from feedtherm.analysis.execution import Execution, TaskFailure, resolve_execution, run_ordered
+from feedtherm.errors import FeedthermError
+
+# --------------------------------------------------------------------------- choosing
+
+
+def test_serial_is_the_default_and_one_worker_is_serial():
+    assert resolve_execution(environ={}) == Execution()
+    assert resolve_execution(1, environ={}).serial
+    assert resolve_execution(3, environ={}) == Execution(workers=3)
+
+
+def test_the_scheduler_address_comes_from_the_option_or_the_dask_variable():
+    assert resolve_execution(scheduler="tcp://127.0.0.1:8786", environ={}) == Execution(scheduler="tcp://127.0.0.1:8786")
+    env = {"DASK_SCHEDULER_ADDRESS": "127.0.0.1:8786"}
+    assert resolve_execution(environ=env) == Execution(scheduler="127.0.0.1:8786")
+    # an explicit --workers wins over the environment
+    assert resolve_execution(2, environ=env) == Execution(workers=2)
+    assert resolve_execution(1, environ=env).serial
+
+
+@pytest.mark.parametrize("workers, scheduler, env, fragment", [
+    (0, None, {}, "--workers: must be a positive whole number, got 0"),
+    (2, "127.0.0.1:8786", {}, "--workers and --scheduler: give one"),
+    (None, "localhost", {}, "--scheduler: 'localhost' is not a scheduler address"),
+    (None, "tcp://127.0.0.1:99999", {}, "is not a scheduler address"),
+    (None, "http://127.0.0.1:8786", {}, "is not a scheduler address"),
+    (None, None, {"DASK_SCHEDULER_ADDRESS": "nowhere"}, "DASK_SCHEDULER_ADDRESS: 'nowhere' is not"),
+])
+def test_bad_choices_are_one_line(workers, scheduler, env, fragment):
+    with pytest.raises(FeedthermError) as info:
+        resolve_execution(workers, scheduler, environ=env)
+    assert fragment in str(info.value) and "\n" not in str(info.value)
+
+
+# --------------------------------------------------------------------------- running
+
+
+def slow_square(x):
+    """Earlier inputs take longer, so two workers finish them out of order."""
+    time.sleep(0.05 * (4 - x) if x < 4 else 0.0)
+    if x == 2:
+        raise ValueError(f"no square of {x} today")
+    return x * x
+
+
+def test_serial_results_in_order_with_a_failure_in_its_place():
+    seen = []
+    results = list(run_ordered(math.sqrt, [4.0, -1.0, 9.0], describe=lambda x: f"x = {x:g}", progress=seen.append))
+    assert [index for index, _ in results] == [0, 1, 2]
+    assert results[0][1] == 2.0 and results[2][1] == 3.0
+    failure = results[1][1]
+    assert isinstance(failure, TaskFailure) and failure.index == 1
+    assert str(failure) == "x = -1: ValueError: math domain error"
+    assert seen == pytest.approx([1 / 3, 2 / 3, 1.0])
+
+
+def test_serial_passes_each_run_its_share_of_the_progress():
+    seen = []
+
+    def task(item, progress=None):
+        progress(0.5)
+        return item
+
+    assert [r for _, r in run_ordered(task, ["a", "b"], progress=seen.append, passes_progress=True)] == ["a", "b"]
+    assert seen == pytest.approx([0.25, 0.5, 0.75, 1.0])
+
+
+def test_an_empty_batch_yields_nothing():
+    assert list(run_ordered(math.sqrt, [], execution=Execution(workers=2))) == []
+
+
+@pytest.fixture
+def by_value():
+    """Workers cannot import this test module by name: its functions travel by value."""
+    import cloudpickle
+
+    module = sys.modules[__name__]
+    cloudpickle.register_pickle_by_value(module)
+    yield
+    cloudpickle.unregister_pickle_by_value(module)
+
+
+def test_two_local_workers_give_the_serial_results_in_the_same_order(by_value):
+    items = [0, 1, 2, 3, 4, 5]
+    serial = list(run_ordered(slow_square, items, describe=lambda x: f"x = {x}"))
+    seen = []
+    parallel = list(run_ordered(slow_square, items, execution=Execution(workers=2), describe=lambda x: f"x = {x}",
+                                progress=seen.append))
+    assert parallel == serial
+    assert [i for i, _ in parallel] == items
+    assert parallel[2][1] == TaskFailure(2, "x = 2", "ValueError: no square of 2 today")
+    assert [r for i, r in parallel if i != 2] == [0, 1, 9, 16, 25]
+    assert seen == pytest.approx([k / 6 for k in range(1, 7)])  # the bar moves as runs finish
+
+
+def test_an_unreachable_scheduler_is_one_line(monkeypatch):
+    import socket
+
+    from feedtherm.analysis import execution
+
+    monkeypatch.setattr(execution, "CONNECT_TIMEOUT_S", 2)
+    with socket.socket() as probe:  # a free port on which nothing listens
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    with pytest.raises(FeedthermError, match=f"cannot reach the Dask scheduler at tcp://127.0.0.1:{port} within 2 s"):
+        list(run_ordered(math.sqrt, [1.0], execution=Execution(scheduler=f"tcp://127.0.0.1:{port}")))
