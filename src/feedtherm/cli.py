@@ -383,7 +383,10 @@ def cmd_compensate(args: argparse.Namespace) -> int:
     from .outputs.files import check_output_dir
     from .outputs.run_files import default_out_dir
 
+    from .analysis.execution import resolve_execution
+
     started = time.perf_counter()
+    execution = resolve_execution(args.workers, args.scheduler)
     loaded = _load(args.system)
     _require_paper_table(loaded, args.mode)
     model_entry(args.model)
@@ -403,7 +406,7 @@ def cmd_compensate(args: argparse.Namespace) -> int:
     except FeedthermError:
         data = None
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
-        result = run_study(loaded, settings, request, progress)
+        result = run_study(loaded, settings, request, progress, execution)
     measured = {} if data is None else {kind: predict_measured(r.law, loaded, data)
                                          for kind, r in result.declared.items()}
     write_compensation(result, loaded, out_dir, measured=measured)
@@ -433,10 +436,10 @@ def _out_argument(parser: argparse.ArgumentParser, default: str) -> None:
 def _execution_arguments(parser: argparse.ArgumentParser) -> None:
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--workers", type=_positive_int, metavar="N",
-                       help="run the points on a local Dask cluster of N worker processes (default: one after "
-                            "another in this process; the results are the same)")
+                       help="run the batch's runs on a local Dask cluster of N worker processes (default: one "
+                            "after another in this process; the results are the same)")
     where.add_argument("--scheduler", metavar="ADDRESS",
-                       help="run the points on the running Dask scheduler at ADDRESS, e.g. tcp://10.0.0.5:8786 "
+                       help="run the batch's runs on the running Dask scheduler at ADDRESS, e.g. tcp://10.0.0.5:8786 "
                             "(default: $DASK_SCHEDULER_ADDRESS when set); its workers need feedtherm installed")
 
 
@@ -595,6 +598,7 @@ def build_parser() -> argparse.ArgumentParser:
     compensate.add_argument("--model", default="fast", help="a model of `feedtherm models` (default fast)")
     compensate.add_argument("--mesh", choices=MESHES, default="coarse", help="FE mesh density (with --model fem)")
     _mode_argument(compensate)
+    _execution_arguments(compensate)
     _out_argument(compensate, "out/<system>_compensation_<mode>")
     compensate.set_defaults(func=cmd_compensate)
     return parser

@@ -24,6 +24,17 @@ def study(tmp_path_factory):
     return cwd, run(cwd, "--cycles", "1", "--duration", "3600", "--seed", "4", "--sensors", "2")
 
 
+def test_two_workers_give_the_serial_study(study, tmp_path):
+    """The cycles on a local Dask cluster: the same laws, to the byte."""
+    cwd, serial = study
+    assert serial.returncode == 0, serial.stderr
+    parallel = run(tmp_path, "--cycles", "1", "--duration", "3600", "--seed", "4", "--sensors", "2", "--workers", "2")
+    assert parallel.returncode == 0, parallel.stderr
+    for name in ("law.json", "law_static.json", "compensation.csv"):
+        assert (tmp_path / "out" / "paper_compensation_physics" / name).read_bytes() == \
+            (cwd / "out" / "paper_compensation_physics" / name).read_bytes(), name
+
+
 def test_a_study_writes_its_files_and_one_line(study):
     cwd, result = study
     assert result.returncode == 0, result.stderr

@@ -29,7 +29,7 @@ from ...system.variants import with_values
 from ..candidates import Candidate, with_candidates
 from ..machine_variants import DEFAULT_SPREAD, draw_variant
 from ..random_cycles import CycleRanges, cycle_seed, random_cycle
-from ..execution import TaskFailure
+from ..execution import Execution, TaskFailure
 from ..sweep import SweepRun, run_batch
 
 #: The three sets of a study and their seed streams.
@@ -111,7 +111,7 @@ def speeds_at(cycle: DutyCycle, times: np.ndarray) -> tuple[np.ndarray, np.ndarr
 
 
 def simulate_set(loaded: LoadedSystem, candidates: dict[str, Candidate], settings: StudySettings, name: str,
-                 progress: Callable[[float], None] | None = None) -> CycleSet:
+                 progress: Callable[[float], None] | None = None, execution: Execution = Execution()) -> CycleSet:
     """Draw and simulate the cycles of set ``name`` (``train``, ``validation`` or ``test``).
 
     The training set runs the nominal description; the others run one machine variant per cycle.
@@ -137,7 +137,7 @@ def simulate_set(loaded: LoadedSystem, candidates: dict[str, Candidate], setting
         variants.append(variant)
     names = list(candidates)
     records = []
-    for index, solution in enumerate(run_batch(runs, progress)):
+    for index, solution in enumerate(run_batch(runs, progress, execution)):
         if isinstance(solution, TaskFailure):  # a study needs every cycle: the first failure ends it
             raise FeedthermError(str(solution))
         missing = [n for n in names if n not in solution.sensors]

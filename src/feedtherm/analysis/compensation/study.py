@@ -18,6 +18,7 @@ from ...constants import AMBIENT_SENSOR, ELONGATION_PROBE, KELVIN_OFFSET
 from ...errors import FeedthermError
 from ...system.load import LoadedSystem
 from ..candidates import Candidate, candidate_sensors, with_candidates
+from ..execution import Execution
 from ..random_cycles import SpeedEnvelope
 from .data import CycleSet, StudySettings, simulate_set
 from .kalman import KalmanLaw, KalmanNoise, model_errors, sensor_sigma
@@ -104,8 +105,9 @@ def _closest(name: str, candidates: dict[str, Candidate]) -> str:
 
 
 def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tuple[str, ...],
-              progress: Callable[[float], None] | None = None) -> StudyResult:
-    """Simulate the cycles, choose sensors, fit and judge the laws (see the module's notes)."""
+              progress: Callable[[float], None] | None = None, execution: Execution = Execution()) -> StudyResult:
+    """Simulate the cycles, choose sensors, fit and judge the laws (see the module's notes); the
+    cycles run where ``execution`` says (:mod:`~feedtherm.analysis.execution`: the same results)."""
     candidates = candidate_sensors(loaded.system)
     if isinstance(request, int) and request > len(candidates):
         raise FeedthermError(f"--sensors: K = {request} but there are {len(candidates)} candidate positions")
@@ -113,7 +115,7 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
     names = ("train", "validation", "test")
     for i, name in enumerate(names):
         inner = None if progress is None else (lambda f, i=i: progress((i + f) / len(names)))
-        sets[name] = simulate_set(loaded, candidates, settings, name, inner)
+        sets[name] = simulate_set(loaded, candidates, settings, name, inner, execution)
     n_curve = max(CURVE_SENSORS, request if isinstance(request, int) else 0)
     n_curve = min(n_curve, len(candidates))
     curves, chosen, declared = {}, {}, {}
