@@ -128,7 +128,7 @@ def _serial(function, items, describe, progress, passes_progress) -> Iterator[tu
     for index, item in enumerate(items):
         kwargs = {}
         if passes_progress and progress is not None:
-            kwargs["progress"] = _share(progress, index, count)
+            kwargs["progress"] = progress_share(progress, index, count)
         try:
             result = function(item, **kwargs)
         except Exception as exc:  # one run's failure is reported with its inputs; the others go on
@@ -138,7 +138,7 @@ def _serial(function, items, describe, progress, passes_progress) -> Iterator[tu
             progress((index + 1) / count)
 
 
-def _share(progress: Callable[[float], None], index: int, count: int) -> Callable[[float], None]:
+def progress_share(progress: Callable[[float], None], index: int, count: int) -> Callable[[float], None]:
     """One run's progress as its share of the whole batch."""
     return lambda fraction: progress((index + min(max(fraction, 0.0), 1.0)) / count)
 

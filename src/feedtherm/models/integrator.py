@@ -197,12 +197,11 @@ class Integrator:
         self._orders = {}  # sparsity pattern → elimination order (direct solver; links and dt keep the pattern)
         solver = options.solver
         self.dense = isinstance(model.conductance(0), np.ndarray)
-        self.pardiso = not self.dense and solver != "cg" and model.n_nodes >= pardiso.MIN_UNKNOWNS \
-            and pardiso.available()
+        self.uses_pardiso = not self.dense and solver != "cg" and pardiso.suits(model.n_nodes)
         self.direct = self.dense or solver == "direct" or (
-            solver == "auto" and (model.n_nodes <= DIRECT_SOLVER_LIMIT or self.pardiso))
+            solver == "auto" and (model.n_nodes <= DIRECT_SOLVER_LIMIT or self.uses_pardiso))
         # "auto" keeps PARDISO's factors within a share of the memory and steps the positions beyond it by cg
-        self._budget = pardiso.memory_budget() if self.pardiso and solver == "auto" else None
+        self._budget = pardiso.memory_budget() if self.uses_pardiso and solver == "auto" else None
         self._coarse_space = None
         self.over_budget = 0  # step matrices solved by cg because their factors would exceed the budget
         self.cg_iterations = 0  # conjugate-gradient iterations of every time step so far
@@ -213,7 +212,7 @@ class Integrator:
             return "dense LU"
         if not self.direct:
             return "cg (Jacobi-preconditioned conjugate gradients)"
-        if not self.pardiso:
+        if not self.uses_pardiso:
             return "direct (LU per position)"
         beyond = f"; cg for {self.over_budget} step matrices beyond the memory budget" if self.over_budget else ""
         return f"direct (PARDISO Cholesky per position{beyond})"
@@ -228,7 +227,7 @@ class Integrator:
         """The factors of ``A``, or None when PARDISO's would not fit in the memory budget (cg solves)."""
         if isinstance(A, np.ndarray):
             return _DenseLU(A)
-        if self.pardiso:
+        if self.uses_pardiso:
             if self._budget is not None:
                 held = [f.memory for f in self._lu.values() if isinstance(f, pardiso.PardisoCholesky)]
                 if held and sum(held) + max(held) > self._budget:  # a position's factor is about as large
@@ -437,7 +436,7 @@ class Integrator:
     def run(self, segments: list[Segment], initial: np.ndarray, sample_times: np.ndarray,
             progress: Callable[[float], None] | None = None) -> Trace:
         """Step through ``segments`` from ``initial``, recording at ``sample_times``."""
-        with pardiso.openblas_on_one_thread() if self.pardiso else contextlib.nullcontext():
+        with pardiso.openblas_on_one_thread() if self.uses_pardiso else contextlib.nullcontext():
             return self._run(segments, initial, sample_times, progress)
 
     def _run(self, segments: list[Segment], initial: np.ndarray, sample_times: np.ndarray,

@@ -84,6 +84,11 @@ def openblas_on_one_thread():
     return ThreadpoolController().select(internal_api="openblas").limit(limits=1)
 
 
+def suits(unknowns: int) -> bool:
+    """Whether a sparse matrix of this many unknowns is factorised by PARDISO here."""
+    return unknowns >= MIN_UNKNOWNS and available()
+
+
 def memory_budget() -> float:
     """Bytes the factorisations of one run may hold: :data:`MEMORY_SHARE` of the available memory."""
     try:

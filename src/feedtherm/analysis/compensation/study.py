@@ -18,7 +18,7 @@ from ...constants import AMBIENT_SENSOR, ELONGATION_PROBE, KELVIN_OFFSET
 from ...errors import FeedthermError
 from ...system.load import LoadedSystem
 from ..candidates import Candidate, candidate_sensors, with_candidates
-from ..execution import Execution
+from ..execution import Execution, progress_share
 from ..random_cycles import SpeedEnvelope
 from .data import CycleSet, StudySettings, simulate_set
 from .kalman import KalmanLaw, KalmanNoise, model_errors, sensor_sigma
@@ -114,7 +114,7 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
     sets = {}
     names = ("train", "validation", "test")
     for i, name in enumerate(names):
-        inner = None if progress is None else (lambda f, i=i: progress((i + f) / len(names)))
+        inner = None if progress is None else progress_share(progress, i, len(names))
         sets[name] = simulate_set(loaded, candidates, settings, name, inner, execution)
     n_curve = max(CURVE_SENSORS, request if isinstance(request, int) else 0)
     n_curve = min(n_curve, len(candidates))

@@ -211,7 +211,7 @@ def _build(model: ThermalModel, tolerance: float, time_constants: tuple[float, .
     for tau in (None, *time_constants):
         shift = 0.0 if tau is None else 1.0 / tau
         A = (G_mean + sp.diags(averaged_links + shift * C)).tocsc()
-        if model.n_nodes >= pardiso.MIN_UNKNOWNS and pardiso.available():  # 1.5 s, not SuperLU's 22 s, at the fine mesh
+        if pardiso.suits(model.n_nodes):  # 1.5 s, not SuperLU's 22 s, at the fine mesh
             mean = pardiso.PardisoCholesky(A)
         else:
             mean = factorize(A, order)
