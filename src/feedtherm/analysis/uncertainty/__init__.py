@@ -1,0 +1,1 @@
+"""Uncertainty studies: prediction bands and Sobol indices from the description's declared uncertainties."""
