@@ -204,9 +204,10 @@ def _positive_seconds(text: str) -> float:
 
 def cmd_sweep(args: argparse.Namespace) -> int:
     from .analysis.execution import resolve_execution
-    from .analysis.sweep import SweepFailed, parse_grid, run_sweep, sensor_labels
+    from .analysis.sweep import SweepFailed, columns, parse_grid, point_key, run_sweep, sensor_labels, sweep_settings
     from .outputs.files import check_output_dir
     from .outputs.run_files import default_out_dir
+    from .outputs.sweep_partial import PARTIAL_DIR, PartialSweep
     from .system.schema import DEFAULT_DURATION_S
 
     started = time.perf_counter()
@@ -216,21 +217,40 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     _require_paper_table(loaded, args.mode)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "sweep", args.mode)
     check_output_dir(out_dir)
+    # Every finished point is kept in out_dir/.sweep-partial at once, so that an interrupted
+    # sweep loses at most the runs under way; --resume reads them back.
+    settings = sweep_settings(loaded, mode=args.mode, duration=args.duration, motion=args.motion)
+    keys = [point_key(settings, point) for point in grid.points()]
+    sensors = sensor_labels(loaded)
+    partial = PartialSweep(out_dir, settings, columns(list(sensors)))
+    partial.open(resume=args.resume)
+    known = partial.load(keys) if args.resume else {}
     # The model is imported only inside run_sweep: every input error above comes first.
     failures = []
-    with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
-        try:
-            rows = run_sweep(loaded, grid, mode=args.mode, duration=args.duration, motion=args.motion,
-                             progress=progress, execution=execution)
-        except SweepFailed as failed:  # the points that ran are written; each failed one is a line
-            rows, failures = failed.rows, failed.failures
+    try:
+        with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
+            try:
+                rows = run_sweep(loaded, grid, mode=args.mode, duration=args.duration, motion=args.motion,
+                                 progress=progress, execution=execution, known=known,
+                                 on_row=lambda index, row: partial.save(keys[index], row))
+            except SweepFailed as failed:  # the points that ran are written; each failed one is a line
+                rows, failures = failed.rows, failed.failures
+    except KeyboardInterrupt as stop:
+        kept = partial.count()
+        if not kept:
+            raise
+        raise type(stop)(f"{kept} of {len(keys)} points kept in {partial.folder}; the same command with "
+                         f"--resume runs only the others") from None
     from .outputs.sweep_files import summary_line, sweep_title, write_sweep
 
     duration = args.duration if args.duration is not None else DEFAULT_DURATION_S
     if rows:
-        write_sweep(rows, sensor_labels(loaded), out_dir,
+        # On success the kept points go in the same swap as the new files; with failed points
+        # they stay, so that --resume runs only the failed ones.
+        write_sweep(rows, sensors, out_dir, drop=() if failures else (PARTIAL_DIR,),
                     title=sweep_title(loaded.system.meta.name, args.mode, args.motion, duration))
-        print(summary_line(out_dir, len(rows), time.perf_counter() - started))
+        print(summary_line(out_dir, len(rows), time.perf_counter() - started,
+                           resumed=len(known) if args.resume else None))
     for failure in failures:
         print(f"feedtherm: error: {failure}", file=sys.stderr)
     # 1, not 2: the input was valid and the points that ran are written (2 means nothing was).
@@ -507,6 +527,9 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--motion", choices=["resolved", "averaged"], default="averaged",
                        help="cycle-averaged contacts and heats (default, fast), or the nut's position over time")
     _execution_arguments(sweep)
+    sweep.add_argument("--resume", action="store_true",
+                       help="finish an interrupted sweep into the same --out: the points it kept are read back, "
+                            "only the others run (same grid options, mode, duration and motion)")
     _out_argument(sweep, "out/<system>_sweep_<mode>")
     sweep.set_defaults(func=cmd_sweep)
 
@@ -612,6 +635,11 @@ def _raise_terminated(signum, frame) -> None:
     raise _Terminated()
 
 
+def _what_was_kept(stop: KeyboardInterrupt) -> str:
+    """``; <message>`` where the command said what an interruption left (a sweep's kept points)."""
+    return f"; {stop.args[0]}" if stop.args and isinstance(stop.args[0], str) else ""
+
+
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     # A terminated run unwinds like an interrupted one: staged outputs are removed, worker
@@ -625,11 +653,11 @@ def main(argv: list[str] | None = None) -> int:
     except FeedthermError as exc:
         print(f"feedtherm: error: {exc}", file=sys.stderr)
         return 2
-    except _Terminated:
-        print("feedtherm: terminated", file=sys.stderr)
+    except _Terminated as stop:
+        print(f"feedtherm: terminated{_what_was_kept(stop)}", file=sys.stderr)
         return 128 + signal.SIGTERM
-    except KeyboardInterrupt:
-        print("feedtherm: interrupted", file=sys.stderr)
+    except KeyboardInterrupt as stop:
+        print(f"feedtherm: interrupted{_what_was_kept(stop)}", file=sys.stderr)
         return 130
     finally:
         if previous is not None:
