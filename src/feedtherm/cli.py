@@ -227,6 +227,9 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     known = partial.load(keys) if args.resume else {}
     # The model is imported only inside run_sweep: every input error above comes first.
     failures = []
+    from .outputs.sweep_files import summary_line, sweep_title, write_sweep
+
+    duration = args.duration if args.duration is not None else DEFAULT_DURATION_S
     try:
         with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
             try:
@@ -235,20 +238,18 @@ def cmd_sweep(args: argparse.Namespace) -> int:
                                  on_row=lambda index, row: partial.save(keys[index], row))
             except SweepFailed as failed:  # the points that ran are written; each failed one is a line
                 rows, failures = failed.rows, failed.failures
+        if rows:
+            # On success the kept points go in the same swap as the new files; with failed points
+            # they stay, so that --resume runs only the failed ones.
+            write_sweep(rows, sensors, out_dir, drop=() if failures else (PARTIAL_DIR,),
+                        title=sweep_title(loaded.system.meta.name, args.mode, args.motion, duration))
     except KeyboardInterrupt as stop:
         kept = partial.count()
         if not kept:
             raise
         raise type(stop)(f"{kept} of {len(keys)} points kept in {partial.folder}; the same command with "
                          f"--resume runs only the others") from None
-    from .outputs.sweep_files import summary_line, sweep_title, write_sweep
-
-    duration = args.duration if args.duration is not None else DEFAULT_DURATION_S
     if rows:
-        # On success the kept points go in the same swap as the new files; with failed points
-        # they stay, so that --resume runs only the failed ones.
-        write_sweep(rows, sensors, out_dir, drop=() if failures else (PARTIAL_DIR,),
-                    title=sweep_title(loaded.system.meta.name, args.mode, args.motion, duration))
         print(summary_line(out_dir, len(rows), time.perf_counter() - started,
                            resumed=len(known) if args.resume else None))
     for failure in failures:
@@ -332,6 +333,14 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     from .outputs.files import check_output_dir
     from .outputs.run_files import default_out_dir
 
+    from .analysis.execution import Execution, kept_open, resolve_execution
+
+    execution = resolve_execution(args.workers, args.scheduler)
+    if execution.serial and args.workers is None:
+        # Hundreds of runs in batches of a few: a local cluster of one worker per core, kept for
+        # the whole calibration, gains 1.2-1.5x on 2 cores (benchmarks/README.md); --workers 1 is serial.
+        cores = os.cpu_count() or 1
+        execution = Execution(workers=cores) if cores > 1 else execution
     loaded = _load(args.system)
     _require_paper_table(loaded, args.mode)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "calibration", args.mode)
@@ -346,14 +355,17 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     fit = [c.strip() for c in args.fit.split(",") if c.strip()]
     resolve_parameters(loaded, names)  # unknown names and missing bounds fail before any run
     consistency = check_description_measurements(loaded.system, data)
-    options = {"mode": args.mode, "consistency": consistency, "equilibrium": not args.no_equilibrium,
-               "workers": args.workers, "cache": RunCache()}
-    with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
-        result = calibrate(loaded, data, fit, names, progress=progress, **options)
-    cross = None
-    if args.cross_validate:
+    # One cluster (or one connection to the scheduler) for the fit and every leave-one-out fold:
+    # a calibration is hundreds of short runs in small batches.
+    with kept_open(execution) as running:
+        options = {"mode": args.mode, "consistency": consistency, "equilibrium": not args.no_equilibrium,
+                   "execution": running, "cache": RunCache()}
         with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
-            cross = cross_validate(loaded, data, names, progress=progress, start=result.fitted, **options)
+            result = calibrate(loaded, data, fit, names, progress=progress, **options)
+        cross = None
+        if args.cross_validate:
+            with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
+                cross = cross_validate(loaded, data, names, progress=progress, start=result.fitted, **options)
     write_calibration(loaded, result, out_dir, cross)
     print_calibration(result, out_dir, cross)
     return 0
@@ -453,11 +465,11 @@ def _out_argument(parser: argparse.ArgumentParser, default: str) -> None:
     parser.add_argument("--out", metavar="DIR", help=f"output directory (default: {default})")
 
 
-def _execution_arguments(parser: argparse.ArgumentParser) -> None:
+def _execution_arguments(parser: argparse.ArgumentParser, default: str = "one after another in this process") -> None:
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--workers", type=_positive_int, metavar="N",
-                       help="run the batch's runs on a local Dask cluster of N worker processes (default: one "
-                            "after another in this process; the results are the same)")
+                       help=f"run the batch's runs on a local Dask cluster of N worker processes (default: "
+                            f"{default}; the results are the same)")
     where.add_argument("--scheduler", metavar="ADDRESS",
                        help="run the batch's runs on the running Dask scheduler at ADDRESS, e.g. tcp://10.0.0.5:8786 "
                             "(default: $DASK_SCHEDULER_ADDRESS when set); its workers need feedtherm installed")
@@ -598,13 +610,12 @@ def build_parser() -> argparse.ArgumentParser:
                            help="parameters declared under [calibration.parameters]")
     calibrate.add_argument("--cross-validate", action="store_true",
                            help="also leave each measured condition out in turn and predict it")
-    calibrate.add_argument("--workers", type=_positive_int, default=os.cpu_count() or 1, metavar="N",
-                           help="processes running the conditions side by side (default: the CPU count)")
     calibrate.add_argument("--no-equilibrium", action="store_true",
                            help="fit the final values only, not the measured equilibrium times")
     calibrate.add_argument("--model", choices=("fast",), default="fast",
                            help="calibration runs the fast model (hundreds of runs)")
     _mode_argument(calibrate)
+    _execution_arguments(calibrate, default="one worker per CPU, kept for the whole calibration; 1: serial")
     _out_argument(calibrate, "out/<system>_calibration_<mode>")
     calibrate.set_defaults(func=cmd_calibrate)
 

@@ -212,3 +212,18 @@ def test_a_kept_record_is_the_row_of_its_point(interrupted):
     settings = json.loads((interrupted / PARTIAL_DIR / SETTINGS_JSON).read_text())
     assert {k: settings[k] for k in ("mode", "duration_s", "motion")} == {"mode": "physics", "duration_s": 1800.0,
                                                                          "motion": "averaged"}
+
+
+def test_kept_rows_are_not_run_and_count_as_done_in_the_progress():
+    from feedtherm.analysis.sweep import parse_grid, run_sweep
+    from feedtherm.system.load import load_system
+
+    loaded = load_system("paper")
+    grid = parse_grid("396,1116", "360", "20")
+    rows = run_sweep(loaded, grid, duration=1800)
+    seen, kept = [], []
+    again = run_sweep(loaded, grid, duration=1800, known={0: rows[0]}, progress=seen.append,
+                      on_row=lambda index, row: kept.append((index, row)))
+    assert again == rows
+    assert kept == [(1, rows[1])]  # only the point that ran is handed on to be kept
+    assert seen[0] == 0.5 and seen[-1] == 1.0 and seen == sorted(seen)
