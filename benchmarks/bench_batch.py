@@ -8,11 +8,11 @@ Two figures per execution, both from the command as a user types it, in a child 
 
 - **whole command**: the wall time from start to exit (interpreter, imports, the cluster's
   start-up, the files), best of --repeat, and the points divided by it;
-- **steady state**: runs per second once every process is busy, without the fixed costs before
-  the first run and after the last: ``(points - w) / (t_last - t_w)``, where ``t_w`` is when the
-  w-th point finished and w the number of processes running points (1 serially, --workers on
-  the cluster): the first w points start together, so the w-th completion is where the first
-  wave ends.  A point counts as finished when its record appears in ``<out>/.sweep-partial/``
+- **steady state**: runs per second while every process is busy, without the fixed costs before
+  the first run and after the last and without the ragged end where one process has no point
+  left: ``(points - 2w) / (t[points - w] - t[w])``, where ``t[k]`` is when the k-th point
+  finished and w the number of processes running points (1 serially, --workers on the
+  cluster).  A point counts as finished when its record appears in ``<out>/.sweep-partial/``
   (the sweep keeps each point there at once, for --resume); the folder is polled every 10 ms.
 
 The grid is --points fast-model points (--points / 2 screw speeds evenly from 400 to 900 rpm x
@@ -67,8 +67,8 @@ def sweep(out: Path, points: int, duration: float, motion: str, extra: list[str]
         raise SystemExit(f"the sweep failed: {process.stderr.read()}")
     if len(finished) != points:
         raise SystemExit(f"saw {len(finished)} of {points} points finish; is the run too short to poll?")
-    times = sorted(finished.values())
-    return wall, (points - processes) / (times[-1] - times[processes - 1])
+    times = sorted(finished.values())  # times[k - 1]: when the k-th point finished
+    return wall, (points - 2 * processes) / (times[points - processes - 1] - times[processes - 1])
 
 
 def one_point(duration: float, motion: str) -> float:
@@ -96,8 +96,8 @@ def main() -> None:
     parser.add_argument("--duration", type=float, default=3600.0)
     parser.add_argument("--motion", choices=["resolved", "averaged"], default="resolved")
     args = parser.parse_args()
-    if args.points < 4 or args.points % 2:
-        parser.error("--points: an even number of at least 4")
+    if args.points < 4 * args.workers or args.points % 2:
+        parser.error("--points: an even number of at least 4 per worker")
     point = one_point(args.duration, args.motion)
     with tempfile.TemporaryDirectory() as tmp:
         serial = best([sweep(Path(tmp) / "serial", args.points, args.duration, args.motion, [])

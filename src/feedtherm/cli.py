@@ -225,10 +225,10 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     partial = PartialSweep(out_dir, settings, columns(list(sensors)))
     partial.open(resume=args.resume)
     known = partial.load(keys) if args.resume else {}
-    # The model is imported only inside run_sweep: every input error above comes first.
-    failures = []
     from .outputs.sweep_files import summary_line, sweep_title, write_sweep
 
+    # The model is imported only inside run_sweep: every input error above comes first.
+    failures = []
     duration = args.duration if args.duration is not None else DEFAULT_DURATION_S
     try:
         with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
@@ -245,7 +245,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
                         title=sweep_title(loaded.system.meta.name, args.mode, args.motion, duration))
     except KeyboardInterrupt as stop:
         kept = partial.count()
-        if not kept:
+        if not kept or not partial.folder.is_dir():  # nothing kept, or already swapped out with the files in
             raise
         raise type(stop)(f"{kept} of {len(keys)} points kept in {partial.folder}; the same command with "
                          f"--resume runs only the others") from None

@@ -55,23 +55,31 @@ def slow_reference(tmp_path_factory):
     return (cwd / "ref" / "sweep.csv").read_bytes()
 
 
-@pytest.mark.parametrize("where", [[], ["--workers", "2"]], ids=["serial", "two-workers"])
-def test_ctrl_c_keeps_the_finished_points_and_resume_finishes_with_the_same_csv(tmp_path, slow_reference, where):
-    """SIGINT to the whole process group, as Ctrl-C in a terminal sends it (the local cluster's
-    workers get it too), once two points are on disk."""
+@pytest.mark.parametrize("where, stop", [
+    ([], signal.SIGINT), (["--workers", "2"], signal.SIGINT), ([], signal.SIGTERM),
+], ids=["ctrl-c", "ctrl-c-two-workers", "sigterm"])
+def test_a_stopped_sweep_keeps_the_finished_points_and_resume_finishes_with_the_same_csv(tmp_path, slow_reference,
+                                                                                          where, stop):
+    """Ctrl-C is SIGINT to the whole process group, as a terminal sends it (the local cluster's
+    workers get it too); SIGTERM (a batch system's time limit) goes to feedtherm alone.  Either
+    comes once two points are on disk."""
     out = tmp_path / "out"
     process = sweep(tmp_path, *SLOW_GRID, *where, "--out", "out", start_new_session=True)
     deadline = time.monotonic() + WAIT_S
     while len(records(out)) < 2 and process.poll() is None and time.monotonic() < deadline:
         time.sleep(0.02)
-    assert process.poll() is None, "the sweep ended before it could be interrupted"
-    os.killpg(process.pid, signal.SIGINT)
+    assert process.poll() is None, "the sweep ended before it could be stopped"
+    if stop == signal.SIGINT:
+        os.killpg(process.pid, signal.SIGINT)
+    else:
+        process.send_signal(signal.SIGTERM)
     code, stdout, stderr = finish(process)
     kept = len(records(out))
-    assert code == 130, stderr
+    assert code == 128 + stop, stderr
     assert stdout == ""
     assert 2 <= kept < 6
-    assert stderr.splitlines() == [f"feedtherm: interrupted; {kept} of 6 points kept in out/{PARTIAL_DIR}; "
+    word = "interrupted" if stop == signal.SIGINT else "terminated"
+    assert stderr.splitlines() == [f"feedtherm: {word}; {kept} of 6 points kept in out/{PARTIAL_DIR}; "
                                    "the same command with --resume runs only the others"]
     assert not (out / "sweep.csv").exists()
 

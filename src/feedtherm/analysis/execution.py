@@ -22,6 +22,7 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field, replace
 
 from ..errors import FeedthermError
+from . import dask_worker
 
 #: The variable Dask's own tools read for the scheduler's address.
 SCHEDULER_ENV = "DASK_SCHEDULER_ADDRESS"
@@ -234,7 +235,7 @@ def _client(execution: Execution):
             # The workers ignore Ctrl-C (dask_worker.py): this process stops the batch and the cluster.
             with LocalCluster(n_workers=execution.workers, threads_per_worker=1, processes=True, host=LOCAL_HOST,
                               dashboard_address=None, silence_logs=logging.ERROR,
-                              preload=[f"{__package__}.dask_worker"]) as cluster, \
+                              preload=[dask_worker.__name__]) as cluster, \
                     Client(cluster, set_as_default=False) as client:
                 yield client
     finally:

@@ -63,6 +63,7 @@ class PartialSweep:
         self.settings = dict(settings)
         self.columns = list(columns)
         self._ready = False
+        self._kept: set[str] = set()  # keys of this sweep's points known to be kept whole
 
     # ------------------------------------------------------------------ before the runs
 
@@ -112,6 +113,7 @@ class PartialSweep:
             row = self._read(self.folder / f"{key}.json", key)
             if row is not None:
                 rows[index] = row
+                self._kept.add(key)
         return rows
 
     # ------------------------------------------------------------------ while the runs finish
@@ -123,10 +125,11 @@ class PartialSweep:
             self._write(self.folder / SETTINGS_JSON, {"format": FORMAT, **self.settings})
             self._ready = True
         self._write(self.folder / f"{key}.json", {"format": FORMAT, "key": key, "row": row})
+        self._kept.add(key)
 
     def count(self) -> int:
-        """How many point records the folder holds (read or not)."""
-        return len(self._record_files()) if self.folder.is_dir() else 0
+        """How many points of this sweep are kept whole: read back by :meth:`load`, or saved since."""
+        return len(self._kept)
 
     # ------------------------------------------------------------------ files
 
