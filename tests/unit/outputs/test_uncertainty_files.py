@@ -25,7 +25,7 @@ from feedtherm.outputs.uncertainty_files import (
     write_uncertainty,
 )
 
-# The synthetic study lives beside this file (pytest puts the directory on sys.path).
+# The synthetic study lives in tests/ (pytest puts the directory of tests/conftest.py on sys.path).
 from uncertainty_study import (
     CONDITIONS,
     HALF_WIDTH,

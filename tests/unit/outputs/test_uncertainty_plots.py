@@ -9,6 +9,7 @@ from matplotlib.collections import PolyCollection
 from feedtherm.outputs import uncertainty_plots as plots
 from feedtherm.outputs.report.html import PNG_MAGIC
 
+# The synthetic study lives in tests/ (pytest puts the directory of tests/conftest.py on sys.path).
 from uncertainty_study import CONDITIONS, MEASURED, QUANTITIES, TIMES, make_study, measured, nominal
 
 
