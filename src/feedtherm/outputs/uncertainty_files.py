@@ -186,7 +186,7 @@ def _final_rows(study: UncertaintyStudy):
         for f in uset.finals:
             inside = "" if f.inside is None else str(f.inside).lower()
             yield [uset.label, f.condition, f.quantity, f.unit, _value(f.p05), _value(f.p50), _value(f.p95),
-                   _value(f.nominal), "" if f.measured is None else f"{f.measured:g}", inside, f.flag]
+                   _value(f.nominal), "" if f.measured is None else f"{f.measured:.10g}", inside, f.flag]
 
 
 def _sobol_rows(study: UncertaintyStudy):

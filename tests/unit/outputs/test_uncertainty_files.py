@@ -4,6 +4,7 @@ the JSON read back, the console summary and the report section."""
 from __future__ import annotations
 
 import csv
+import dataclasses
 import io
 import json
 
@@ -253,3 +254,15 @@ def test_the_section_without_a_calibration_or_figures(study):
     html = uncertainty_section(summary(prior_only), {})
     assert "15 of 30 measured values lie inside the prior 5–95 % band" in html
     assert "calibrated" not in html and "<img" not in html
+
+
+def test_a_study_without_measurements_writes_and_says_so(tmp_path):
+    study = make_study()
+    for uset in study.sets:
+        uset.finals = [dataclasses.replace(f, measured=None, flag="") for f in uset.finals]
+    paths = write_uncertainty(study, tmp_path / "out")
+    assert len(paths) == len(ALL_FILES)
+    assert {r["measured"] for r in rows(tmp_path / "out" / "finals.csv")} == {""}
+    html = (tmp_path / "out" / "uncertainty.html").read_text(encoding="utf-8")
+    assert "No measured values to set against the bands." in html
+    assert summary(study)["sets"][0]["coverage"] == {"inside": 0, "total": 0}

@@ -99,6 +99,8 @@ def _width(value, unit: str) -> str:
 
 def coverage_text(sets: list[dict], band: str) -> str:
     """How many measured values lie inside their band before and after calibration, and how much narrower."""
+    if not any(e["coverage"]["total"] for e in sets):
+        return "No measured values to set against the bands."
     counts = [f"{e['coverage']['inside']} of {e['coverage']['total']} measured values lie inside the {e['label']} "
               f"{band} band" for e in sets]
     text = "; ".join(counts) + "."
