@@ -76,7 +76,7 @@ def band_panels(study: UncertaintyStudy, condition: str) -> list[BandPanel]:
     sets = [s for s in study.sets if condition in s.bands]
     if not sets:
         raise ValueError(f"no bands for condition {condition!r}")
-    finals = {(f.quantity): f for f in sets[0].finals if f.condition == condition}
+    finals = {f.quantity: f for f in sets[0].finals if f.condition == condition}
     units = {f.quantity: f.unit for s in study.sets for f in s.finals}
     base = sets[0].bands[condition]
     panels = []
