@@ -18,6 +18,7 @@ import resource
 import time
 
 from feedtherm.analysis.calibration import RunCache, calibrate, cross_validate
+from feedtherm.analysis.execution import Execution, kept_open
 from feedtherm.analysis.consistency import check_description_measurements
 from feedtherm.analysis.validation import measurements_of
 from feedtherm.outputs.calibration_files import worst
@@ -50,10 +51,12 @@ def main() -> None:
 
     started = time.perf_counter()
     consistency = check_description_measurements(loaded.system, data)
-    options = {"consistency": consistency, "workers": args.workers, "cache": RunCache()}
-    result = calibrate(loaded, data, fit, names, **options)
-    first = time.perf_counter() - started
-    folds = cross_validate(loaded, data, names, start=result.fitted, **options)
+    # As the command does: one local cluster (--workers > 1) for the fit and every fold.
+    with kept_open(Execution(workers=args.workers) if args.workers > 1 else Execution()) as running:
+        options = {"consistency": consistency, "execution": running, "cache": RunCache()}
+        result = calibrate(loaded, data, fit, names, **options)
+        first = time.perf_counter() - started
+        folds = cross_validate(loaded, data, names, start=result.fitted, **options)
     total = time.perf_counter() - started
     figures = {
         "machine": f"{platform.processor() or platform.machine()}, {os.cpu_count()} CPUs, "

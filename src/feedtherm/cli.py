@@ -204,9 +204,10 @@ def _positive_seconds(text: str) -> float:
 
 def cmd_sweep(args: argparse.Namespace) -> int:
     from .analysis.execution import resolve_execution
-    from .analysis.sweep import SweepFailed, parse_grid, run_sweep, sensor_labels
+    from .analysis.sweep import SweepFailed, columns, parse_grid, point_key, run_sweep, sensor_labels, sweep_settings
     from .outputs.files import check_output_dir
     from .outputs.run_files import default_out_dir
+    from .outputs.sweep_partial import PARTIAL_DIR, PartialSweep
     from .system.schema import DEFAULT_DURATION_S
 
     started = time.perf_counter()
@@ -216,21 +217,41 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     _require_paper_table(loaded, args.mode)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "sweep", args.mode)
     check_output_dir(out_dir)
-    # The model is imported only inside run_sweep: every input error above comes first.
-    failures = []
-    with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
-        try:
-            rows = run_sweep(loaded, grid, mode=args.mode, duration=args.duration, motion=args.motion,
-                             progress=progress, execution=execution)
-        except SweepFailed as failed:  # the points that ran are written; each failed one is a line
-            rows, failures = failed.rows, failed.failures
+    # Every finished point is kept in out_dir/.sweep-partial at once, so that an interrupted
+    # sweep loses at most the runs under way; --resume reads them back.
+    settings = sweep_settings(loaded, mode=args.mode, duration=args.duration, motion=args.motion)
+    keys = [point_key(settings, point) for point in grid.points()]
+    sensors = sensor_labels(loaded)
+    partial = PartialSweep(out_dir, settings, columns(list(sensors)))
+    partial.open(resume=args.resume)
+    known = partial.load(keys) if args.resume else {}
     from .outputs.sweep_files import summary_line, sweep_title, write_sweep
 
+    # The model is imported only inside run_sweep: every input error above comes first.
+    failures = []
     duration = args.duration if args.duration is not None else DEFAULT_DURATION_S
+    try:
+        with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
+            try:
+                rows = run_sweep(loaded, grid, mode=args.mode, duration=args.duration, motion=args.motion,
+                                 progress=progress, execution=execution, known=known,
+                                 on_row=lambda index, row: partial.save(keys[index], row))
+            except SweepFailed as failed:  # the points that ran are written; each failed one is a line
+                rows, failures = failed.rows, failed.failures
+        if rows:
+            # On success the kept points go in the same swap as the new files; with failed points
+            # they stay, so that --resume runs only the failed ones.
+            write_sweep(rows, sensors, out_dir, drop=() if failures else (PARTIAL_DIR,),
+                        title=sweep_title(loaded.system.meta.name, args.mode, args.motion, duration))
+    except KeyboardInterrupt as stop:
+        kept = partial.count()
+        if not kept or not partial.folder.is_dir():  # nothing kept, or already swapped out with the files in
+            raise
+        raise type(stop)(f"{kept} of {len(keys)} points kept in {partial.folder}; the same command with "
+                         f"--resume runs only the others") from None
     if rows:
-        write_sweep(rows, sensor_labels(loaded), out_dir,
-                    title=sweep_title(loaded.system.meta.name, args.mode, args.motion, duration))
-        print(summary_line(out_dir, len(rows), time.perf_counter() - started))
+        print(summary_line(out_dir, len(rows), time.perf_counter() - started,
+                           resumed=len(known) if args.resume else None))
     for failure in failures:
         print(f"feedtherm: error: {failure}", file=sys.stderr)
     # 1, not 2: the input was valid and the points that ran are written (2 means nothing was).
@@ -316,6 +337,14 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     from .outputs.files import check_output_dir
     from .outputs.run_files import default_out_dir
 
+    from .analysis.execution import Execution, kept_open, resolve_execution
+
+    execution = resolve_execution(args.workers, args.scheduler)
+    if execution.serial and args.workers is None:
+        # Hundreds of runs in batches of a few: a local cluster of one worker per core, kept for
+        # the whole calibration, gains 1.2-1.5x on 2 cores (benchmarks/README.md); --workers 1 is serial.
+        cores = os.cpu_count() or 1
+        execution = Execution(workers=cores) if cores > 1 else execution
     loaded = _load(args.system)
     _require_paper_table(loaded, args.mode)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "calibration", args.mode)
@@ -330,14 +359,17 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     fit = [c.strip() for c in args.fit.split(",") if c.strip()]
     resolve_parameters(loaded, names)  # unknown names and missing bounds fail before any run
     consistency = check_description_measurements(loaded.system, data)
-    options = {"mode": args.mode, "consistency": consistency, "equilibrium": not args.no_equilibrium,
-               "workers": args.workers, "cache": RunCache()}
-    with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
-        result = calibrate(loaded, data, fit, names, progress=progress, **options)
-    cross = None
-    if args.cross_validate:
+    # One cluster (or one connection to the scheduler) for the fit and every leave-one-out fold:
+    # a calibration is hundreds of short runs in small batches.
+    with kept_open(execution) as running:
+        options = {"mode": args.mode, "consistency": consistency, "equilibrium": not args.no_equilibrium,
+                   "execution": running, "cache": RunCache()}
         with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
-            cross = cross_validate(loaded, data, names, progress=progress, start=result.fitted, **options)
+            result = calibrate(loaded, data, fit, names, progress=progress, **options)
+        cross = None
+        if args.cross_validate:
+            with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
+                cross = cross_validate(loaded, data, names, progress=progress, start=result.fitted, **options)
     write_calibration(loaded, result, out_dir, cross)
     print_calibration(result, out_dir, cross)
     return 0
@@ -437,11 +469,11 @@ def _out_argument(parser: argparse.ArgumentParser, default: str) -> None:
     parser.add_argument("--out", metavar="DIR", help=f"output directory (default: {default})")
 
 
-def _execution_arguments(parser: argparse.ArgumentParser) -> None:
+def _execution_arguments(parser: argparse.ArgumentParser, default: str = "one after another in this process") -> None:
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--workers", type=_positive_int, metavar="N",
-                       help="run the batch's runs on a local Dask cluster of N worker processes (default: one "
-                            "after another in this process; the results are the same)")
+                       help=f"run the batch's runs on a local Dask cluster of N worker processes (default: "
+                            f"{default}; the results are the same)")
     where.add_argument("--scheduler", metavar="ADDRESS",
                        help="run the batch's runs on the running Dask scheduler at ADDRESS, e.g. tcp://10.0.0.5:8786 "
                             "(default: $DASK_SCHEDULER_ADDRESS when set); its workers need feedtherm installed")
@@ -511,6 +543,9 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--motion", choices=["resolved", "averaged"], default="averaged",
                        help="cycle-averaged contacts and heats (default, fast), or the nut's position over time")
     _execution_arguments(sweep)
+    sweep.add_argument("--resume", action="store_true",
+                       help="finish an interrupted sweep into the same --out: the points it kept are read back, "
+                            "only the others run (same grid options, mode, duration and motion)")
     _out_argument(sweep, "out/<system>_sweep_<mode>")
     sweep.set_defaults(func=cmd_sweep)
 
@@ -582,13 +617,12 @@ def build_parser() -> argparse.ArgumentParser:
                            help="parameters declared under [calibration.parameters]")
     calibrate.add_argument("--cross-validate", action="store_true",
                            help="also leave each measured condition out in turn and predict it")
-    calibrate.add_argument("--workers", type=_positive_int, default=os.cpu_count() or 1, metavar="N",
-                           help="processes running the conditions side by side (default: the CPU count)")
     calibrate.add_argument("--no-equilibrium", action="store_true",
                            help="fit the final values only, not the measured equilibrium times")
     calibrate.add_argument("--model", choices=("fast",), default="fast",
                            help="calibration runs the fast model (hundreds of runs)")
     _mode_argument(calibrate)
+    _execution_arguments(calibrate, default="one worker per CPU, kept for the whole calibration; 1: serial")
     _out_argument(calibrate, "out/<system>_calibration_<mode>")
     calibrate.set_defaults(func=cmd_calibrate)
 
@@ -619,6 +653,11 @@ def _raise_terminated(signum, frame) -> None:
     raise _Terminated()
 
 
+def _what_was_kept(stop: KeyboardInterrupt) -> str:
+    """``; <message>`` where the command said what an interruption left (a sweep's kept points)."""
+    return f"; {stop.args[0]}" if stop.args and isinstance(stop.args[0], str) else ""
+
+
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     # A terminated run unwinds like an interrupted one: staged outputs are removed, worker
@@ -632,11 +671,11 @@ def main(argv: list[str] | None = None) -> int:
     except FeedthermError as exc:
         print(f"feedtherm: error: {exc}", file=sys.stderr)
         return 2
-    except _Terminated:
-        print("feedtherm: terminated", file=sys.stderr)
+    except _Terminated as stop:
+        print(f"feedtherm: terminated{_what_was_kept(stop)}", file=sys.stderr)
         return 128 + signal.SIGTERM
-    except KeyboardInterrupt:
-        print("feedtherm: interrupted", file=sys.stderr)
+    except KeyboardInterrupt as stop:
+        print(f"feedtherm: interrupted{_what_was_kept(stop)}", file=sys.stderr)
         return 130
     finally:
         if previous is not None:

@@ -20,11 +20,10 @@ through the model's sensitivities, plus the measurement's own scatter), and
 
 from __future__ import annotations
 
+import contextlib
 import math
-import multiprocessing as mp
 import re
 import time
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -41,6 +40,7 @@ from ..system.quantities import to_base_si
 from ..system.references import closest
 from ..system.variants import get_path, with_values
 from .consistency import ConsistencyReport
+from .execution import Execution, TaskFailure, kept_open, run_ordered
 from .measurements import MeasurementSet
 from .validation_types import ELONGATION_QUANTITY
 
@@ -191,6 +191,30 @@ def _final_values(loaded: LoadedSystem, condition: str, mode: str) -> dict[str, 
     return values
 
 
+@dataclass(frozen=True)
+class _CalibrationRun:
+    """One run of a calibration request: a description with the parameters applied, a condition."""
+
+    loaded: LoadedSystem
+    condition: str
+    mode: str
+
+    def describe(self) -> str:
+        return f"condition {self.condition} of {self.loaded.origin}"
+
+
+def _calibration_run(run: _CalibrationRun) -> dict[str, float]:
+    """One run, wherever it executes (a worker imports this by name)."""
+    return _final_values(run.loaded, run.condition, run.mode)
+
+
+def _value(result):
+    """A run's values; a run that failed on a worker fails the calibration, as it would serially."""
+    if isinstance(result, TaskFailure):
+        raise FeedthermError(f"a calibration run failed: {result}")
+    return result
+
+
 class RunCache:
     """Final values of runs already made, by parameter values and condition.
 
@@ -221,25 +245,32 @@ SENSITIVITY_STEP = 0.01
 class _Model:
     """Final values (and the time to 95 % of the steady rise) of conditions, counting the runs.
 
-    With ``workers`` > 1 the runs of one request run in parallel processes (the runs are
-    independent).  ``cache`` keeps every run's values for later requests of the same point.
+    ``execution`` says where the runs of one request go (:mod:`.execution`): serially, or side by
+    side on a Dask cluster, which is started (or reached) at the first request that has more than
+    one run and kept until the model is closed; pass one already kept open
+    (:func:`~feedtherm.analysis.execution.kept_open`) to share it between calibrations.
+    ``workers`` > 1 without ``execution`` is a local cluster of that many processes.  The values
+    are the same wherever the runs go.  ``cache`` keeps every run's values for later requests of
+    the same point.
     """
 
     def __init__(self, loaded: LoadedSystem, parameters: list[FitParameter], mode: str, workers: int = 1,
-                 cache: RunCache | None = None):
+                 cache: RunCache | None = None, execution: Execution | None = None):
         self.loaded, self.parameters, self.mode = loaded, parameters, mode
         self.runs = 0
-        self.workers = max(1, workers)
+        if execution is None:
+            execution = Execution(workers=workers) if workers > 1 else Execution()
+        self.execution = execution
         self.cache = cache if cache is not None else RunCache()
-        self._pool: ProcessPoolExecutor | None = None
+        self._open = contextlib.ExitStack()
+        self._running: Execution | None = None
 
     def __enter__(self) -> "_Model":
         return self
 
     def __exit__(self, *exc) -> None:
-        if self._pool is not None:
-            self._pool.shutdown()
-            self._pool = None
+        self._open.close()  # the cluster this model started, if any
+        self._running = None
 
     def _key(self, x, condition: str) -> tuple:
         # 12 significant digits: a point that went through the fit's [0, 1] scaling and back
@@ -258,17 +289,21 @@ class _Model:
         if missing:
             variants = {i: apply(self.loaded, self.parameters, points[i]) for i in {i for i, _ in missing}}
             self.runs += len(missing)
-            if self.workers == 1 or len(missing) == 1:
-                values = [_final_values(variants[i], c, self.mode) for i, c in missing]
+            runs = [_CalibrationRun(variants[i], c, self.mode) for i, c in missing]
+            if self.execution.serial or len(runs) == 1:
+                values = [_calibration_run(run) for run in runs]
             else:
-                if self._pool is None:
-                    context = mp.get_context("fork" if "fork" in mp.get_all_start_methods() else "spawn")
-                    self._pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=context)
-                futures = [self._pool.submit(_final_values, variants[i], c, self.mode) for i, c in missing]
-                values = [f.result() for f in futures]
+                values = [_value(result) for _, result in
+                          run_ordered(_calibration_run, runs, execution=self._cluster(),
+                                      describe=_CalibrationRun.describe)]
             for (i, c), v in zip(missing, values):
                 self.cache.put(self._key(points[i], c), v)
         return [{c: self.cache.get(self._key(x, c)) for c in conditions} for x in points]
+
+    def _cluster(self) -> Execution:
+        if self._running is None:
+            self._running = self._open.enter_context(kept_open(self.execution))
+        return self._running
 
     def sensitivities(self, x, lower, upper, conditions: list[str]):
         """Values at ``x`` and their forward differences per parameter, all runs side by side.
@@ -334,13 +369,17 @@ def _sigma(loaded: LoadedSystem, unit: str) -> float:
 def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names: list[str], *,
               mode: str = "physics", progress: Callable[[float], None] | None = None,
               consistency: ConsistencyReport | None = None, equilibrium: bool = True,
-              start: np.ndarray | None = None, workers: int = 1, cache: RunCache | None = None) -> CalibrationResult:
+              start: np.ndarray | None = None, workers: int = 1, cache: RunCache | None = None,
+              execution: Execution | None = None) -> CalibrationResult:
     """Fit the parameters ``names`` to the conditions ``fit``; predict every other condition.
 
     ``consistency``: values it flags are left out of the fit (and reported with their reason).
     ``equilibrium``: also fit the stated equilibrium times of the fitted conditions.
     ``start``: the parameter values to start from (default: the description's, clipped to the bounds).
-    ``workers``: processes that run the conditions of one evaluation side by side.
+    ``execution``: where the runs of one evaluation go, side by side (:mod:`.execution`; serial by
+    default; pass one kept open, :func:`~feedtherm.analysis.execution.kept_open`, to start a
+    cluster once for many calibrations); ``workers`` > 1 without it: a local cluster of that many
+    processes for this calibration.  The numbers are the same either way.
     ``cache``: runs already made (shared with a later :func:`cross_validate`).
     """
     started = time.perf_counter()
@@ -356,7 +395,7 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
     rows = [r for r in fitted_data if not r.flag]
     if len(rows) < len(parameters):
         raise FeedthermError(f"--fit: {len(rows)} measured values cannot determine {len(parameters)} parameters")
-    with _Model(loaded, parameters, mode, workers, cache) as model:
+    with _Model(loaded, parameters, mode, workers, cache, execution) as model:
         sigma = np.array([_sigma(loaded, r.unit) for r in rows])
         target = np.array([r.measured for r in rows])
         lower = np.array([p.lower for p in parameters])
@@ -517,7 +556,8 @@ def _uncertainty(jac: np.ndarray, fun: np.ndarray, x: np.ndarray, m: int):
 def cross_validate(loaded: LoadedSystem, data: MeasurementSet, names: list[str], *, mode: str = "physics",
                    progress: Callable[[float], None] | None = None, consistency: ConsistencyReport | None = None,
                    equilibrium: bool = True, start: np.ndarray | None = None,
-                   workers: int = 1, cache: RunCache | None = None) -> list[tuple[str, CalibrationResult]]:
+                   workers: int = 1, cache: RunCache | None = None,
+                   execution: Execution | None = None) -> list[tuple[str, CalibrationResult]]:
     """Leave each measured condition out in turn: fit on the rest, predict the one left out.
 
     ``start``: where every fold's fit starts (a fit on all the conditions is a good start:
@@ -525,14 +565,17 @@ def cross_validate(loaded: LoadedSystem, data: MeasurementSet, names: list[str],
     folds reuse its values and sensitivities at their common start.
     """
     cache = cache if cache is not None else RunCache()
+    if execution is None:
+        execution = Execution(workers=workers) if workers > 1 else Execution()
     conditions = [c for c in data.conditions() if c in loaded.system.conditions]
     out = []
-    for i, left_out in enumerate(conditions):
-        fit = [c for c in conditions if c != left_out]
-        out.append((left_out, calibrate(loaded, data, fit, names, mode=mode, consistency=consistency,
-                                        equilibrium=equilibrium, start=start, workers=workers, cache=cache)))
-        if progress is not None:
-            progress((i + 1) / len(conditions))
+    with kept_open(execution) as running:  # one cluster for every fold
+        for i, left_out in enumerate(conditions):
+            fit = [c for c in conditions if c != left_out]
+            out.append((left_out, calibrate(loaded, data, fit, names, mode=mode, consistency=consistency,
+                                            equilibrium=equilibrium, start=start, cache=cache, execution=running)))
+            if progress is not None:
+                progress((i + 1) / len(conditions))
     return out
 
 

@@ -19,9 +19,10 @@ import logging
 import os
 import re
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 from ..errors import FeedthermError
+from . import dask_worker
 
 #: The variable Dask's own tools read for the scheduler's address.
 SCHEDULER_ENV = "DASK_SCHEDULER_ADDRESS"
@@ -46,6 +47,9 @@ class Execution:
     workers: int | None = None
     #: Address of a running Dask scheduler; None: no existing cluster.
     scheduler: str | None = None
+    #: A Dask client already connected (set by :func:`kept_open`): batches run on it and leave it
+    #: open, instead of each starting and stopping a cluster of its own.
+    client: object | None = field(default=None, compare=False, repr=False)
 
     @property
     def serial(self) -> bool:
@@ -105,25 +109,29 @@ class TaskFailure:
 
 def run_ordered(function: Callable, items: Sequence, *, execution: Execution = Execution(),
                 describe: Callable[[object], str] = repr, progress: Callable[[float], None] | None = None,
-                passes_progress: bool = False) -> Iterator[tuple[int, object]]:
+                passes_progress: bool = False,
+                on_done: Callable[[int, object], None] | None = None) -> Iterator[tuple[int, object]]:
     """Call ``function(item)`` for every item; yield ``(index, result)`` in the order of ``items``.
 
     A result is a :class:`TaskFailure` where the call raised an ``Exception`` (its text from
     ``describe(item)``); the other tasks go on.  ``progress`` gets the fraction of the batch
     done (0-1).  Serially, with ``passes_progress``, ``function`` is also called with
     ``progress=`` its share of the batch, so a long single run moves the bar; on a cluster the
-    bar moves as runs finish.  ``function`` and the items must pickle when ``execution`` is not
-    serial (a module-level function; workers import it by name).
+    bar moves as runs finish.  ``on_done(index, result)`` is called in this process as soon as
+    each task finishes, in the order they finish (on a cluster a result may wait there for an
+    earlier one before it is yielded): the place to keep a result on disk at once.
+    ``function`` and the items must pickle when ``execution`` is not serial (a module-level
+    function; workers import it by name).
     """
     if not items:
         return
     if execution.serial:
-        yield from _serial(function, items, describe, progress, passes_progress)
+        yield from _serial(function, items, describe, progress, passes_progress, on_done)
     else:
-        yield from _on_dask(function, items, execution, describe, progress)
+        yield from _on_dask(function, items, execution, describe, progress, on_done)
 
 
-def _serial(function, items, describe, progress, passes_progress) -> Iterator[tuple[int, object]]:
+def _serial(function, items, describe, progress, passes_progress, on_done) -> Iterator[tuple[int, object]]:
     count = len(items)
     for index, item in enumerate(items):
         kwargs = {}
@@ -133,6 +141,8 @@ def _serial(function, items, describe, progress, passes_progress) -> Iterator[tu
             result = function(item, **kwargs)
         except Exception as exc:  # one run's failure is reported with its inputs; the others go on
             result = TaskFailure(index, describe(item), _message(exc))
+        if on_done is not None:
+            on_done(index, result)
         yield index, result
         if progress is not None:
             progress((index + 1) / count)
@@ -143,7 +153,7 @@ def progress_share(progress: Callable[[float], None], index: int, count: int) ->
     return lambda fraction: progress((index + min(max(fraction, 0.0), 1.0)) / count)
 
 
-def _on_dask(function, items, execution, describe, progress) -> Iterator[tuple[int, object]]:
+def _on_dask(function, items, execution, describe, progress, on_done) -> Iterator[tuple[int, object]]:
     from distributed import as_completed
 
     count = len(items)
@@ -163,6 +173,8 @@ def _on_dask(function, items, execution, describe, progress) -> Iterator[tuple[i
                     message = _message(error) if error is not None else f"the run was {future.status} by the cluster"
                     finished[index] = TaskFailure(index, describe(items[index]), message)
                 future.release()  # the result is here now: the cluster need not keep it
+                if on_done is not None:
+                    on_done(index, finished[index])
                 done += 1
                 if progress is not None:
                     progress(done / count)
@@ -176,7 +188,31 @@ def _on_dask(function, items, execution, describe, progress) -> Iterator[tuple[i
 
 
 @contextlib.contextmanager
+def kept_open(execution: Execution) -> Iterator[Execution]:
+    """``execution`` with its cluster started (or its scheduler reached) once, for many batches.
+
+    A calibration asks for hundreds of small batches: starting a local cluster for each would
+    cost more than the runs.  Inside the block, :func:`run_ordered` with the execution this
+    yields submits to the one open client; the cluster stops when the block ends (also on
+    Ctrl-C).  A serial execution, or one already kept open, is yielded as it is.
+
+    Raises
+    ------
+    FeedthermError
+        The scheduler cannot be reached (one line), as :func:`run_ordered` would.
+    """
+    if execution.serial or execution.client is not None:
+        yield execution
+        return
+    with _client(execution) as client:
+        yield replace(execution, client=client)
+
+
+@contextlib.contextmanager
 def _client(execution: Execution):
+    if execution.client is not None:  # kept open by the caller, who closes it
+        yield execution.client
+        return
     from distributed import Client, LocalCluster
 
     # Dask logs connection chatter (a worker leaving, a closed stream) as warnings on stderr; a
@@ -196,8 +232,10 @@ def _client(execution: Execution):
         else:
             # Processes with one thread each: a run holds the GIL, and the numerical libraries
             # inside a worker stay on one thread (Dask sets OMP/MKL/OpenBLAS to 1 for its workers).
+            # The workers ignore Ctrl-C (dask_worker.py): this process stops the batch and the cluster.
             with LocalCluster(n_workers=execution.workers, threads_per_worker=1, processes=True, host=LOCAL_HOST,
-                              dashboard_address=None, silence_logs=logging.ERROR) as cluster, \
+                              dashboard_address=None, silence_logs=logging.ERROR,
+                              preload=[dask_worker.__name__]) as cluster, \
                     Client(cluster, set_as_default=False) as client:
                 yield client
     finally:

@@ -14,10 +14,12 @@ The CSV and the plots of a sweep are written by :mod:`feedtherm.outputs.sweep_fi
 
 from __future__ import annotations
 
+import hashlib
 import itertools
+import json
 import math
 import re
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation
 
@@ -193,7 +195,8 @@ def columns(sensors: list[str]) -> list[str]:
 
 def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", duration: float | None = None,
               motion: str = "averaged", progress: Callable[[float], None] | None = None,
-              execution: Execution = Execution()) -> list[dict]:
+              execution: Execution = Execution(), known: Mapping[int, dict] | None = None,
+              on_row: Callable[[int, dict], None] | None = None) -> list[dict]:
     """Simulate every point of ``grid`` as a constant condition; one row dict per point.
 
     Parameters
@@ -207,9 +210,15 @@ def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", d
     motion : {"resolved", "averaged"}
         See :func:`~feedtherm.simulate.simulate`; averaged is much faster for long sweeps.
     progress : callable, optional
-        Called with the fraction of the whole sweep done (0–1).
+        Called with the fraction of the whole sweep done (0–1), the known points counted as done.
     execution : Execution, optional
         Where the runs go (:mod:`.execution`); serial by default.  The rows are the same.
+    known : mapping, optional
+        Rows already computed (an interrupted sweep's, see :func:`point_key`), by the point's
+        index in :meth:`SweepGrid.points`: those points are not run again.
+    on_row : callable, optional
+        ``on_row(index, row)`` as soon as each point that runs has finished (in the order they
+        finish): where a caller keeps it on disk.  Not called for failed points.
 
     Returns
     -------
@@ -228,28 +237,73 @@ def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", d
     sensors = list(sensor_labels(loaded))
     lead = loaded.system.kinematics.lead
     points = grid.points()
+    known = dict(known or {})
     # Every condition is built (and so validated) before the first run.
     variants = [with_condition(loaded, CONDITION_NAME, screw, nut, ambient, duration) for screw, nut, ambient in points]
-    runs = [SweepRun(variant, {"condition": CONDITION_NAME, "mode": mode, "duration": duration, "motion": motion},
-                     label=point_label(screw, nut, ambient))
-            for variant, (screw, nut, ambient) in zip(variants, points)]
-    rows, failures = [], []
-    for (screw, nut, ambient), solution in zip(points, run_batch(runs, progress, execution)):
+    todo = [index for index in range(len(points)) if index not in known]
+    runs = [SweepRun(variants[index], {"condition": CONDITION_NAME, "mode": mode, "duration": duration,
+                                       "motion": motion}, label=point_label(*points[index]))
+            for index in todo]
+
+    def done(position: int, solution) -> None:
+        if on_row is not None and not isinstance(solution, TaskFailure):
+            on_row(todo[position], _row(points[todo[position]], solution, sensors, lead))
+
+    results = dict(known)
+    failures = []
+    share = None if progress is None else _remaining_share(progress, len(known), len(points))
+    for index, solution in zip(todo, run_batch(runs, share, execution, on_done=done)):
         if isinstance(solution, TaskFailure):
             failures.append(solution)
-            continue
-        final, steady = solution.summary_values("final"), solution.summary_values("steady")
-        row = {"screw_rpm": screw, "nut_rpm": nut, "ambient_C": ambient, "table_speed_m_per_min": (screw - nut) * lead}
-        row.update({f"final_{name}": float(final[name]) for name in sensors})
-        row["final_D_um"] = float(final["D_um"])
-        row.update({f"steady_{name}": float(steady[name]) for name in sensors})
-        row["steady_D_um"] = float(steady["D_um"])
-        row["equilibrium_time_s"] = None if solution.equilibrium_time is None else float(solution.equilibrium_time)
-        row["energy_balance_error"] = float(solution.energy.relative_error)
-        rows.append(row)
+        else:
+            results[index] = _row(points[index], solution, sensors, lead)
+    rows = [results[index] for index in range(len(points)) if index in results]
     if failures:
         raise SweepFailed(rows, failures, len(points))
     return rows
+
+
+def _remaining_share(progress: Callable[[float], None], known: int, total: int) -> Callable[[float], None]:
+    """The progress of the points still to run as a fraction of the whole sweep."""
+    progress(known / total)
+    return lambda fraction: progress((known + fraction * (total - known)) / total)
+
+
+def _row(point: tuple[float, float, float], solution, sensors: list[str], lead: float) -> dict:
+    """One point's row (see :func:`run_sweep`) from its solution."""
+    screw, nut, ambient = point
+    final, steady = solution.summary_values("final"), solution.summary_values("steady")
+    row = {"screw_rpm": screw, "nut_rpm": nut, "ambient_C": ambient, "table_speed_m_per_min": (screw - nut) * lead}
+    row.update({f"final_{name}": float(final[name]) for name in sensors})
+    row["final_D_um"] = float(final["D_um"])
+    row.update({f"steady_{name}": float(steady[name]) for name in sensors})
+    row["steady_D_um"] = float(steady["D_um"])
+    row["equilibrium_time_s"] = None if solution.equilibrium_time is None else float(solution.equilibrium_time)
+    row["energy_balance_error"] = float(solution.energy.relative_error)
+    return row
+
+
+def sweep_settings(loaded: LoadedSystem, *, mode: str, duration: float | None, motion: str) -> dict:
+    """What every point of a sweep shares: the description (by its digest), mode, duration, motion
+    and the feedtherm version that computes it (plain JSON types)."""
+    from .. import __version__
+
+    return {"feedtherm": __version__, "description": loaded.origin, "description_sha256": loaded.sha256,
+            "mode": mode, "duration_s": duration, "motion": motion}
+
+
+def point_key(settings: dict, point: tuple[float, float, float]) -> str:
+    """A digest of one point's full inputs: :func:`sweep_settings` and its speeds and ambient.
+
+    A row kept under this key is the row the same point of the same sweep would give; a point of
+    a sweep with another description, mode, duration, motion or feedtherm version has another
+    key.  The description's origin (its path) is left out: the same description moved is the
+    same description.
+    """
+    inputs = {key: value for key, value in settings.items() if key != "description"}
+    inputs["point"] = [float(value) for value in point]
+    text = json.dumps(inputs, sort_keys=True, allow_nan=False)
+    return hashlib.sha256(text.encode()).hexdigest()
 
 
 def point_label(screw: float, nut: float, ambient: float) -> str:
@@ -279,7 +333,8 @@ class SweepRun:
 
 
 def run_batch(runs: list[SweepRun], progress: Callable[[float], None] | None = None,
-              execution: Execution = Execution()) -> Iterator:
+              execution: Execution = Execution(), *,
+              on_done: Callable[[int, object], None] | None = None) -> Iterator:
     """Simulate every run; yield its :class:`~feedtherm.solution.Solution`, in the order of ``runs``.
 
     The one loop of every batch of runs (the sweep's grid, the training and held-out cycles of a
@@ -287,9 +342,11 @@ def run_batch(runs: list[SweepRun], progress: Callable[[float], None] | None = N
     default, or on a Dask cluster); the results and their order are the same either way.  A run
     that fails yields a :class:`~feedtherm.analysis.execution.TaskFailure` naming the run in its
     place, and the other runs go on.  ``progress`` gets the fraction of the whole batch done (0-1).
+    ``on_done(index, result)`` as soon as each run finishes (see
+    :func:`~feedtherm.analysis.execution.run_ordered`).
     """
     for _, result in run_ordered(_simulate, runs, execution=execution, describe=SweepRun.describe,
-                                 progress=progress, passes_progress=True):
+                                 progress=progress, passes_progress=True, on_done=on_done):
         yield result
 
 

@@ -45,7 +45,8 @@ _MAX_VALUE_TICKS = 10
 _MAX_LABELLED_CELLS = 120
 
 
-def write_sweep(rows: list[dict], sensors: dict[str, str], out_dir: Path, *, title: str = "") -> list[Path]:
+def write_sweep(rows: list[dict], sensors: dict[str, str], out_dir: Path, *, title: str = "",
+                drop: tuple[str, ...] = ()) -> list[Path]:
     """Write ``sweep.csv`` and the plots into ``out_dir``; return the written paths.
 
     Parameters
@@ -59,9 +60,13 @@ def write_sweep(rows: list[dict], sensors: dict[str, str], out_dir: Path, *, tit
         whole, also plots this sweep does not draw; other files are kept.
     title : str
         What the sweep ran (description, mode, motion, duration), shown on every plot.
+    drop : tuple of str
+        Other entries of ``out_dir`` that go in the same swap (the kept rows of a finished
+        sweep, :data:`~feedtherm.outputs.sweep_partial.PARTIAL_DIR`): gone exactly when the
+        new files are in.
     """
     out_dir = Path(out_dir)
-    with staged_directory(out_dir, replaces=SWEEP_FILES) as stage:
+    with staged_directory(out_dir, replaces=SWEEP_FILES + tuple(drop)) as stage:
         write_sweep_csv(rows, list(sensors), stage / SWEEP_CSV)
         names = [SWEEP_CSV] + draw_sweep_plots(rows, sensors, stage, title=title)
     return [out_dir / name for name in names]
@@ -276,9 +281,13 @@ def _save(figure, path: Path) -> None:
 # --------------------------------------------------------------------------- the console line
 
 
-def summary_line(out_dir: Path, points: int, wall_time_s: float) -> str:
-    """One line: where the files are, how many points, how long it took."""
-    return f"{out_dir}: sweep of {points} point{'s' if points != 1 else ''} written in {wall_time_s:.1f} s"
+def summary_line(out_dir: Path, points: int, wall_time_s: float, resumed: int | None = None) -> str:
+    """One line: where the files are, how many points, how long it took (and, after ``--resume``,
+    how many points were kept from the interrupted run rather than run again)."""
+    line = f"{out_dir}: sweep of {points} point{'s' if points != 1 else ''} written in {wall_time_s:.1f} s"
+    if resumed is not None:
+        line += f"; resumed {resumed} of {points} points, ran {points - resumed}"
+    return line
 
 
 def sweep_title(system: str, mode: str, motion: str, duration_s: float) -> str:

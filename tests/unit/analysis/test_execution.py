@@ -113,3 +113,37 @@ def test_an_unreachable_scheduler_is_one_line(monkeypatch):
         port = probe.getsockname()[1]
     with pytest.raises(FeedthermError, match=f"cannot reach the Dask scheduler at tcp://127.0.0.1:{port} within 2 s"):
         list(run_ordered(math.sqrt, [1.0], execution=Execution(scheduler=f"tcp://127.0.0.1:{port}")))
+
+
+def test_on_done_sees_each_result_before_it_is_yielded(by_value):
+    """Serially in input order; on two workers in the order they finish, each once, and always
+    before the result is yielded (a result waiting for an earlier one is already kept)."""
+    seen = []
+    list(run_ordered(slow_square, [0, 1, 3], describe=str, on_done=lambda i, r: seen.append((i, r))))
+    assert seen == [(0, 0), (1, 1), (2, 9)]
+    events = []
+    for index, result in run_ordered(slow_square, [0, 4, 5], execution=Execution(workers=2),
+                                     on_done=lambda i, r: events.append(("done", i, r))):
+        events.append(("yielded", index, result))
+    assert sorted(e for e in events if e[0] == "done") == [("done", 0, 0), ("done", 1, 16), ("done", 2, 25)]
+    assert [e for e in events if e[0] == "yielded"] == [("yielded", 0, 0), ("yielded", 1, 16), ("yielded", 2, 25)]
+    for index in range(3):
+        assert events.index(("done", index, index and (index + 3) ** 2)) < events.index(
+            ("yielded", index, index and (index + 3) ** 2))
+
+
+def test_a_cluster_kept_open_serves_many_batches(by_value):
+    from feedtherm.analysis.execution import kept_open
+
+    with kept_open(Execution(workers=2)) as running:
+        client = running.client
+        assert not running.serial and running == Execution(workers=2)
+        first = list(run_ordered(slow_square, [3, 4], execution=running))
+        assert client.status == "running"  # the batch left the cluster up
+        second = list(run_ordered(slow_square, [5], execution=running))
+        workers = set(client.scheduler_info()["workers"])
+        assert len(workers) == 2
+    assert (first, second) == ([(0, 9), (1, 16)], [(0, 25)])
+    assert client.status == "closed"
+    with kept_open(Execution()) as running:
+        assert running == Execution() and running.client is None
