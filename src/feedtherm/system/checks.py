@@ -255,7 +255,8 @@ def specificity(prefix: str) -> tuple[int, int]:
 
 def _provenance(system: FeedSystem) -> list[Finding]:
     """Every value must be accounted for by a [[provenance]] entry (paper or assumption)."""
-    data = system.model_dump(exclude={"provenance"}, exclude_defaults=True)
+    # A declared uncertainty carries its own reason (uncertainties.py): it is its provenance.
+    data = system.model_dump(exclude={"provenance", "uncertainty"}, exclude_defaults=True)
     prefixes = [p for entry in system.provenance for p in entry.paths]
     uncovered = [path for path in leaf_paths(data) if not any(covers(p, path) for p in prefixes)]
     findings = [Finding(path, "no [[provenance]] entry says where this value comes from") for path in uncovered[:20]]
