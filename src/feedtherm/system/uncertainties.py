@@ -77,13 +77,18 @@ class Uncertainty(Strict):
     parameters: dict[str, UncertaintyParameter]
 
 
-def _number(value, where: str) -> float:
-    from .quantities import to_base_si
+def _number(value, where: str, unit: str) -> float:
+    """``value`` in SI base units; it must have the dimension of ``unit`` ("" for a number)."""
+    from .quantities import same_dimension, to_base_si
 
     try:
-        return to_base_si(value)
+        number = to_base_si(value)
     except ValueError as exc:
         raise ValueError(f"{where}: {exc}") from None
+    if not same_dimension(value, unit):
+        raise ValueError(f"{where}: {value!r} is not " + (f"a quantity in {unit} or a unit of its dimension" if unit
+                                                          else "a plain number (the value has no unit)"))
+    return number
 
 
 def check_uncertainties(system: "FeedSystem") -> None:
@@ -95,7 +100,7 @@ def check_uncertainties(system: "FeedSystem") -> None:
     """
     if system.uncertainty is None:
         return
-    from .variants import expand_path, get_path  # variants imports the loader, which imports the schema
+    from .variants import expand_path, get_path, si_unit_at  # variants imports the loader, which imports the schema
 
     for name, spec in system.uncertainty.parameters.items():
         where = f"uncertainty.parameters.{name}"
@@ -114,12 +119,14 @@ def check_uncertainties(system: "FeedSystem") -> None:
             raise ValueError(f"{where}.paths: a 'value' parameter sets one value at every path, but they hold "
                              f"different values ({values[0]:g}, ...); use kind = \"scale\"")
         declared = values[0] if spec.kind == "value" else 1.0
+        # a value's range and a normal's sigma are in the value's unit; factors and ln x have none
+        unit = (si_unit_at(system, paths[0]) or "") if spec.kind == "value" else ""
         if spec.sigma is not None:
-            sigma = _number(spec.sigma, f"{where}.sigma")
+            sigma = _number(spec.sigma, f"{where}.sigma", "" if spec.distribution == "lognormal" else unit)
             if not sigma > 0:
                 raise ValueError(f"{where}.sigma: must be positive, got {spec.sigma!r}")
         if spec.range is not None:
-            low, high = (_number(b, f"{where}.range") for b in spec.range)
+            low, high = (_number(b, f"{where}.range", unit) for b in spec.range)
             if not low < high:
                 raise ValueError(f"{where}.range: the lower bound must be below the upper")
             if not low <= declared <= high:
