@@ -16,7 +16,9 @@ A description's optional ``[uncertainty.parameters.<name>]`` tables say how far 
 one's of ln x.  The section changes no value: ``feedtherm uncertainty`` samples it.
 
 The rules that need the rest of the description (paths name values, ranges contain the declared
-value) are checked by :func:`check_uncertainties` when the description is loaded.
+value) are :func:`uncertainty_problems`, which ``feedtherm check`` lists and the loader applies
+after the description's own checks (so that a bad value is reported as such, not as a prior
+that excludes it).
 """
 
 from __future__ import annotations
@@ -84,56 +86,74 @@ def _number(value, where: str, unit: str) -> float:
     try:
         number = to_base_si(value)
     except ValueError as exc:
-        raise ValueError(f"{where}: {exc}") from None
+        raise _Problem(where, str(exc)) from None
     if not same_dimension(value, unit):
-        raise ValueError(f"{where}: {value!r} is not " + (f"a quantity in {unit} or a unit of its dimension" if unit
-                                                          else "a plain number (the value has no unit)"))
+        raise _Problem(where, f"{value!r} is not " + (f"a quantity in {unit} or a unit of its dimension" if unit
+                                                      else "a plain number (the value has no unit)"))
     return number
 
 
-def check_uncertainties(system: "FeedSystem") -> None:
-    """Raise ``ValueError("uncertainty.parameters.<name>.<field>: <reason>")`` for the first bad declaration.
+def uncertainty_problems(system: "FeedSystem") -> list[tuple[str, str, str]]:
+    """``(field path, reason, severity)`` for the first problem of each declared uncertainty.
 
-    Paths must name numeric values (``[*]`` expands to every index); the values of a ``value``
-    parameter must be one value; the range must contain the declared value (1 for a scale);
-    ``sigma`` must be positive; a lognormal's values and range positive.
+    Errors (``feedtherm check`` and the loader refuse the description): a range or sigma of
+    another dimension than the value, a range that excludes the declared value (1 for a scale)
+    or is reversed, a sigma that is not positive, the paths of a ``value`` parameter holding
+    different values, a lognormal on values that are not positive.  A warning: a path that
+    names no value (as for calibration parameters, a loss model swapped in the description may
+    leave one behind); ``feedtherm uncertainty`` refuses it (:func:`resolve_uncertainties`).
     """
     if system.uncertainty is None:
-        return
+        return []
+    out = []
+    for name, spec in system.uncertainty.parameters.items():
+        try:
+            _check(system, name, spec)
+        except _Problem as problem:
+            out.append((problem.path, problem.reason, problem.severity))
+    return out
+
+
+class _Problem(Exception):
+    def __init__(self, path: str, reason: str, severity: str = "error"):
+        super().__init__(f"{path}: {reason}")
+        self.path, self.reason, self.severity = path, reason, severity
+
+
+def _check(system: "FeedSystem", name: str, spec: UncertaintyParameter) -> None:
     from .variants import expand_path, get_path, si_unit_at  # variants imports the loader, which imports the schema
 
-    for name, spec in system.uncertainty.parameters.items():
-        where = f"uncertainty.parameters.{name}"
-        paths = []
-        for path in spec.paths:
-            try:
-                expanded = expand_path(system, path)
-                values = [get_path(system, p) for p in expanded]
-            except (KeyError, IndexError, AttributeError, TypeError):
-                raise ValueError(f"{where}.paths: {path!r} does not name a value of the description") from None
-            if not values or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in values):
-                raise ValueError(f"{where}.paths: {path!r} does not name a number")
-            paths.extend(expanded)
-        values = [float(get_path(system, p)) for p in paths]
-        if spec.kind == "value" and any(not math.isclose(v, values[0], rel_tol=1e-9, abs_tol=0.0) for v in values):
-            raise ValueError(f"{where}.paths: a 'value' parameter sets one value at every path, but they hold "
-                             f"different values ({values[0]:g}, ...); use kind = \"scale\"")
-        declared = values[0] if spec.kind == "value" else 1.0
-        # a value's range and a normal's sigma are in the value's unit; factors and ln x have none
-        unit = (si_unit_at(system, paths[0]) or "") if spec.kind == "value" else ""
-        if spec.sigma is not None:
-            sigma = _number(spec.sigma, f"{where}.sigma", "" if spec.distribution == "lognormal" else unit)
-            if not sigma > 0:
-                raise ValueError(f"{where}.sigma: must be positive, got {spec.sigma!r}")
-        if spec.range is not None:
-            low, high = (_number(b, f"{where}.range", unit) for b in spec.range)
-            if not low < high:
-                raise ValueError(f"{where}.range: the lower bound must be below the upper")
-            if not low <= declared <= high:
-                what = "the declared factor 1" if spec.kind == "scale" else f"the declared value {declared:g} (SI)"
-                raise ValueError(f"{where}.range: [{low:g}, {high:g}] (SI) excludes {what}; a prior that "
-                                 f"excludes the description's own value contradicts it")
-            if spec.distribution == "lognormal" and low <= 0:
-                raise ValueError(f"{where}.range: a lognormal distribution needs a positive range")
-        if spec.distribution == "lognormal" and declared <= 0:
-            raise ValueError(f"{where}.paths: a lognormal distribution needs a positive declared value (its median)")
+    where = f"uncertainty.parameters.{name}"
+    paths = []
+    for path in spec.paths:
+        try:
+            expanded = expand_path(system, path)
+            values = [get_path(system, p) for p in expanded]
+        except (KeyError, IndexError, AttributeError, TypeError):
+            raise _Problem(f"{where}.paths", f"{path!r} does not name a value of the description", "warning") from None
+        if not values or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in values):
+            raise _Problem(f"{where}.paths", f"{path!r} does not name a number")
+        paths.extend(expanded)
+    values = [float(get_path(system, p)) for p in paths]
+    if spec.kind == "value" and any(not math.isclose(v, values[0], rel_tol=1e-9, abs_tol=0.0) for v in values):
+        raise _Problem(f"{where}.paths", f"a 'value' parameter sets one value at every path, but they hold "
+                                         f"different values ({values[0]:g}, ...); use kind = \"scale\"")
+    declared = values[0] if spec.kind == "value" else 1.0
+    # a value's range and a normal's sigma are in the value's unit; factors and ln x have none
+    unit = (si_unit_at(system, paths[0]) or "") if spec.kind == "value" else ""
+    if spec.sigma is not None:
+        sigma = _number(spec.sigma, f"{where}.sigma", "" if spec.distribution == "lognormal" else unit)
+        if not sigma > 0:
+            raise _Problem(f"{where}.sigma", f"must be positive, got {spec.sigma!r}")
+    if spec.range is not None:
+        low, high = (_number(b, f"{where}.range", unit) for b in spec.range)
+        if not low < high:
+            raise _Problem(f"{where}.range", "the lower bound must be below the upper")
+        if not low <= declared <= high:
+            what = "the declared factor 1" if spec.kind == "scale" else f"the declared value {declared:g} (SI)"
+            raise _Problem(f"{where}.range", f"[{low:g}, {high:g}] (SI) excludes {what}; a prior that "
+                                             f"excludes the description's own value contradicts it")
+        if spec.distribution == "lognormal" and low <= 0:
+            raise _Problem(f"{where}.range", "a lognormal distribution needs a positive range")
+    if spec.distribution == "lognormal" and declared <= 0:
+        raise _Problem(f"{where}.paths", "a lognormal distribution needs a positive declared value (its median)")

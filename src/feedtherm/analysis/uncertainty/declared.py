@@ -5,6 +5,7 @@ from __future__ import annotations
 from ...errors import FeedthermError
 from ...system.load import LoadedSystem
 from ...system.quantities import to_base_si
+from ...system.uncertainties import uncertainty_problems
 from ...system.variants import expand_path, get_path, si_unit_at, with_values
 from ..sensitivity import source_of
 from .types import UncertainParameter
@@ -23,9 +24,12 @@ def resolve_uncertainties(loaded: LoadedSystem) -> list[UncertainParameter]:
         raise FeedthermError(f"{loaded.origin}: declares no uncertainties; add [uncertainty.parameters.<name>] "
                              f"tables with kind, paths, distribution, range or sigma and reason "
                              f"(docs/uncertainty.md)")
+    problems = uncertainty_problems(loaded.system)  # the loader refused the errors; a dangling path is left
+    if problems:
+        path, reason, _ = problems[0]
+        raise FeedthermError(f"{loaded.origin}: {path}: {reason}")
     out = []
     for name, spec in declared.parameters.items():
-        # the loader has checked the paths, the ranges and the sigmas (system/uncertainties.py)
         paths = tuple(p for path in spec.paths for p in expand_path(loaded.system, path))
         first = float(get_path(loaded.system, paths[0]))
         low, high = (to_base_si(b) for b in spec.range) if spec.range is not None else (None, None)
