@@ -54,5 +54,8 @@ def sobol_indices(names: list[str], outputs: np.ndarray, seed: int) -> dict[str,
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # SALib's notes on sample sizes; the intervals say as much
-        found = sobol_analyze.analyze(_problem(names), y, calc_second_order=False, conf_level=0.95, seed=seed)
+        # A Generator, not the int: SALib seeds its bootstrap only `if seed:`, so seed 0 would
+        # draw from numpy's global state and the intervals would differ from run to run.
+        found = sobol_analyze.analyze(_problem(names), y, calc_second_order=False, conf_level=0.95,
+                                      seed=np.random.default_rng(seed))
     return {key: np.asarray(found[key], dtype=float) for key in ("S1", "S1_conf", "ST", "ST_conf")}
