@@ -59,11 +59,14 @@ def test_the_final_values_are_judged_against_the_measurements(paper):
     assert prior.coverage[1] == 6
 
 
-def test_two_workers_give_the_serial_study(paper, serial):
-    parallel = run_uncertainty(paper, **TINY, execution=resolve_execution(2))
+def test_two_workers_give_the_serial_study(paper):
+    tiny = {**TINY, "sobol_base": 2}
+    serial = run_uncertainty(paper, **tiny)
+    parallel = run_uncertainty(paper, **tiny, execution=resolve_execution(2))
     assert parallel.settings["execution"] == "a local Dask cluster of 2 worker processes"
     a, b = serial.sets[0], parallel.sets[0]
     assert a.finals == b.finals
+    assert a.sobol and a.sobol == b.sobol  # the bootstrap intervals too
     for q in a.bands["I"].quantiles:
         assert np.array_equal(a.bands["I"].quantiles[q], b.bands["I"].quantiles[q])
         assert np.array_equal(a.bands["I"].nominal[q], b.bands["I"].nominal[q])
