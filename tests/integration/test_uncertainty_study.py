@@ -140,6 +140,7 @@ def test_a_calibrated_description_leaves_out_the_priors_of_fitted_values(paper, 
 def test_the_calibrated_set_samples_the_posterior_and_keeps_the_other_priors(paper, tmp_path):
     summary = fake_calibration(paper, tmp_path / "cal", {"screw_nut_preload": 300.0, "chtc_screw": 1.5},
                                {"screw_nut_preload": 20.0, "chtc_screw": 0.15})
+    summary["parameters"]["chtc_screw"]["note"] = "not identifiable: standard error larger than the value"
     posterior = read_posterior(tmp_path / "cal", paper, summary)
     names = [p.name for p in posterior.parameters]
     assert names[:2] == ["screw_nut_preload", "chtc_screw"]
@@ -150,6 +151,8 @@ def test_the_calibrated_set_samples_the_posterior_and_keeps_the_other_priors(pap
     # a scale is relative to the calibrated values (which hold the fitted factor already)
     assert chtc.declared == 1.0 and chtc.sigma == pytest.approx(0.1) and chtc.high == pytest.approx(5.0 / 1.5)
     assert "fitted by calibration on I, II: 300 +- 20" in preload.reason
+    assert "the calibration says" not in preload.reason
+    assert chtc.reason.endswith("(the calibration says: not identifiable: standard error larger than the value)")
     assert posterior.summary["replaced"] == ["screw_nut_preload", "chtc_screw"]
     assert posterior.correlation.tolist() == [[1.0, 0.5], [0.5, 1.0]]
     found = run_uncertainty(paper, **TINY, posterior=posterior)

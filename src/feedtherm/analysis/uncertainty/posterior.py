@@ -67,7 +67,8 @@ def posterior_parameters(summary: dict, calibrated: LoadedSystem, where: str) ->
             declared=fitted / f, distribution=POSTERIOR, low=lower / f, high=upper / f, sigma=se / f, unit=unit,
             reason=(f"fitted by calibration on {conditions}: {fitted:.4g} +- {se:.3g} (1 standard error), "
                     f"{'a factor on the declared values, ' if kind == 'scale' else ''}correlated with the other fitted "
-                    f"parameters; normal around the fit, clipped to its bounds [{lower:g}, {upper:g}]"),
+                    f"parameters; normal around the fit, clipped to its bounds [{lower:g}, {upper:g}]"
+                    + (f" (the calibration says: {entry['note']})" if entry.get("note") else "")),
             provenance=f"calibration: {where}"))
     names = [p.name for p in out]
     correlation = summary.get("correlation") or {}
