@@ -31,6 +31,7 @@ def paper_with_equation_models() -> LoadedSystem:
     data["temperatures"]["coupling"] = "frozen"
     data["calibration"]["parameters"].pop("motor_copper")
     data["calibration"]["parameters"].pop("motor_no_load")
+    data.get("uncertainty", {}).get("parameters", {}).pop("motor_copper", None)  # on the datasheet losses
     data["calibration"]["parameters"]["motor_efficiency"] = {
         "kind": "value", "paths": ["sources.screw_motor.efficiency", "sources.nut_motor.efficiency"],
         "bounds": [0.5, 0.98], "description": "efficiency of both servo motors at their operating point"}

@@ -450,6 +450,58 @@ def cmd_compensate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _power_of_two(text: str) -> int:
+    """argparse type: a power of 2 (Sobol' points are balanced only in such sets)."""
+    value = _positive_int(text)
+    if value & (value - 1):
+        raise argparse.ArgumentTypeError(f"must be a power of 2 (Sobol' points are balanced only in such sets), "
+                                         f"got {text!r}")
+    return value
+
+
+def cmd_uncertainty(args: argparse.Namespace) -> int:
+    from .analysis.execution import resolve_execution
+    from .outputs.files import check_output_dir
+    from .outputs.run_files import default_out_dir
+
+    execution = resolve_execution(args.workers, args.scheduler)
+    loaded = _load(args.system)
+    _require_paper_table(loaded, args.mode)
+    from .analysis.uncertainty.declared import resolve_uncertainties
+
+    resolve_uncertainties(loaded)  # a system without declared uncertainties fails before anything else
+    if not args.no_sobol:
+        _condition(loaded, args.condition)
+    out_dir = Path(args.out) if args.out else default_out_dir(args.system, "uncertainty", args.mode)
+    check_output_dir(out_dir)
+    from .analysis.consistency import check_description_measurements
+    from .analysis.uncertainty.posterior import read_posterior
+    from .analysis.uncertainty.study import run_uncertainty
+    from .analysis.validation import measurements_of
+    from .outputs.calibration_files import read_calibration_summary
+
+    try:  # the measurements the final values are judged against, where the description has them
+        data = measurements_of(loaded, args.measured)
+    except FeedthermError:
+        if args.measured:
+            raise
+        data = None
+    consistency = check_description_measurements(loaded.system, data) if data is not None else None
+    posterior = None
+    if args.calibration:
+        folder = Path(args.calibration)
+        posterior = read_posterior(folder, loaded, read_calibration_summary(folder))
+    from .outputs.uncertainty_files import print_uncertainty, write_uncertainty
+
+    with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
+        study = run_uncertainty(loaded, samples=args.samples, sobol_base=None if args.no_sobol else args.sobol_base,
+                                seed=args.seed, sobol_condition=args.condition, mode=args.mode, data=data,
+                                consistency=consistency, posterior=posterior, execution=execution, progress=progress)
+    write_uncertainty(study, out_dir)
+    print_uncertainty(study, out_dir)
+    return 0
+
+
 def _system_argument(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("system", nargs="?", default="paper",
                         help="a TOML description or a bench name of `feedtherm benches` (default: paper)")
@@ -642,6 +694,28 @@ def build_parser() -> argparse.ArgumentParser:
     _execution_arguments(compensate)
     _out_argument(compensate, "out/<system>_compensation_<mode>")
     compensate.set_defaults(func=cmd_compensate)
+
+    uncertainty = sub.add_parser("uncertainty", help="prediction bands (5-95 %%) of T1-T6 and D over time and Sobol' "
+                                                     "indices from the description's declared uncertainties")
+    _system_argument(uncertainty)
+    uncertainty.add_argument("--samples", type=_power_of_two, default=128, metavar="N",
+                             help="scrambled Sobol' points of the bands, a power of 2 (default 128; each runs every "
+                                  "condition)")
+    uncertainty.add_argument("--sobol-base", type=_power_of_two, default=64, metavar="N",
+                             help="base of Saltelli's scheme for the Sobol' indices, a power of 2: N (d + 2) runs "
+                                  "for d parameters (default 64)")
+    uncertainty.add_argument("--no-sobol", action="store_true", help="bands only, no Sobol' indices")
+    uncertainty.add_argument("--condition", default="I", help="the condition of the Sobol' indices (default I)")
+    uncertainty.add_argument("--seed", type=_integer, default=0, metavar="S",
+                             help="seed of the scrambled Sobol' points (default 0)")
+    uncertainty.add_argument("--calibration", metavar="DIR",
+                             help="output folder of `feedtherm calibrate`: also the bands after calibration (the "
+                                  "fitted parameters' posterior, the other priors kept)")
+    _measured_argument(uncertainty)
+    _mode_argument(uncertainty)
+    _execution_arguments(uncertainty)
+    _out_argument(uncertainty, "out/<system>_uncertainty_<mode>")
+    uncertainty.set_defaults(func=cmd_uncertainty)
     return parser
 
 

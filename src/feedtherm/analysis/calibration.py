@@ -38,7 +38,7 @@ from ..solution.equilibrium import rise_time
 from ..system.load import LoadedSystem
 from ..system.quantities import to_base_si
 from ..system.references import closest
-from ..system.variants import get_path, with_values
+from ..system.variants import expand_path, get_path, with_values
 from .consistency import ConsistencyReport
 from .execution import Execution, TaskFailure, kept_open, run_ordered
 from .measurements import MeasurementSet
@@ -125,11 +125,7 @@ class CalibrationResult:
 
 def expand(loaded: LoadedSystem, path: str) -> list[str]:
     """Concrete paths for a path with ``[*]`` wildcards."""
-    if "[*]" not in path:
-        return [path]
-    head, tail = path.split("[*]", 1)
-    items = get_path(loaded.system, head)
-    return [p for i in range(len(items)) for p in expand(loaded, f"{head}[{i}]{tail}")]
+    return expand_path(loaded.system, path)
 
 
 def resolve_parameters(loaded: LoadedSystem, names: list[str]) -> list[FitParameter]:

@@ -3,6 +3,9 @@
 The calibrated description is the original TOML text with the fitted values replaced (in the
 units the original used) and one ``[[provenance]]`` entry per fitted parameter saying that it
 was calibrated, on which conditions, from which original value.  It loads like any other.
+A declared uncertainty (``[uncertainty.parameters]``) on a fitted value is left out of it: the
+fit's posterior replaces that prior (``feedtherm uncertainty --calibration``), and a prior's
+range need not contain the fitted value.
 """
 
 from __future__ import annotations
@@ -20,7 +23,7 @@ from ..analysis.calibration import CalibrationResult, Prediction
 from ..errors import FeedthermError
 from ..system.load import LoadedSystem, read_text
 from ..system.quantities import registry
-from ..system.variants import split_path
+from ..system.variants import expand_path, split_path
 from .files import read_study_summary, staged_directory, write_json
 
 PREDICTION_HEADER = ["condition", "quantity", "unit", "predicted", "measured", "deviation", "interval95", "flag"]
@@ -56,12 +59,27 @@ def calibrated_toml(original: LoadedSystem, result: CalibrationResult) -> str:
         provenance["reason"] = (f"parameter {parameter.name} ({kind}) fitted to {x:.6g} +- {se:.3g} (1 standard error) "
                                 f"within [{parameter.lower:g}, {parameter.upper:g}]; original SI value(s): {original_text}")
         doc.setdefault("provenance", tomlkit.aot()).append(provenance)
+    _drop_fitted_uncertainties(doc, original, result)
     meta = doc["meta"]
     meta["name"] = f"{meta['name']}_calibrated"
     meta["description"] = f"{meta.get('description', '')} Calibrated on conditions {conditions}.".strip()
     if "measurements" in meta and not str(meta["measurements"]).startswith("bundled:") and not original.origin.startswith("bundled:"):
         meta["measurements"] = str(Path(original.origin).parent / str(meta["measurements"]))
     return tomlkit.dumps(doc)
+
+
+def _drop_fitted_uncertainties(doc, original: LoadedSystem, result: CalibrationResult) -> None:
+    """Remove the declared uncertainties on values the calibration fitted (their prior is superseded)."""
+    declared = original.system.uncertainty
+    if declared is None or "uncertainty" not in doc:
+        return
+    fitted = {p for parameter in result.parameters for p in parameter.paths}
+    table = doc["uncertainty"]["parameters"]
+    for name, spec in declared.parameters.items():
+        if fitted & {p for path in spec.paths for p in expand_path(original.system, path)}:
+            del table[name]
+    if not table:
+        del doc["uncertainty"]
 
 
 def _set(doc, path: str, value: float, template: str | None = None) -> None:

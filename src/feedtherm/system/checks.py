@@ -3,7 +3,8 @@
 Two kinds of finding.  An *error* is a description no model can run as meant: a sensor
 outside the part it names, a face the part's shape does not have, a joint declared twice, the
 elongation read off the screw, a stroke longer than the thread, calibration bounds reversed or
-of another dimension than their value, a part that no path connects to the ambient.
+of another dimension than their value, a part that no path connects to the ambient, a declared
+uncertainty whose range excludes its value (system/uncertainties.py).
 :func:`~feedtherm.system.load.load_system` refuses such a description with the first error's
 line, so that no command starts on it.  A *warning* is content worth a look that the models
 can still run: a stated feed speed that the motor speeds contradict, a value no provenance
@@ -21,6 +22,7 @@ from ..physics.mechanics import speed_table
 from .geometry import bounds, contains, gap, screw_axis, surface_area
 from .quantities import same_dimension, to_base_si
 from .schema import FeedSystem
+from .uncertainties import uncertainty_problems
 from .variants import si_unit_at
 
 _RAD_PER_S_TO_RPM = 60.0 / (2.0 * math.pi)
@@ -47,19 +49,28 @@ def check_system(system: FeedSystem) -> list[Finding]:
         *_ambient_sensor(system),
         *_feed_speeds(system),
         *_joints_touch(system),
+        *_uncertainties(system, "warning"),
         *_provenance(system),
     ]
 
 
+def _uncertainties(system: FeedSystem, severity: str) -> list[Finding]:
+    """The declared uncertainties' problems of one severity (system/uncertainties.py)."""
+    return [Finding(path, reason, kind) for path, reason, kind in uncertainty_problems(system) if kind == severity]
+
+
 def check_errors(system: FeedSystem) -> list[Finding]:
     """The findings no model can run past (see the module's docstring)."""
-    return [
+    errors = [
         *_geometry(system),
         *_joints_unique(system),
         *_stroke(system),
         *calibration_bounds(system),
         *_ambient_paths(system),
     ]
+    # The priors are judged against a valid description: a bad value is reported as such, not
+    # (also) as a prior that excludes it.
+    return errors or _uncertainties(system, "error")
 
 
 def _feed_speeds(system: FeedSystem) -> list[Finding]:
@@ -255,7 +266,8 @@ def specificity(prefix: str) -> tuple[int, int]:
 
 def _provenance(system: FeedSystem) -> list[Finding]:
     """Every value must be accounted for by a [[provenance]] entry (paper or assumption)."""
-    data = system.model_dump(exclude={"provenance"}, exclude_defaults=True)
+    # A declared uncertainty carries its own reason (uncertainties.py): it is its provenance.
+    data = system.model_dump(exclude={"provenance", "uncertainty"}, exclude_defaults=True)
     prefixes = [p for entry in system.provenance for p in entry.paths]
     uncovered = [path for path in leaf_paths(data) if not any(covers(p, path) for p in prefixes)]
     findings = [Finding(path, "no [[provenance]] entry says where this value comes from") for path in uncovered[:20]]

@@ -49,6 +49,7 @@ from .sources import (
 from .surfaces import (
     Surface,
 )
+from .uncertainties import Uncertainty
 
 _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 #: Length of a run when nothing else says [s]: the paper's 10,800 s (§4.3).
@@ -331,6 +332,7 @@ class FeedSystem(Strict):
     duty_cycles: dict[str, DutyCycle] = {}
     paper: PaperMode | None = None
     calibration: Calibration | None = None
+    uncertainty: Uncertainty | None = None
     provenance: list[Provenance] = []
 
     @model_serializer(mode="wrap")
@@ -341,6 +343,8 @@ class FeedSystem(Strict):
         data = handler(self)
         if isinstance(data, dict) and self.room == Room():
             data.pop("room", None)
+        if isinstance(data, dict) and self.uncertainty is None:
+            data.pop("uncertainty", None)  # likewise: descriptions without declared uncertainties
         if isinstance(data, dict) and isinstance(data.get("sources"), dict):
             for name, source in data["sources"].items():
                 if isinstance(source, dict) and source.get("heat_factor") == 1.0 and self.sources[name].heat_factor == 1.0:

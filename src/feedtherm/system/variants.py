@@ -36,6 +36,15 @@ def get_path(obj: Any, path: str) -> Any:
     return _walk(obj, split_path(path))
 
 
+def expand_path(obj: Any, path: str) -> list[str]:
+    """Concrete paths for a path with ``[*]`` wildcards (every index of the list there)."""
+    if "[*]" not in path:
+        return [path]
+    head, tail = path.split("[*]", 1)
+    items = get_path(obj, head)
+    return [p for i in range(len(items)) for p in expand_path(obj, f"{head}[{i}]{tail}")]
+
+
 def _walk(obj: Any, keys: list[str | int]) -> Any:
     for key in keys:
         obj = obj[key] if isinstance(obj, (dict, list, tuple)) else getattr(obj, key)

@@ -23,8 +23,21 @@ from feedtherm.system.load import load_system
 #   room's air speed (calibration.parameters.room_air_speed).
 # - calibration may fit where the laser reads the elongation (calibration.parameters.elongation_read_at,
 #   100-450 mm: the paper does not state it); the declared value stays 400 mm.
-FROZEN_SHA256 = "f0b9d71a6674ed60604374e0ea694e4231cf313f1f5ea111f0833c9fc49bad59"
+# - issue 14: declared uncertainties ([uncertainty.parameters], docs/uncertainty.md) say how far the
+#   values that matter may lie from the declared ones; they change no value (the hash without them
+#   is the one before, VALUES_SHA256, tested below).
+FROZEN_SHA256 = "a4830a83132c10536d5537bc05b496968e5fae3434bc12adae5483ce3b627527"
+#: The hash of the bench's values alone, before declared uncertainties were added.
+VALUES_SHA256 = "f0b9d71a6674ed60604374e0ea694e4231cf313f1f5ea111f0833c9fc49bad59"
 
 
 def test_paper_bench_is_frozen():
     assert load_system("paper").sha256 == FROZEN_SHA256
+
+
+def test_declared_uncertainties_change_no_value():
+    from feedtherm.system.variants import with_values
+
+    loaded = load_system("paper")
+    assert loaded.system.uncertainty is not None
+    assert with_values(loaded, {"uncertainty": None}).sha256 == VALUES_SHA256

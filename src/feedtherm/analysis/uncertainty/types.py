@@ -26,6 +26,9 @@ class UncertainParameter:
     each path's declared value.  ``declared`` is the value at the first path (or 1.0 for a scale).
     ``low``/``high`` bound a uniform or triangular distribution (and truncate a normal one);
     ``sigma`` is a normal distribution's standard deviation, or a lognormal one's of ln x.
+    "posterior normal" (sampling.POSTERIOR): a parameter fitted by a calibration, normal around the
+    fit (``declared``) with its standard error (``sigma``), correlated with the other fitted ones
+    (the set's ``calibration["correlation"]``), clipped to the fit's bounds (``low``/``high``).
     """
 
     name: str
@@ -33,7 +36,7 @@ class UncertainParameter:
     kind: str  # "value" | "scale"
     paths: tuple[str, ...]
     declared: float
-    distribution: str  # "uniform" | "triangular" | "normal" | "lognormal"
+    distribution: str  # "uniform" | "triangular" | "normal" | "lognormal" | "posterior normal" (after calibration)
     low: float | None
     high: float | None
     sigma: float | None

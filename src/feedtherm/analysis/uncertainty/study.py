@@ -1,0 +1,162 @@
+"""An uncertainty study: prediction bands and Sobol' indices from the declared uncertainties.
+
+For each state of knowledge (the declared priors; after a calibration, its posterior and the
+priors it left), ``samples`` scrambled Sobol' points of the unit hypercube are mapped through the
+parameters' inverse distribution functions (:mod:`.sampling`), and every point's variant of the
+description runs every condition with the fast model (cycle-averaged motion, 60 s steps, as
+calibration runs).  The bands are the 5 %, 50 % and 95 % quantiles over the points, at each time
+of a 60 s grid and of the final values, beside the run at the declared values and the
+measurements.  For one condition (default I), Saltelli's scheme gives the Sobol' indices of
+the final values under the priors (:mod:`.sobol`).
+
+Every run goes through the execution layer (:func:`~feedtherm.analysis.execution.run_ordered`),
+serial or on a Dask cluster, with identical results.  A band needs all its points: if a run
+fails, the study fails with one line naming the point and its parameter values (after the
+batch, so every failure is counted).
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Callable
+
+import numpy as np
+
+from ...errors import FeedthermError
+from ...system.load import LoadedSystem
+from ..consistency import ConsistencyReport
+from ..execution import Execution, TaskFailure, run_ordered
+from ..measurements import MeasurementSet
+from ..validation_types import ELONGATION_QUANTITY
+from .declared import resolve_uncertainties, variant
+from .posterior import Posterior
+from .runs import GRID_STEP_S, SampleResult, SampleRun, run_sample
+from .sampling import to_values, unit_points
+from .sobol import saltelli_points, sobol_indices
+from .types import BAND, Band, FinalBand, SobolIndex, UncertainParameter, UncertaintySet, UncertaintyStudy
+
+#: Default points of the bands (a power of 2), and of Saltelli's base.
+DEFAULT_SAMPLES = 128
+DEFAULT_SOBOL_BASE = 64
+#: The quantiles of a band: its lower edge, the median, its upper edge.
+QUANTILES = (BAND[0], 0.5, BAND[1])
+
+
+def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sobol_base: int | None = DEFAULT_SOBOL_BASE,
+                    seed: int = 0, sobol_condition: str = "I", mode: str = "physics",
+                    data: MeasurementSet | None = None, consistency: ConsistencyReport | None = None,
+                    posterior: Posterior | None = None, execution: Execution = Execution(),
+                    progress: Callable[[float], None] | None = None,
+                    conditions: list[str] | None = None) -> UncertaintyStudy:
+    """Bands of every condition (``conditions``, default all) under the priors and, with
+    ``posterior``, after calibration; Sobol' indices at ``sobol_condition`` (``sobol_base``
+    None: none).
+
+    ``data``/``consistency``: the measurements the final values are judged against, with the
+    consistency check's flags.  Raises :class:`~feedtherm.errors.FeedthermError` (one line)
+    for a system without declared uncertainties, an unknown condition, a sample count that is
+    not a power of 2, or a failed run.
+    """
+    started = time.perf_counter()
+    prior = resolve_uncertainties(loaded)
+    conditions = list(loaded.system.conditions) if conditions is None else list(conditions)
+    for c in conditions + ([sobol_condition] if sobol_base is not None else []):
+        if c not in loaded.system.conditions:
+            raise FeedthermError(f"--condition: no condition {c!r} in {loaded.origin}; conditions: "
+                                 f"{', '.join(loaded.system.conditions)}")
+    states = [("prior", loaded, prior, None)]
+    if posterior is not None:
+        states.append(("calibrated", posterior.loaded, posterior.parameters, posterior.correlation))
+    items: list[SampleRun] = []
+    slices = {}
+    for label, base, parameters, correlation in states:
+        points = to_values(parameters, unit_points(samples, len(parameters), seed), correlation)
+        start = len(items)
+        items.append(SampleRun(base, tuple(conditions), mode, f"{label} nominal"))
+        items.extend(_point(base, parameters, x, tuple(conditions), mode, f"{label} sample {i}")
+                     for i, x in enumerate(points))
+        slices[label] = (start, len(items))
+    sobol_points = None
+    if sobol_base is not None:
+        unit = saltelli_points([p.name for p in prior], sobol_base, seed)
+        sobol_points = to_values(prior, unit)
+        start = len(items)
+        items.extend(_point(loaded, prior, x, (sobol_condition,), mode, f"Sobol point {i}")
+                     for i, x in enumerate(sobol_points))
+        slices["sobol"] = (start, len(items))
+    results = _run_all(items, execution, progress)
+    sets = []
+    for label, base, parameters, _ in states:
+        a, b = slices[label]
+        sets.append(_set(label, parameters, results[a], results[a + 1:b], conditions, data, consistency))
+    if sobol_points is not None:
+        a, b = slices["sobol"]
+        sets[0].sobol_condition = sobol_condition
+        sets[0].sobol = _indices(prior, [r.finals[sobol_condition] for r in results[a:b]], seed)
+    if posterior is not None:
+        sets[1].calibration = posterior.summary
+    settings = {
+        "samples": samples, "seed": seed, "sampler": "scrambled Sobol' points (scipy.stats.qmc), inverse CDFs",
+        "sobol_base": sobol_base, "sobol_runs": 0 if sobol_points is None else len(sobol_points),
+        "sobol_scheme": None if sobol_points is None else "Saltelli 2010 (SALib), first-order and total, no second order",
+        "model": "fast", "motion": "averaged", "time_step_s": GRID_STEP_S, "mode": mode,
+        "conditions": conditions,
+        "duration_s": {c: loaded.system.conditions[c].duration for c in conditions},
+        "band": list(BAND), "execution": execution.describe(),
+        "runs": sum(len(item.conditions) for item in items),
+        "failures": "a band needs every sampled point: a failed run fails the study",
+        "wall_time_s": time.perf_counter() - started,
+    }
+    return UncertaintyStudy(system=loaded.origin, settings=settings, sets=sets)
+
+
+def _point(base: LoadedSystem, parameters: list[UncertainParameter], x, conditions, mode, label) -> SampleRun:
+    values = tuple((p.name, float(v)) for p, v in zip(parameters, x))
+    return SampleRun(variant(base, parameters, x, label), conditions, mode, label, values)
+
+
+def _run_all(items: list[SampleRun], execution: Execution, progress) -> list[SampleResult]:
+    results, failures = [], []
+    for _, result in run_ordered(run_sample, items, execution=execution, describe=SampleRun.describe,
+                                 progress=progress):
+        (failures if isinstance(result, TaskFailure) else results).append(result)
+    if failures:
+        more = f" (and {len(failures) - 1} more)" if len(failures) > 1 else ""
+        raise FeedthermError(f"{len(failures)} of {len(items)} sampled points failed, and a band needs them all; "
+                             f"the first: {failures[0]}{more}")
+    return results
+
+
+def quantile_bands(values: np.ndarray) -> np.ndarray:
+    """The 5 %, 50 % and 95 % quantiles over the samples (axis 0) of ``values``."""
+    return np.quantile(np.asarray(values, dtype=float), QUANTILES, axis=0)
+
+
+def _set(label, parameters, nominal: SampleResult, samples: list[SampleResult], conditions, data, consistency) -> UncertaintySet:
+    bands, finals = {}, []
+    for c in conditions:
+        quantities = list(nominal.series[c])
+        bands[c] = Band(time_s=np.arange(len(nominal.series[c][quantities[0]])) * GRID_STEP_S,
+                        quantiles={q: quantile_bands([s.series[c][q] for s in samples]) for q in quantities},
+                        nominal={q: nominal.series[c][q] for q in quantities})
+        measured = {r.quantity: r.measured for r in data.for_condition(c)} if data is not None else {}
+        for q in quantities:
+            p05, p50, p95 = quantile_bands([s.finals[c][q] for s in samples])
+            flag = consistency.flag_for(c, q) if consistency is not None else None
+            finals.append(FinalBand(c, q, "um" if q == ELONGATION_QUANTITY else "C", float(p05), float(p50),
+                                    float(p95), nominal.finals[c][q], measured.get(q), flag.reason if flag else ""))
+    return UncertaintySet(label=label, parameters=list(parameters), bands=bands, finals=finals,
+                          runs=(len(samples) + 1) * len(conditions))
+
+
+def _indices(parameters: list[UncertainParameter], finals: list[dict[str, float]], seed: int) -> list[SobolIndex]:
+    out = []
+    names = [p.name for p in parameters]
+    for q in finals[0]:
+        y = np.array([f[q] for f in finals])
+        if np.ptp(y) == 0.0:
+            continue  # the ambient sensor: nothing to apportion
+        found = sobol_indices(names, y, seed)
+        out.extend(SobolIndex(q, name, float(found["S1"][j]), float(found["S1_conf"][j]), float(found["ST"][j]),
+                              float(found["ST_conf"][j])) for j, name in enumerate(names))
+    return out

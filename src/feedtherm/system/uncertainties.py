@@ -1,0 +1,159 @@
+"""Declared uncertainties: the distribution of an assumed value, with its reason.
+
+A description's optional ``[uncertainty.parameters.<name>]`` tables say how far an assumed value
+(or a group of values with one physical cause) may lie from the value declared, and why::
+
+    [uncertainty.parameters.screw_nut_friction]
+    kind = "value"                 # or "scale": a factor on every path's declared value
+    paths = ["sources.screw_nut.friction_coefficient"]
+    distribution = "uniform"       # uniform | triangular | normal | lognormal
+    range = [0.05, 0.15]           # bounds (truncation for normal/lognormal), quantities allowed
+    reason = "lubricated steel on bronze: 0.05-0.15 in handbooks"
+
+``triangular``'s mode, ``normal``'s mean and ``lognormal``'s median are the declared value
+(1 for a scale): a prior centred elsewhere would contradict the description's own value.
+``sigma`` is a normal distribution's standard deviation (in the value's unit) or a lognormal
+one's of ln x.  The section changes no value: ``feedtherm uncertainty`` samples it.
+
+The rules that need the rest of the description (paths name values, ranges contain the declared
+value) are :func:`uncertainty_problems`, which ``feedtherm check`` lists and the loader applies
+after the description's own checks (so that a bad value is reported as such, not as a prior
+that excludes it).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Literal
+
+from pydantic import field_validator, model_validator
+
+from .base import Strict
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .schema import FeedSystem
+
+#: The distributions a declared uncertainty may take.
+DISTRIBUTIONS = ("uniform", "triangular", "normal", "lognormal")
+
+
+class UncertaintyParameter(Strict):
+    """One declared uncertainty: a value (or values scaled together) and its distribution."""
+
+    kind: Literal["value", "scale"]
+    paths: list[str]
+    distribution: Literal["uniform", "triangular", "normal", "lognormal"]
+    range: tuple[str | float, str | float] | None = None
+    sigma: str | float | None = None
+    reason: str
+    description: str = ""
+
+    @field_validator("paths")
+    @classmethod
+    def _some_paths(cls, value: list[str]) -> list[str]:
+        if not value:
+            raise ValueError("name at least one path")
+        return value
+
+    @field_validator("reason")
+    @classmethod
+    def _a_reason(cls, value: str) -> str:
+        if not value.strip():
+            raise ValueError("an uncertainty needs a reason (a source or an engineering argument)")
+        return value
+
+    @model_validator(mode="after")
+    def _fields_of_the_distribution(self) -> "UncertaintyParameter":
+        if self.distribution in ("uniform", "triangular"):
+            if self.range is None:
+                raise ValueError(f"range: a {self.distribution} distribution needs range = [low, high]")
+            if self.sigma is not None:
+                raise ValueError(f"sigma: a {self.distribution} distribution has no sigma (its range says it all)")
+        elif self.sigma is None:
+            raise ValueError(f"sigma: a {self.distribution} distribution needs sigma "
+                             + ("(its standard deviation)" if self.distribution == "normal" else "(the standard deviation of ln x)"))
+        return self
+
+
+class Uncertainty(Strict):
+    parameters: dict[str, UncertaintyParameter]
+
+
+def _number(value, where: str, unit: str) -> float:
+    """``value`` in SI base units; it must have the dimension of ``unit`` ("" for a number)."""
+    from .quantities import same_dimension, to_base_si
+
+    try:
+        number = to_base_si(value)
+    except ValueError as exc:
+        raise _Problem(where, str(exc)) from None
+    if not same_dimension(value, unit):
+        raise _Problem(where, f"{value!r} is not " + (f"a quantity in {unit} or a unit of its dimension" if unit
+                                                      else "a plain number (the value has no unit)"))
+    return number
+
+
+def uncertainty_problems(system: "FeedSystem") -> list[tuple[str, str, str]]:
+    """``(field path, reason, severity)`` for the first problem of each declared uncertainty.
+
+    Errors (``feedtherm check`` and the loader refuse the description): a range or sigma of
+    another dimension than the value, a range that excludes the declared value (1 for a scale)
+    or is reversed, a sigma that is not positive, the paths of a ``value`` parameter holding
+    different values, a lognormal on values that are not positive.  A warning: a path that
+    names no value (as for calibration parameters, a loss model swapped in the description may
+    leave one behind); ``feedtherm uncertainty`` refuses it (:func:`resolve_uncertainties`).
+    """
+    if system.uncertainty is None:
+        return []
+    out = []
+    for name, spec in system.uncertainty.parameters.items():
+        try:
+            _check(system, name, spec)
+        except _Problem as problem:
+            out.append((problem.path, problem.reason, problem.severity))
+    return out
+
+
+class _Problem(Exception):
+    def __init__(self, path: str, reason: str, severity: str = "error"):
+        super().__init__(f"{path}: {reason}")
+        self.path, self.reason, self.severity = path, reason, severity
+
+
+def _check(system: "FeedSystem", name: str, spec: UncertaintyParameter) -> None:
+    from .variants import expand_path, get_path, si_unit_at  # variants imports the loader, which imports the schema
+
+    where = f"uncertainty.parameters.{name}"
+    paths = []
+    for path in spec.paths:
+        try:
+            expanded = expand_path(system, path)
+            values = [get_path(system, p) for p in expanded]
+        except (KeyError, IndexError, AttributeError, TypeError):
+            raise _Problem(f"{where}.paths", f"{path!r} does not name a value of the description", "warning") from None
+        if not values or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in values):
+            raise _Problem(f"{where}.paths", f"{path!r} does not name a number")
+        paths.extend(expanded)
+    values = [float(get_path(system, p)) for p in paths]
+    if spec.kind == "value" and any(not math.isclose(v, values[0], rel_tol=1e-9, abs_tol=0.0) for v in values):
+        raise _Problem(f"{where}.paths", f"a 'value' parameter sets one value at every path, but they hold "
+                                         f"different values ({values[0]:g}, ...); use kind = \"scale\"")
+    declared = values[0] if spec.kind == "value" else 1.0
+    # a value's range and a normal's sigma are in the value's unit; factors and ln x have none
+    unit = (si_unit_at(system, paths[0]) or "") if spec.kind == "value" else ""
+    if spec.sigma is not None:
+        sigma = _number(spec.sigma, f"{where}.sigma", "" if spec.distribution == "lognormal" else unit)
+        if not sigma > 0:
+            raise _Problem(f"{where}.sigma", f"must be positive, got {spec.sigma!r}")
+    if spec.range is not None:
+        low, high = (_number(b, f"{where}.range", unit) for b in spec.range)
+        if not low < high:
+            raise _Problem(f"{where}.range", "the lower bound must be below the upper")
+        if not low <= declared <= high:
+            what = "the declared factor 1" if spec.kind == "scale" else f"the declared value {declared:g} (SI)"
+            raise _Problem(f"{where}.range", f"[{low:g}, {high:g}] (SI) excludes {what}; a prior that "
+                                             f"excludes the description's own value contradicts it")
+        if spec.distribution == "lognormal" and low <= 0:
+            raise _Problem(f"{where}.range", "a lognormal distribution needs a positive range")
+    if spec.distribution == "lognormal" and declared <= 0:
+        raise _Problem(f"{where}.paths", "a lognormal distribution needs a positive declared value (its median)")
