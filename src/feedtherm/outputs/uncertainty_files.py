@@ -57,9 +57,15 @@ def parameter_entry(parameter: UncertainParameter) -> dict:
 
 
 def mean_widths(uset: UncertaintySet) -> dict[str, float]:
-    """Unit -> the mean width (p95 − p05) of the final values' bands."""
+    """Unit -> the mean width (p95 − p05) of the bands of the measured final values.
+
+    Only the values a measurement is judged against count: the ambient sensor's band (zero
+    wide, it is the condition's input) would otherwise pull the temperatures' mean down.  A
+    study without measurements averages every final value.
+    """
     widths: dict[str, list[float]] = {}
-    for final in uset.finals:
+    measured = [final for final in uset.finals if final.measured is not None]
+    for final in measured or uset.finals:
         widths.setdefault(final.unit, []).append(final.p95 - final.p05)
     return {unit: round(float(np.mean(values)), DECIMALS) for unit, values in widths.items()}
 

@@ -266,3 +266,20 @@ def test_a_study_without_measurements_writes_and_says_so(tmp_path):
     html = (tmp_path / "out" / "uncertainty.html").read_text(encoding="utf-8")
     assert "No measured values to set against the bands." in html
     assert summary(study)["sets"][0]["coverage"] == {"inside": 0, "total": 0}
+
+
+def test_mean_widths_count_only_the_measured_values():
+    from dataclasses import replace
+
+    from feedtherm.analysis.uncertainty.types import FinalBand
+    from feedtherm.outputs.uncertainty_files import mean_widths
+
+    uset = make_study(calibrated=False).sets[0]
+    # The ambient's band is zero wide and has no measurement: 2 K and 4 K measured -> 3 K, not 2 K.
+    uset.finals = [FinalBand("I", "T1", "C", 20.0, 21.0, 22.0, 21.0, measured=21.5),
+                   FinalBand("I", "T2", "C", 20.0, 22.0, 24.0, 22.0, measured=25.0),
+                   FinalBand("I", "T6", "C", 20.0, 20.0, 20.0, 20.0)]
+    assert mean_widths(uset) == {"C": 3.0}
+    # Without any measurement every final value counts.
+    uset.finals = [replace(f, measured=None) for f in uset.finals]
+    assert mean_widths(uset) == {"C": 2.0}
