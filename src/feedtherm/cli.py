@@ -300,9 +300,13 @@ def cmd_validate(args: argparse.Namespace) -> int:
     from .outputs.compensation_files import read_compensation_summary
 
     compensation = read_compensation_summary(Path(args.compensation)) if args.compensation else None
+    from .outputs.uncertainty_files import read_uncertainty_summary
+
+    uncertainty = read_uncertainty_summary(Path(args.uncertainty)) if args.uncertainty else None
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
         validation = validate(loaded, mode=args.mode, model=args.model, mesh=args.mesh, measured=args.measured,
-                              progress=progress, calibration=calibration, compensation=compensation)
+                              progress=progress, calibration=calibration, compensation=compensation,
+                              uncertainty=uncertainty)
     write_validation(validation, out_dir)
     print_validation(validation, out_dir)
     return 0
@@ -574,6 +578,9 @@ def build_parser() -> argparse.ArgumentParser:
     validate.add_argument("--compensation", metavar="DIR",
                           help="output folder of `feedtherm compensate`: its laws and figures become the report's "
                                "compensation section")
+    validate.add_argument("--uncertainty", metavar="DIR",
+                          help="output folder of `feedtherm uncertainty`: its bands, coverage and Sobol indices "
+                               "become the report's uncertainty section")
     _out_argument(validate, "out/<system>_validation_<mode>")
     validate.set_defaults(func=cmd_validate)
 

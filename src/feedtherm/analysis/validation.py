@@ -38,14 +38,17 @@ def measurements_of(loaded: LoadedSystem, measured: str | None) -> MeasurementSe
 
 def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast", mesh: str | None = None,
              measured: str | None = None, progress: Callable[[float], None] | None = None,
-             calibration: dict | None = None, compensation: dict | None = None) -> Validation:
+             calibration: dict | None = None, compensation: dict | None = None,
+             uncertainty: dict | None = None) -> Validation:
     """Run every measured condition of ``loaded`` and compare it with its measurements.
 
     Also checks the measurements' own consistency, infers the heat of every source from each
     condition's measurements (the fast model's transfer matrix), and carries ``calibration``
     (a ``calibration.json`` of ``feedtherm calibrate --cross-validate``) into the headline and
     ``compensation`` (a ``feedtherm compensate`` folder as read by
-    :func:`~feedtherm.outputs.compensation_files.read_compensation_summary`) into its own section.
+    :func:`~feedtherm.outputs.compensation_files.read_compensation_summary`) into its own section, and
+    ``uncertainty`` (a ``feedtherm uncertainty`` folder as read by
+    :func:`~feedtherm.outputs.uncertainty_files.read_uncertainty_summary`) into another.
     """
     started = time.perf_counter()
     system = loaded.system
@@ -104,6 +107,7 @@ def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast"
         inferred=inferred,
         calibration=calibration,
         compensation=compensation,
+        uncertainty=uncertainty,
     )
 
 

@@ -72,6 +72,8 @@ class Validation:
     calibration: dict | None = None  # calibration.json of a `feedtherm calibrate --cross-validate` run
     # a `feedtherm compensate` folder: {"summary": compensation.json, "figures": {png name: bytes}}
     compensation: dict | None = None
+    # a `feedtherm uncertainty` folder: {"summary": uncertainty.json, "figures": {png name: bytes}}
+    uncertainty: dict | None = None
 
     def largest(self, kind: str) -> Comparison:
         """The comparison with the largest |deviation| among temperatures or elongations."""

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import io
 import math
+import textwrap
 
 import numpy as np
 
@@ -12,6 +13,8 @@ from ..analysis.compensation.study import LawResult, StudyResult
 from ..system.schema import FeedSystem
 
 _DPI = 110
+#: Characters per line of a title at 8 pt across a 10-inch figure.
+TITLE_CHARACTERS = 130
 LAW_LABELS = {"regression": "regression", "regression_lags": "regression with lags", "kalman": "Kalman filter"}
 _COLOURS = {"regression": "tab:blue", "regression_lags": "tab:orange", "kalman": "tab:green"}
 
@@ -97,7 +100,9 @@ def sensor_map(system: FeedSystem, result: StudyResult, kind: str) -> bytes:
         ax.set_ylabel(f"{'yz'[j - 1]} [m]")
     side.set_xlabel("x [m] (screw axis; moving parts dashed, at mid-stroke)")
     names = ", ".join(f"{k}: {n}" for k, n in enumerate(result.curves[kind][-1].sensors, start=1))
-    top.set_title(f"chosen in order ({LAW_LABELS.get(kind, kind)}): {names}", fontsize=8)
+    # Six long candidate names run past a 10-inch figure's edges on one line.
+    title = textwrap.fill(f"chosen in order ({LAW_LABELS.get(kind, kind)}): {names}", width=TITLE_CHARACTERS)
+    top.set_title(title, fontsize=8)
     top.legend(fontsize=7, loc="upper right")
     return _png(figure)
 

@@ -94,4 +94,9 @@ def print_validation(validation: Validation, out_dir: Path, console: Console | N
         if t and d:
             console.print(f"calibrated, leave-one-condition-out: temperature {abs(t['deviation']):.1f} K "
                           f"({t['condition']} {t['quantity']}), elongation {abs(d['deviation']):.1f} µm ({d['condition']})")
+    if validation.uncertainty is not None:
+        low, high = (round(100 * b) for b in validation.uncertainty["summary"].get("band", (0.05, 0.95)))
+        console.print("measured values inside the " + f"{low}–{high} % band: " + ", ".join(
+            f"{s['label']} {s['coverage']['inside']} of {s['coverage']['total']}"
+            for s in validation.uncertainty["summary"]["sets"]))
     console.print(f"wrote {out_dir}/validation.csv, validation.json, report.html ({validation.wall_time_s:.1f} s)")

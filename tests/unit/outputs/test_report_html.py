@@ -310,3 +310,22 @@ def test_a_compensation_study_becomes_the_last_section_with_its_numbers_escaped(
     assert "&lt;T1&gt;" in section and "<T1>" not in section
     assert "0.49" in section and "2.34" in section and "98.9" in section and "+16.2" in section and "+2.9" in section
     assert 'id="compensation"' not in render_report(synthetic_validation())
+
+
+def test_an_uncertainty_study_becomes_the_section_after_compensation():
+    from feedtherm.outputs.uncertainty_files import summary
+    from uncertainty_study import make_study
+
+    compensation = {"summary": {"settings": {"cycles": 1, "model": "fast", "mode": "physics", "seed": 0, "spread": 0.2},
+                                "sets": {"test": {"uncompensated_rms_um": 1.0, "uncompensated_max_um": 2.0}},
+                                "curves": {}, "declared": {},
+                                "best": {"law": "kalman", "sensors": ["T1"], "validation_rms_um": 0.1,
+                                         "test": {"rms_um": 0.1, "max_um": 0.2, "reduction_percent": 90.0}}},
+                    "figures": {}}
+    uncertainty = {"summary": summary(make_study(calibrated=False)), "figures": {"finals.png": PNG_1PX}}
+    html = render_report(synthetic_validation(compensation=compensation, uncertainty=uncertainty))
+    assert html.index('id="uncertainty"') > html.index('id="compensation"')
+    section = html[html.index('id="uncertainty"'):]
+    assert "15 of 30 measured values lie inside the prior 5–95 % band" in section
+    assert section.count("data:image/png;base64") == 1
+    assert 'id="uncertainty"' not in render_report(synthetic_validation())

@@ -10,11 +10,12 @@ the paper's in-sample) · 3. deviation tables · 4. sensor curves (Fig. 10) · 5
 (Fig. 11) · 6. equilibrium time · 7. final values against speed and ambient · 8. dual against
 single drive · 9. heat budget · 10. inferred heat per source · 11. measurement consistency ·
 12. sensitivity ranking · 13. the paper's inconsistencies · 14. calibrated values ·
-15. assumptions and provenance · 16. thermal-error compensation (with ``validate --compensation``).
+15. assumptions and provenance · 16. thermal-error compensation (with ``validate --compensation``) ·
+17. prediction bands and Sobol indices (with ``validate --uncertainty``).
 
 Modules: ``html`` (escaping builders and the page), ``figures`` (the PNGs), ``data`` (shared
 numbers), and one module per group of sections (``comparison``, ``fidelity``, ``transients``,
-``operating``, ``context``).
+``operating``, ``context``, ``compensation``, ``uncertainty``).
 """
 
 from __future__ import annotations
@@ -34,6 +35,7 @@ from .fidelity import consistency_section, headline_section, inferred_heat_secti
 from .html import page
 from .operating import dual_single_section, heat_budget_section, trends_section
 from .transients import equilibrium_section, screw_field_section, sensor_curves_section
+from .uncertainty import uncertainty_section
 
 REPORT_HTML = "report.html"
 
@@ -60,6 +62,8 @@ def render_report(validation: Validation, *, generated: datetime | None = None) 
     body = title_section(validation, generated) + "".join(build(validation) for build in _SECTIONS)
     if validation.compensation is not None:  # a `feedtherm compensate` folder given to `validate --compensation`
         body += compensation_section(validation.compensation["summary"], validation.compensation["figures"])
+    if validation.uncertainty is not None:  # a `feedtherm uncertainty` folder given to `validate --uncertainty`
+        body += uncertainty_section(validation.uncertainty["summary"], validation.uncertainty["figures"])
     return page(f"feedtherm validation — {validation.system_name}", body)
 
 
