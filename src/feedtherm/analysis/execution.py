@@ -210,3 +210,30 @@ def _message(error: BaseException) -> str:
     if isinstance(error, FeedthermError):
         return text
     return f"{type(error).__name__}: {text}" if text else type(error).__name__
+
+
+@contextlib.contextmanager
+def held(execution: Execution) -> Iterator[Execution]:
+    """An execution that keeps one local cluster for many batches.
+
+    Each :func:`run_ordered` call on ``Execution(workers=N)`` starts (and stops) its own local
+    cluster, a few seconds each time; a loop of small dependent batches (an optimiser's
+    Jacobians) would spend more on start-ups than on runs.  Inside this context such an
+    execution is the address of one cluster started here, so every batch reuses its workers;
+    a serial execution or an existing scheduler is yielded as it is.  Results do not depend on
+    it: every task is the same deterministic function of its inputs wherever it runs.
+    """
+    if execution.workers is None:
+        yield execution
+        return
+    from distributed import LocalCluster
+
+    logger = logging.getLogger("distributed")
+    level = logger.level
+    logger.setLevel(logging.ERROR)
+    try:
+        with LocalCluster(n_workers=execution.workers, threads_per_worker=1, processes=True, host=LOCAL_HOST,
+                          dashboard_address=None, silence_logs=logging.ERROR) as cluster:
+            yield Execution(scheduler=cluster.scheduler_address)
+    finally:
+        logger.setLevel(level)
