@@ -45,6 +45,7 @@ that function from the description: one batch of runs per call, through the exec
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -260,6 +261,7 @@ def bayesian_update(loaded: LoadedSystem, data: MeasurementSet, fit_conditions: 
     Jacobian one batch through ``execution``.  Raises :class:`FeedthermError` (one line) for an
     unknown condition or one without measurements.
     """
+    started = time.perf_counter()
     prior = resolve_uncertainties(loaded)
     unknown = [c for c in fit_conditions if c not in loaded.system.conditions]
     if unknown:
@@ -294,7 +296,7 @@ def bayesian_update(loaded: LoadedSystem, data: MeasurementSet, fit_conditions: 
     update = BayesianUpdate(loaded=loaded, nominal=nominal, prior=prior, parameters=parameters, fit=fit,
                             x_map=x_map, fit_conditions=list(fit_conditions), rows=rows, excluded=excluded,
                             conditions_runs=model.runs * len(fit_conditions))
-    update.summary = _summary(update)
+    update.summary = _summary(update) | {"wall_time_s": time.perf_counter() - started}
     return update
 
 
