@@ -488,9 +488,18 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
         data = None
     consistency = check_description_measurements(loaded.system, data) if data is not None else None
     posterior = None
+    if args.calibration and args.update_with:
+        raise FeedthermError("--update-with and --calibration: give one (the priors updated with measurements, or "
+                             "a calibration folder's posterior)")
+    update_with = _update_conditions(loaded, args.update_with, data) if args.update_with else None
     if args.calibration:
         folder = Path(args.calibration)
         posterior = read_posterior(folder, loaded, read_calibration_summary(folder))
+    if update_with:
+        from .analysis.uncertainty.update import bayesian_update
+
+        posterior = bayesian_update(loaded, data, update_with, consistency=consistency, mode=args.mode,
+                                    execution=execution)
     from .outputs.uncertainty_files import print_uncertainty, write_uncertainty
 
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
@@ -500,6 +509,25 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
     write_uncertainty(study, out_dir)
     print_uncertainty(study, out_dir)
     return 0
+
+
+def _update_conditions(loaded, text: str, data) -> list[str]:
+    """The conditions of ``--update-with I,II,IV``: known, measured, each once."""
+    conditions = [c.strip() for c in text.split(",")]
+    if any(not c for c in conditions) or len(set(conditions)) != len(conditions):
+        raise FeedthermError(f"--update-with: {text!r} is not a comma-separated list of distinct conditions, "
+                             f"such as I,II,IV")
+    for c in conditions:
+        if c not in loaded.system.conditions:
+            raise FeedthermError(f"--update-with: no condition {c!r} in {loaded.origin}; conditions: "
+                                 f"{', '.join(loaded.system.conditions)}")
+    if data is None:
+        raise FeedthermError(f"--update-with: {loaded.origin} has no measurements to update with; give --measured CSV")
+    missing = [c for c in conditions if c not in data.conditions()]
+    if missing:
+        raise FeedthermError(f"--update-with: no measurements for {', '.join(missing)} in {data.source} "
+                             f"(measured: {', '.join(data.conditions())})")
+    return conditions
 
 
 def _system_argument(parser: argparse.ArgumentParser) -> None:
@@ -711,6 +739,10 @@ def build_parser() -> argparse.ArgumentParser:
     uncertainty.add_argument("--calibration", metavar="DIR",
                              help="output folder of `feedtherm calibrate`: also the bands after calibration (the "
                                   "fitted parameters' posterior, the other priors kept)")
+    uncertainty.add_argument("--update-with", metavar="CONDITIONS",
+                             help="comma-separated measured conditions, such as I,II,IV: also the bands after a "
+                                  "Bayesian update of every declared prior with their measured final values "
+                                  "(docs/uncertainty.md); not with --calibration")
     _measured_argument(uncertainty)
     _mode_argument(uncertainty)
     _execution_arguments(uncertainty)

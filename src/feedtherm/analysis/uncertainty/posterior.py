@@ -22,7 +22,7 @@ from ...errors import FeedthermError
 from ...system.load import LoadedSystem, load_system
 from ...system.variants import si_unit_at
 from .declared import resolve_uncertainties
-from .sampling import POSTERIOR
+from .sampling import POSTERIOR, to_values
 from .types import UncertainParameter
 
 
@@ -34,6 +34,15 @@ class Posterior:
     parameters: list[UncertainParameter]  # the fitted ones (POSTERIOR) first, then the priors kept
     correlation: np.ndarray  # over the fitted ones, in their order
     summary: dict  # for the study's record: fit conditions, fitted parameters, replaced priors
+
+    @property
+    def nominal(self) -> LoadedSystem:
+        """The description of the set's nominal run: the calibrated one."""
+        return self.loaded
+
+    def values(self, u: np.ndarray) -> np.ndarray:
+        """The parameter values (n, d) at the unit points ``u`` (n, d) (:func:`~.sampling.to_values`)."""
+        return to_values(self.parameters, u, self.correlation)
 
 
 def posterior_parameters(summary: dict, calibrated: LoadedSystem, where: str) -> tuple[list[UncertainParameter], np.ndarray]:

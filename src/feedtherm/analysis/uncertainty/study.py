@@ -1,8 +1,9 @@
 """An uncertainty study: prediction bands and Sobol' indices from the declared uncertainties.
 
 For each state of knowledge (the declared priors; after a calibration, its posterior and the
-priors it left), ``samples`` scrambled Sobol' points of the unit hypercube are mapped through the
-parameters' inverse distribution functions (:mod:`.sampling`), and every point's variant of the
+priors it left, or the priors updated with measured finals, :mod:`.update`), ``samples``
+scrambled Sobol' points of the unit hypercube are mapped through the parameters' inverse
+distribution functions (:mod:`.sampling`; the update's through its posterior), and every point's variant of the
 description runs every condition with the fast model (cycle-averaged motion, 60 s steps, as
 calibration runs).  The bands are the 5 %, 50 % and 95 % quantiles over the points, at each time
 of a 60 s grid and of the final values, beside the run at the declared values and the
@@ -34,6 +35,7 @@ from .runs import GRID_STEP_S, SampleResult, SampleRun, run_sample
 from .sampling import to_values, unit_points
 from .sobol import saltelli_points, sobol_indices
 from .types import BAND, Band, FinalBand, SobolIndex, UncertainParameter, UncertaintySet, UncertaintyStudy
+from .update import BayesianUpdate
 
 #: Default points of the bands (a power of 2), and of Saltelli's base.
 DEFAULT_SAMPLES = 128
@@ -45,11 +47,13 @@ QUANTILES = (BAND[0], 0.5, BAND[1])
 def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sobol_base: int | None = DEFAULT_SOBOL_BASE,
                     seed: int = 0, sobol_condition: str = "I", mode: str = "physics",
                     data: MeasurementSet | None = None, consistency: ConsistencyReport | None = None,
-                    posterior: Posterior | None = None, execution: Execution = Execution(),
+                    posterior: Posterior | BayesianUpdate | None = None, execution: Execution = Execution(),
                     progress: Callable[[float], None] | None = None,
                     conditions: list[str] | None = None) -> UncertaintyStudy:
     """Bands of every condition (``conditions``, default all) under the priors and, with
-    ``posterior``, after calibration; Sobol' indices at ``sobol_condition`` (``sobol_base``
+    ``posterior``, after calibration (a calibration folder's :class:`~.posterior.Posterior`, or
+    the declared priors updated with measurements, :class:`~.update.BayesianUpdate`; the set is
+    labelled "calibrated" either way); Sobol' indices at ``sobol_condition`` (``sobol_base``
     None: none).
 
     ``data``/``consistency``: the measurements the final values are judged against, with the
@@ -64,15 +68,16 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
         if c not in loaded.system.conditions:
             raise FeedthermError(f"--condition: no condition {c!r} in {loaded.origin}; conditions: "
                                  f"{', '.join(loaded.system.conditions)}")
-    states = [("prior", loaded, prior, None)]
+    # (label, the description the values apply to, the nominal run's, the parameters, their sampler)
+    states = [("prior", loaded, loaded, prior, lambda u: to_values(prior, u))]
     if posterior is not None:
-        states.append(("calibrated", posterior.loaded, posterior.parameters, posterior.correlation))
+        states.append(("calibrated", posterior.loaded, posterior.nominal, posterior.parameters, posterior.values))
     items: list[SampleRun] = []
     slices = {}
-    for label, base, parameters, correlation in states:
-        points = to_values(parameters, unit_points(samples, len(parameters), seed), correlation)
+    for label, base, nominal, parameters, sampler in states:
+        points = sampler(unit_points(samples, len(parameters), seed))
         start = len(items)
-        items.append(SampleRun(base, tuple(conditions), mode, f"{label} nominal"))
+        items.append(SampleRun(nominal, tuple(conditions), mode, f"{label} nominal"))
         items.extend(_point(base, parameters, x, tuple(conditions), mode, f"{label} sample {i}")
                      for i, x in enumerate(points))
         slices[label] = (start, len(items))
@@ -86,7 +91,7 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
         slices["sobol"] = (start, len(items))
     results = _run_all(items, execution, progress)
     sets = []
-    for label, base, parameters, _ in states:
+    for label, _, _, parameters, _ in states:
         a, b = slices[label]
         sets.append(_set(label, parameters, results[a], results[a + 1:b], conditions, data, consistency))
     if sobol_points is not None:

@@ -55,7 +55,12 @@ def _sampling_text(summary: dict, band: str) -> str:
             f"the {band.split('–')[1]} quantile of the runs; the nominal run takes every parameter at its declared "
             f"value.")
     calibration = next((e["calibration"] for e in summary["sets"] if e.get("calibration")), None)
-    if calibration:
+    if calibration and calibration.get("method", "").startswith("Bayesian update"):
+        fit = calibration.get("fit_conditions") or []
+        text += (" The calibrated set samples every declared prior updated with the measured final values of "
+                 f"condition{'s' if len(fit) > 1 else ''} {', '.join(fit)} (a Laplace approximation of the "
+                 f"posterior, noise scale s² {calibration.get('noise_scale_s2', float('nan')):.3g}).")
+    elif calibration:
         fit = calibration.get("fit_conditions")
         text += (" The calibrated set samples the posterior of the calibration"
                  + (f" fitted on condition{'s' if len(fit) > 1 else ''} {', '.join(fit)}" if fit else "") + ".")

@@ -1,0 +1,20 @@
+"""The report's sampling paragraph names a Bayesian update as such, and a calibration folder as before."""
+
+from feedtherm.outputs.report.uncertainty import _sampling_text
+
+
+def summary(calibration):
+    return {"settings": {"seed": 0}, "parameters": [{}] * 3, "system": "bundled:paper",
+            "sets": [{"label": "prior", "runs": 5}, {"label": "calibrated", "runs": 5, "calibration": calibration}]}
+
+
+def test_an_update_is_described_as_the_priors_updated_with_measurements():
+    text = _sampling_text(summary({"method": "Bayesian update of the declared priors, Laplace approximation",
+                                   "fit_conditions": ["I", "II", "IV"], "noise_scale_s2": 4.0}), "5–95 %")
+    assert "every declared prior updated with the measured final values of conditions I, II, IV" in text
+    assert "noise scale s² 4" in text
+
+
+def test_a_calibration_folder_is_described_as_before():
+    text = _sampling_text(summary({"fit_conditions": ["I", "II"]}), "5–95 %")
+    assert "samples the posterior of the calibration fitted on conditions I, II." in text
