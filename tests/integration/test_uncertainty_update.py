@@ -51,9 +51,13 @@ def test_the_update_fits_the_measured_finals_of_its_conditions(paper, data, seri
         assert p.reason.startswith("prior: ") and "updated with the measured finals of I" in p.reason
 
 
-def test_the_update_is_the_studys_second_set(paper, serial):
-    study = run_uncertainty(paper, samples=2, sobol_base=None, conditions=["I"], posterior=serial)
-    prior, after = study.sets
+@pytest.fixture(scope="module")
+def study(paper, serial):
+    return run_uncertainty(paper, samples=2, sobol_base=None, conditions=["I"], posterior=serial)
+
+
+def test_the_update_is_the_studys_second_set(paper, serial, study):
+    prior, after, _ = study.sets
     assert after.label == "calibrated" and after.calibration["fit_conditions"] == ["I"]
     assert after.parameters == serial.parameters
     # its nominal run is the run at the posterior mode
@@ -62,6 +66,23 @@ def test_the_update_is_the_studys_second_set(paper, serial):
     at_map = run_sample(SampleRun(serial.nominal, ("I",), "physics", "map")).finals["I"]
     for f in after.finals:
         assert f.nominal == pytest.approx(at_map[f.quantity], abs=1e-9)
+
+
+def test_the_predictive_set_widens_the_updated_finals_by_the_model_error(serial, study):
+    _, after, predictive = study.sets
+    assert predictive.label == "predictive" and predictive.runs == 0 and predictive.bands == {}
+    # s² is fixed at 1 here, so the model error is the weights themselves: 0.5 K and 2 µm
+    fitted = {r["quantity"] for r in serial.summary["residuals"]}
+    assert predictive.model_error["noise_scale_s2"] == 1.0
+    assert predictive.model_error["sd"] == {q: (2.0 if q == "D_um" else 0.5) for q in fitted}
+    for f, g in zip(after.finals, predictive.finals):
+        assert (f.condition, f.quantity, f.nominal, f.measured) == (g.condition, g.quantity, g.nominal, g.measured)
+        if f.quantity in fitted:
+            # two sampled points y1 < y2: the mixture's CDF at y1 is at least 1/4, so its 5 % quantile
+            # lies below y1, while the samples' 5 % quantile, y1 + 0.05 (y2 − y1), is not below y1
+            assert g.p05 < f.p05 and g.p95 > f.p95
+        else:
+            assert (g.p05, g.p50, g.p95) == (f.p05, f.p50, f.p95)  # the ambient: an input, not fitted
 
 
 def exit_code(argv):

@@ -4,9 +4,10 @@ indices, the figures and the report section as a page.
 Files (all in one directory, replaced as a set):
 
 - ``uncertainty.json``: settings, the declared uncertainties, and per set (the priors, then the
-  calibrated posterior if there is one): runs, how many measured values lie inside their band,
-  the final values' bands, their mean width per unit, the Sobol indices, the calibration it
-  came from, and every condition's bands over time (numbers rounded to ``DECIMALS``);
+  calibrated posterior if there is one, then the predictive set after a Bayesian update): runs,
+  how many measured values lie inside their band, the final values' bands, their mean width per
+  unit, the Sobol indices, the calibration it came from, the predictive set's model error, and
+  every condition's bands over time (numbers rounded to ``DECIMALS``);
 - ``bands.csv``: one row per set, condition, quantity and time;
 - ``finals.csv``: one row per set, condition and quantity: the final value's band beside its measurement;
 - ``sobol.csv``: one row per set, quantity and parameter;
@@ -107,6 +108,7 @@ def _set_entry(uset: UncertaintySet) -> dict:
                    **{key: round(float(getattr(i, key)), INDEX_DECIMALS) for key in ("S1", "S1_conf", "ST", "ST_conf")}}
                   for i in uset.sobol],
         "calibration": uset.calibration,
+        "model_error": uset.model_error,
         "bands": _bands_entry(uset),
     }
 
@@ -222,7 +224,7 @@ def print_uncertainty(study: UncertaintyStudy, out_dir: Path, console: Console |
     for uset in study.sets:
         inside, total = uset.coverage
         widths = mean_widths(uset)
-        table.add_row(uset.label, str(uset.runs), f"{inside} of {total}", _width(widths.get("C")),
+        table.add_row(uset.label, str(uset.runs) if uset.runs else "—", f"{inside} of {total}", _width(widths.get("C")),
                       _width(widths.get("um")))
     console.print(table)
     for uset in study.sets:

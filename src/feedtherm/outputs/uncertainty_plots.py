@@ -19,7 +19,7 @@ from ..analysis.uncertainty.types import BAND, FinalBand, UncertaintySet, Uncert
 _DPI = 110
 _HOURS = 3600.0
 #: Each state of knowledge keeps its colour in every figure.
-SET_COLOURS = {"prior": "tab:blue", "calibrated": "tab:orange"}
+SET_COLOURS = {"prior": "tab:blue", "calibrated": "tab:orange", "predictive": "tab:green"}
 UNIT_LABELS = {"C": "°C", "um": "µm"}
 #: The quantity the Sobol figure orders its parameters by, the first one present.
 SOBOL_ORDER_BY = ("D_um", "T4")
@@ -273,7 +273,7 @@ def sobol_figure(uset: UncertaintySet):
 
 
 def _runs_text(study: UncertaintyStudy) -> str:
-    return ", ".join(f"{s.runs} {s.label} runs" for s in study.sets)
+    return ", ".join(f"{s.runs} {s.label} runs" for s in study.sets if s.runs)
 
 
 def _legend_entries(axes):

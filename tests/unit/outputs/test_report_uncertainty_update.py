@@ -18,3 +18,13 @@ def test_an_update_is_described_as_the_priors_updated_with_measurements():
 def test_a_calibration_folder_is_described_as_before():
     text = _sampling_text(summary({"fit_conditions": ["I", "II"]}), "5–95 %")
     assert "samples the posterior of the calibration fitted on conditions I, II." in text
+
+
+def test_the_predictive_set_is_described_with_its_model_error():
+    document = summary({"method": "Bayesian update of the declared priors, Laplace approximation",
+                        "fit_conditions": ["I"], "noise_scale_s2": 4.0})
+    document["sets"].append({"label": "predictive", "runs": 0,
+                             "model_error": {"noise_scale_s2": 4.0, "sd": {"T1": 1.0, "D_um": 4.0}}})
+    text = _sampling_text(document, "5–95 %")
+    assert "5 runs for the calibrated set" in text and "runs for the predictive set" not in text
+    assert "s·σ T1 1.00 K, D 4.00 µm" in text and "posterior predictive" in text

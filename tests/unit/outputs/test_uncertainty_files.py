@@ -283,3 +283,29 @@ def test_mean_widths_count_only_the_measured_values():
     # Without any measurement every final value counts.
     uset.finals = [replace(f, measured=None) for f in uset.finals]
     assert mean_widths(uset) == {"C": 2.0}
+
+
+def test_a_predictive_set_without_bands_over_time_is_written_beside_the_others(tmp_path):
+    """The set a Bayesian update adds: finals only, no runs of its own; every file still written."""
+    from feedtherm.analysis.uncertainty.types import UncertaintySet
+
+    study = make_study()
+    calibrated = study.sets[1]
+    wider = [dataclasses.replace(f, p05=f.p05 - 1.0, p95=f.p95 + 1.0) for f in calibrated.finals]
+    study.sets.append(UncertaintySet("predictive", calibrated.parameters, {}, wider, 0,
+                                     model_error={"noise_scale_s2": 4.0, "sd": {"T1": 1.0}}))
+    out = tmp_path / "out"
+    assert sorted(p.name for p in write_uncertainty(study, out)) == ALL_FILES
+    assert "predictive" not in {r["set"] for r in rows(out / "bands.csv")}
+    finals = [r for r in rows(out / "finals.csv") if r["set"] == "predictive"]
+    assert len(finals) == 5 * 7 and float(finals[0]["p95"]) - float(finals[0]["p05"]) == pytest.approx(
+        calibrated.finals[0].p95 - calibrated.finals[0].p05 + 2.0, abs=1e-3)
+    document = read_uncertainty_summary(out)
+    assert document["summary"]["sets"][2]["model_error"] == {"noise_scale_s2": 4.0, "sd": {"T1": 1.0}}
+    html = (out / "uncertainty.html").read_text(encoding="utf-8")
+    assert "Mean width of the predictive bands against the prior ones" in html
+    assert html.count("sampled in the") == 1  # the predictive set's parameters are the calibrated set's
+    console = io.StringIO()
+    print_uncertainty(study, out, Console(file=console, width=160))
+    line = next(l for l in console.getvalue().splitlines() if l.lstrip("│ ").startswith("predictive"))
+    assert line.split("│")[2].strip() == "—"  # no runs of its own

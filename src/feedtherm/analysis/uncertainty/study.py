@@ -7,7 +7,9 @@ distribution functions (:mod:`.sampling`; the update's through its posterior), a
 description runs every condition with the fast model (cycle-averaged motion, 60 s steps, as
 calibration runs).  The bands are the 5 %, 50 % and 95 % quantiles over the points, at each time
 of a 60 s grid and of the final values, beside the run at the declared values and the
-measurements.  For one condition (default I), Saltelli's scheme gives the Sobol' indices of
+measurements.  After a Bayesian update a third set, "predictive", widens the updated finals'
+bands by the model error N(0, s²σ²) the update measured (:mod:`.predictive`): the band a
+measured value is expected in, where the calibrated set's is the model's prediction alone.  For one condition (default I), Saltelli's scheme gives the Sobol' indices of
 the final values under the priors (:mod:`.sobol`).
 
 Every run goes through the execution layer (:func:`~feedtherm.analysis.execution.run_ordered`),
@@ -19,6 +21,7 @@ batch, so every failure is counted).
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from typing import Callable
 
 import numpy as np
@@ -31,6 +34,7 @@ from ..measurements import MeasurementSet
 from ..validation_types import ELONGATION_QUANTITY
 from .declared import resolve_uncertainties, variant
 from .posterior import Posterior
+from .predictive import predictive_quantiles
 from .runs import GRID_STEP_S, SampleResult, SampleRun, run_sample
 from .sampling import to_values, unit_points
 from .sobol import saltelli_points, sobol_indices
@@ -100,6 +104,9 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
         sets[0].sobol = _indices(prior, [r.finals[sobol_condition] for r in results[a:b]], seed)
     if posterior is not None:
         sets[1].calibration = posterior.summary
+    if isinstance(posterior, BayesianUpdate):
+        a, b = slices["calibrated"]
+        sets.append(_predictive(sets[1], results[a + 1:b], posterior.model_error(), posterior.fit.s2))
     settings = {
         "samples": samples, "seed": seed, "sampler": "scrambled Sobol' points (scipy.stats.qmc), inverse CDFs",
         "sobol_base": sobol_base, "sobol_runs": 0 if sobol_points is None else len(sobol_points),
@@ -152,6 +159,27 @@ def _set(label, parameters, nominal: SampleResult, samples: list[SampleResult], 
                                     float(p95), nominal.finals[c][q], measured.get(q), flag.reason if flag else ""))
     return UncertaintySet(label=label, parameters=list(parameters), bands=bands, finals=finals,
                           runs=(len(samples) + 1) * len(conditions))
+
+
+def _predictive(updated: UncertaintySet, samples: list[SampleResult], error_sd: dict[str, float],
+                s2: float) -> UncertaintySet:
+    """The updated set's final values with the model error added: each fitted quantity's band is
+    the 5–95 % of the posterior predictive mixture (:func:`.predictive.predictive_quantiles`).
+
+    A quantity the update did not fit (the ambient T6, the condition's input) keeps its band.
+    There are no bands over time: s² is measured on the final values only, and how the misfit
+    grows from zero at the start is not known.
+    """
+    finals = []
+    for f in updated.finals:
+        sd = error_sd.get(f.quantity)
+        if sd is None:
+            finals.append(f)
+            continue
+        p05, p50, p95 = predictive_quantiles([s.finals[f.condition][f.quantity] for s in samples], sd, QUANTILES)
+        finals.append(replace(f, p05=float(p05), p50=float(p50), p95=float(p95)))
+    return UncertaintySet(label="predictive", parameters=updated.parameters, bands={}, finals=finals, runs=0,
+                          model_error={"noise_scale_s2": s2, "sd": error_sd})
 
 
 def _indices(parameters: list[UncertainParameter], finals: list[dict[str, float]], seed: int) -> list[SobolIndex]:

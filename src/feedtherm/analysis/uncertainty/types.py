@@ -92,7 +92,7 @@ class SobolIndex:
 class UncertaintySet:
     """Bands (and indices) under one state of knowledge: the declared priors, or after calibration."""
 
-    label: str  # "prior" or "calibrated"
+    label: str  # "prior", "calibrated" or "predictive"
     parameters: list[UncertainParameter]
     bands: dict[str, Band]  # condition -> bands over time
     finals: list[FinalBand]
@@ -100,6 +100,9 @@ class UncertaintySet:
     sobol_condition: str | None = None
     sobol: list[SobolIndex] = field(default_factory=list)
     calibration: dict | None = None  # the calibration folder's fit conditions and fitted parameters
+    #: The predictive set only: the model error added to the calibrated set's runs (the noise
+    #: scale s², and quantity -> standard deviation s·σ in the value's unit).
+    model_error: dict | None = None
 
     @property
     def coverage(self) -> tuple[int, int]:
@@ -112,4 +115,5 @@ class UncertaintySet:
 class UncertaintyStudy:
     system: str
     settings: dict  # samples, seed, sampler, model, mode, duration_s, band, execution, wall_time_s
-    sets: list[UncertaintySet]  # the prior first, then the calibrated set if a calibration was given
+    sets: list[UncertaintySet]  # the prior first, then the calibrated set if a calibration was given,
+    # then (after a Bayesian update) the predictive set: the calibrated runs with the model error

@@ -247,6 +247,11 @@ class BayesianUpdate:
         """The posterior's parameter values (n, d) at the unit points ``u`` (n, d)."""
         return to_x(self.prior, self.fit.z_points(u))
 
+    def model_error(self) -> dict[str, float]:
+        """Quantity -> the standard deviation s·σ of the model error N(0, s²σ²) the update
+        assumed for its measured values [°C or µm] (the fitted quantities only)."""
+        return {r.quantity: float(np.sqrt(self.fit.s2) * r.sigma) for r in self.rows}
+
 
 def bayesian_update(loaded: LoadedSystem, data: MeasurementSet, fit_conditions: list[str], *,
                     consistency: ConsistencyReport | None = None, mode: str = "physics",

@@ -24,8 +24,8 @@ def uncertainty_section(summary: dict, figures: dict[str, bytes]) -> str:
     band = f"{low}–{high} %"
     body = [paragraph(_sampling_text(summary, band))]
     body.append(parameter_table(summary["parameters"], "the declared uncertainties (the prior)"))
-    for entry in sets[1:]:
-        if entry["parameters"] != summary["parameters"]:
+    for before, entry in zip(sets, sets[1:]):
+        if entry["parameters"] != before["parameters"]:
             body.append(parameter_table(entry["parameters"], f"sampled in the {entry['label']} set"))
     body.append(table(["set", "runs", "measured values inside", "mean width T", "mean width D"],
                       [_coverage_row(entry) for entry in sets], caption=f"the final values' {band} bands"))
@@ -48,7 +48,7 @@ def uncertainty_section(summary: dict, figures: dict[str, bytes]) -> str:
 
 def _sampling_text(summary: dict, band: str) -> str:
     s = summary["settings"]
-    runs = ", ".join(f"{e['runs']} runs for the {e['label']} set" for e in summary["sets"])
+    runs = ", ".join(f"{e['runs']} runs for the {e['label']} set" for e in summary["sets"] if e["runs"])
     how = ", ".join(f"{key} {s[key]}" for key in ("sampler", "seed", "model", "mode") if s.get(key) is not None)
     text = (f"{len(summary['parameters'])} declared uncertainties of the description "
             f"{summary.get('system', '')} sampled together ({runs}; {how}). At every time the band runs from the {band.split('–')[0]} to "
@@ -60,6 +60,14 @@ def _sampling_text(summary: dict, band: str) -> str:
         text += (" The calibrated set samples every declared prior updated with the measured final values of "
                  f"condition{'s' if len(fit) > 1 else ''} {', '.join(fit)} (a Laplace approximation of the "
                  f"posterior, noise scale s² {calibration.get('noise_scale_s2', float('nan')):.3g}).")
+        error = next((e["model_error"] for e in summary["sets"] if e.get("model_error")), None)
+        if error:
+            sds = ", ".join(f"{_name(q)} {number(sd, 2)} {WIDTH_UNITS['um' if q == 'D_um' else 'C']}"
+                            for q, sd in error["sd"].items())
+            text += (" The predictive set adds to the calibrated set's runs the model error the update measured, "
+                     f"N(0, s²σ²) with s·σ {sds}: its band is where a measured value is expected (the posterior "
+                     "predictive distribution), the calibrated set's where the model's prediction can go; it has "
+                     "no runs of its own and no bands over time (s² is measured on the final values).")
     elif calibration:
         fit = calibration.get("fit_conditions")
         text += (" The calibrated set samples the posterior of the calibration"
@@ -94,7 +102,7 @@ def distribution_text(p: dict) -> str:
 def _coverage_row(entry: dict) -> list:
     widths = entry.get("mean_width", {})
     coverage = entry["coverage"]
-    return [entry["label"], str(entry["runs"]), f"{coverage['inside']} of {coverage['total']}",
+    return [entry["label"], str(entry["runs"]) if entry["runs"] else "—", f"{coverage['inside']} of {coverage['total']}",
             _width(widths.get("C"), "C"), _width(widths.get("um"), "um")]
 
 
@@ -110,15 +118,14 @@ def coverage_text(sets: list[dict], band: str) -> str:
               f"{band} band" for e in sets]
     text = "; ".join(counts) + "."
     prior = next((e for e in sets if e["label"] == "prior"), None)
-    calibrated = next((e for e in sets if e["label"] == "calibrated"), None)
-    if prior and calibrated:
+    for later in (e for e in sets if prior and e is not prior):
         ratios = []
         for unit, name in (("C", "temperatures"), ("um", "elongation")):
-            before, after = prior["mean_width"].get(unit), calibrated["mean_width"].get(unit)
+            before, after = prior["mean_width"].get(unit), later["mean_width"].get(unit)
             if before and after is not None:
                 ratios.append(f"{name} {number(100 * after / before, 0)} %")
         if ratios:
-            text += " Mean width of the calibrated bands against the prior ones: " + ", ".join(ratios) + "."
+            text += f" Mean width of the {later['label']} bands against the prior ones: " + ", ".join(ratios) + "."
     flagged = sorted({(f["condition"], f["quantity"]) for e in sets for f in e["finals"] if f.get("flag")})
     if flagged:
         text += (" Measured values flagged by the consistency check (counted like the others): "
