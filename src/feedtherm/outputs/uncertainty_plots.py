@@ -211,7 +211,7 @@ def finals_figure(study: UncertaintyStudy):
     panels = finals_panels(study)
     columns = 3 if len(panels) > 4 else 2
     rows = max(1, -(-len(panels) // columns))
-    figure = _figure((9.0, 2.5 * rows + 0.7))
+    figure = _figure((9.0, 2.7 * rows + 0.9))
     axes = figure.subplots(rows, columns, squeeze=False).ravel()
     labels = [s.label for s in study.sets]
     width = 0.5 / max(1, len(labels))
@@ -232,7 +232,7 @@ def finals_figure(study: UncertaintyStudy):
         ax.set_xlim(-0.6, len(panel.conditions) - 0.4)
         ax.set_ylabel(UNIT_LABELS.get(panel.unit, panel.unit))
         counts = ", ".join(f"{label} {k}/{n}" for label, (k, n) in panel.inside.items())
-        ax.set_title(f"{display_name(panel.quantity)}: inside {counts}", fontsize=8)
+        ax.set_title(f"{display_name(panel.quantity)}: measured inside the band\n{counts}", fontsize=8)
         ax.grid(alpha=0.3, axis="y")
     for ax in axes[len(panels):]:
         ax.set_axis_off()
@@ -293,7 +293,8 @@ def _finals_legend(figure, labels: list[str]) -> None:
     handles += [Line2D([], [], color="k", marker="D", ls="none", ms=6),
                 Line2D([], [], color="tab:red", marker="X", mfc="none", ls="none", ms=6)]
     names += ["measured", "measured, flagged by the consistency check"]
-    figure.legend(handles, names, loc="outside lower center", ncols=len(names), fontsize=7, frameon=False)
+    # three entries a row: the figure's width holds them whatever the number of sets
+    figure.legend(handles, names, loc="outside lower center", ncols=min(3, len(names)), fontsize=7, frameon=False)
 
 
 def _figure(figsize):

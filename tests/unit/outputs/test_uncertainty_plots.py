@@ -80,7 +80,7 @@ def test_the_finals_figure_counts_inside_per_quantity_and_in_all(study):
     figure = plots.finals_figure(study)
     assert "prior: 15 of 30; calibrated: 5 of 30" in figure.get_suptitle()
     titles = [ax.get_title() for ax in figure.axes if ax.axison]
-    assert len(titles) == len(MEASURED) and titles[-1].startswith("D: inside prior ")
+    assert len(titles) == len(MEASURED) and titles[-1].startswith("D: measured inside the band\nprior ")
     flagged = [line for ax in figure.axes for line in ax.lines if line.get_marker() == "X"]
     assert len(flagged) == 1 and flagged[0].get_ydata()[0] == measured("V", "D_um")
 
