@@ -24,7 +24,7 @@ def test_the_predictive_set_is_described_with_its_model_error():
     document = summary({"method": "Bayesian update of the declared priors, Laplace approximation",
                         "fit_conditions": ["I"], "noise_scale_s2": 4.0})
     document["sets"].append({"label": "predictive", "runs": 0,
-                             "model_error": {"noise_scale_s2": 4.0, "sd": {"T1": 1.0, "D_um": 4.0}}})
+                             "model_error": {"noise_scale_s2": 4.0, "sd": {"T1": 1.0, "T2": 1.0, "D_um": 4.0}}})
     text = _sampling_text(document, "5–95 %")
     assert "5 runs for the calibrated set" in text and "runs for the predictive set" not in text
-    assert "s·σ T1 1.00 K, D 4.00 µm" in text and "posterior predictive" in text
+    assert "s·σ T1, T2 1.00 K; D 4.00 µm" in text and "posterior predictive" in text

@@ -62,8 +62,10 @@ def _sampling_text(summary: dict, band: str) -> str:
                  f"posterior, noise scale s² {calibration.get('noise_scale_s2', float('nan')):.3g}).")
         error = next((e["model_error"] for e in summary["sets"] if e.get("model_error")), None)
         if error:
-            sds = ", ".join(f"{_name(q)} {number(sd, 2)} {WIDTH_UNITS['um' if q == 'D_um' else 'C']}"
-                            for q, sd in error["sd"].items())
+            groups: dict[str, list[str]] = {}  # one entry per distinct s·σ: the quantities that share it
+            for q, sd in error["sd"].items():
+                groups.setdefault(f"{number(sd, 2)} {WIDTH_UNITS['um' if q == 'D_um' else 'C']}", []).append(_name(q))
+            sds = "; ".join(f"{', '.join(names)} {value}" for value, names in groups.items())
             text += (" The predictive set adds to the calibrated set's runs the model error the update measured, "
                      f"N(0, s²σ²) with s·σ {sds}: its band is where a measured value is expected (the posterior "
                      "predictive distribution), the calibrated set's where the model's prediction can go; it has "
