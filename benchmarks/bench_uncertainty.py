@@ -92,7 +92,7 @@ def main() -> None:
     print(json.dumps(result, indent=2))
     out = Path(__file__).parent / "results"
     out.mkdir(exist_ok=True)
-    tag = f"{args.samples}x{args.sobol_base}" + (f"_update_{args.update_with.replace(',', '')}" if args.update_with else "")
+    tag = f"{args.samples}x{args.sobol_base}" + (f"_update_{args.update_with.replace(',', '-')}" if args.update_with else "")
     (out / f"bench_uncertainty_{tag}{'_' + args.only if args.only else ''}.json").write_text(
         json.dumps(result, indent=2) + "\n")
 
