@@ -181,6 +181,9 @@ def exit_code(args):
     (["--workers", "0"], ["--workers", "'0'"]),
     (["--calibration", "nowhere"], ["--calibration", "nowhere"]),
     (["--measured", "missing.csv"], ["missing.csv"]),
+    (["--update-with", "I", "--calibration", "somewhere"], ["--update-with and --calibration"]),
+    (["--update-with", "I,IX"], ["--update-with: no condition 'IX'"]),
+    (["--update-with", "I,,II"], ["--update-with", "comma-separated"]),
 ])
 def test_bad_input_is_one_line_and_writes_nothing(capsys, tmp_path, monkeypatch, args, fragments):
     monkeypatch.chdir(tmp_path)
@@ -196,8 +199,6 @@ def test_bad_input_is_one_line_and_writes_nothing(capsys, tmp_path, monkeypatch,
 
 
 def test_the_command_writes_the_study(capsys, tmp_path, monkeypatch):
-    pytest.importorskip("feedtherm.outputs.uncertainty_files",
-                        reason="the output side (outputs/uncertainty_files.py) is built on another branch")
     monkeypatch.chdir(tmp_path)
     code = cli.main(["uncertainty", "--samples", "2", "--sobol-base", "2", "--out", "unc"])
     captured = capsys.readouterr()

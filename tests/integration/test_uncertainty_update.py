@@ -1,6 +1,7 @@
 """The Bayesian update on the paper's bench, kept tiny (condition I, the noise scale fixed at 1,
 two least-squares evaluations): serial against two Dask workers, the update as the study's
-second set, and the command's bad input."""
+second set, the predictive set, and a condition without measurements (the command's other bad input
+is in test_uncertainty_study.py)."""
 
 import numpy as np
 import pytest
@@ -90,24 +91,6 @@ def exit_code(argv):
         return cli.main(argv)
     except SystemExit as exc:
         return exc.code
-
-
-@pytest.mark.parametrize("args, fragments", [
-    (["--update-with", "I", "--calibration", "somewhere"], ["--update-with and --calibration"]),
-    (["--update-with", "I,IX"], ["--update-with: no condition 'IX'"]),
-    (["--update-with", "I,,II"], ["--update-with", "comma-separated"]),
-])
-def test_bad_input_is_one_line_and_writes_nothing(capsys, tmp_path, monkeypatch, args, fragments):
-    monkeypatch.chdir(tmp_path)
-    code = exit_code(["uncertainty", *args, "--out", "out"])
-    captured = capsys.readouterr()
-    assert code == 2, captured
-    lines = captured.err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("feedtherm: error: "), captured.err
-    for fragment in fragments:
-        assert fragment in lines[0], lines[0]
-    assert captured.out == ""
-    assert list(tmp_path.iterdir()) == []
 
 
 def test_a_condition_without_measurements_is_refused(capsys, tmp_path, monkeypatch):
