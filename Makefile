@@ -5,7 +5,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: setup setup-test validate test bench fuzz clean
+.PHONY: setup setup-test validate uncertainty test bench fuzz clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -22,6 +22,17 @@ CAL_DIR    := out/paper_calibration_physics
 validate: $(STAMP)
 	$(BIN)/feedtherm calibrate paper --fit I,II,IV --params $(CAL_PARAMS) --cross-validate --out $(CAL_DIR)
 	$(BIN)/feedtherm validate paper --mode physics --calibration $(CAL_DIR)
+
+# The prediction bands (docs/uncertainty.md): the declared priors, updated with the measured
+# finals of I, II, IV, and the predictive bands; then the report with them (and with the
+# calibration of `make validate` where it has run).  About 6 minutes on 2 cores.
+UNC_DIR := out/paper_uncertainty
+WORKERS ?= 2
+
+uncertainty: $(STAMP)
+	$(BIN)/feedtherm uncertainty paper --update-with I,II,IV --workers $(WORKERS) --out $(UNC_DIR)
+	$(BIN)/feedtherm validate paper --mode physics --uncertainty $(UNC_DIR) \
+		$(if $(wildcard $(CAL_DIR)/calibration.json),--calibration $(CAL_DIR))
 
 # The report test renders report.html in headless Chromium (Debian package `chromium`); the
 # FE tests need the X/GL libraries that gmsh's wheel links against (Debian packages), and the

@@ -248,4 +248,3 @@ def _message(error: BaseException) -> str:
     if isinstance(error, FeedthermError):
         return text
     return f"{type(error).__name__}: {text}" if text else type(error).__name__
-

@@ -9,8 +9,9 @@ calibration runs).  The bands are the 5 %, 50 % and 95 % quantiles over the poin
 of a 60 s grid and of the final values, beside the run at the declared values and the
 measurements.  After a Bayesian update a third set, "predictive", widens the updated finals'
 bands by the model error N(0, s²σ²) the update measured (:mod:`.predictive`): the band a
-measured value is expected in, where the calibrated set's is the model's prediction alone.  For one condition (default I), Saltelli's scheme gives the Sobol' indices of
-the final values under the priors (:mod:`.sobol`).
+measured value is expected in, where the calibrated set's is the model's prediction alone.
+For one condition (default I), Saltelli's scheme gives the Sobol' indices of the final values
+under the priors (:mod:`.sobol`).
 
 Every run goes through the execution layer (:func:`~feedtherm.analysis.execution.run_ordered`),
 serial or on a Dask cluster, with identical results.  A band needs all its points: if a run
