@@ -21,7 +21,7 @@ from pydantic import (
     model_validator,
 )
 
-from .base import Strict
+from .base import ParameterPaths, Strict
 from .quantities import (
     AngularSpeed,
     Length,
@@ -259,16 +259,9 @@ class CalibrationParameter(Strict):
     """
 
     kind: Literal["value", "scale"]
-    paths: list[str]
+    paths: ParameterPaths
     bounds: tuple[str | float, str | float]
     description: str = ""
-
-    @field_validator("paths")
-    @classmethod
-    def _some_paths(cls, value: list[str]) -> list[str]:
-        if not value:
-            raise ValueError("name at least one path")
-        return value
 
 
 class Calibration(Strict):

@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING, Literal
 
 from pydantic import field_validator, model_validator
 
-from .base import Strict
+from .base import ParameterPaths, Strict
 
 if TYPE_CHECKING:  # pragma: no cover
     from .schema import FeedSystem
@@ -41,19 +41,12 @@ class UncertaintyParameter(Strict):
     """One declared uncertainty: a value (or values scaled together) and its distribution."""
 
     kind: Literal["value", "scale"]
-    paths: list[str]
+    paths: ParameterPaths
     distribution: Literal["uniform", "triangular", "normal", "lognormal"]
     range: tuple[str | float, str | float] | None = None
     sigma: str | float | None = None
     reason: str
     description: str = ""
-
-    @field_validator("paths")
-    @classmethod
-    def _some_paths(cls, value: list[str]) -> list[str]:
-        if not value:
-            raise ValueError("name at least one path")
-        return value
 
     @field_validator("reason")
     @classmethod
