@@ -15,16 +15,15 @@ from feedtherm import cli
 from feedtherm.analysis import sweep as sweep_module
 from feedtherm.outputs.sweep_partial import PARTIAL_DIR, SETTINGS_JSON
 
+from child_process import environment
+from child_process import finish as finish_within
+
 # Six points of about half a second each (in a child process): long enough to be interrupted
 # after two have finished and before the last.
 SLOW_GRID = ["--screw-rpm", "396,1116,2214", "--nut-rpm", "360", "--ambient", "20,25", "--duration", "7200"]
 # Four points of ~0.3 s, run in this process.
 GRID = ["--screw-rpm", "396,1116", "--nut-rpm", "360", "--ambient", "20:25:5", "--duration", "1800"]
 WAIT_S = 120
-
-
-def environment():
-    return {k: v for k, v in os.environ.items() if k != "DASK_SCHEDULER_ADDRESS"}
 
 
 def records(out):
@@ -37,14 +36,8 @@ def sweep(cwd, *args, **popen):
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **popen)
 
 
-def finish(process, timeout=WAIT_S):
-    try:
-        out, err = process.communicate(timeout=timeout)
-    except subprocess.TimeoutExpired:
-        process.kill()
-        process.communicate()
-        raise
-    return process.returncode, out, err
+def finish(process):
+    return finish_within(process, WAIT_S)
 
 
 @pytest.fixture(scope="module")

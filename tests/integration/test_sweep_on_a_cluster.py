@@ -14,20 +14,19 @@ import time
 
 import pytest
 
+from child_process import environment
+from child_process import finish as finish_within
+
 # Six runs of about half a second: long enough that a worker can be killed mid-batch.
 GRID = ["--screw-rpm", "396,1116,2214", "--nut-rpm", "360", "--ambient", "20,25", "--duration", "7200"]
 START_TIMEOUT_S = 60
+WAIT_S = 180
 
 
 def free_port():
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))
         return probe.getsockname()[1]
-
-
-def environment():
-    """The suite's environment (its PYTHONPATH names this feedtherm), without a scheduler of the user's."""
-    return {k: v for k, v in os.environ.items() if k != "DASK_SCHEDULER_ADDRESS"}
 
 
 @pytest.fixture(scope="module")
@@ -65,14 +64,8 @@ def sweep(cwd, *args):
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 
-def finish(process, timeout=180):
-    try:
-        out, err = process.communicate(timeout=timeout)
-    except subprocess.TimeoutExpired:
-        process.kill()
-        process.communicate()
-        raise
-    return process.returncode, out, err
+def finish(process):
+    return finish_within(process, WAIT_S)
 
 
 @pytest.fixture(scope="module")
