@@ -27,8 +27,12 @@ WAIT_S = 120
 
 
 def records(out):
+    """The kept points' records: not the settings, and not a record still being written (a hidden
+    temporary file, which pathlib's glob matches too)."""
     folder = out / PARTIAL_DIR
-    return sorted(p for p in folder.glob("*.json") if p.name != SETTINGS_JSON) if folder.is_dir() else []
+    if not folder.is_dir():
+        return []
+    return sorted(p for p in folder.glob("*.json") if p.name != SETTINGS_JSON and not p.name.startswith("."))
 
 
 def sweep(cwd, *args, **popen):
