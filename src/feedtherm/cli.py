@@ -512,21 +512,15 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
 
 
 def _update_conditions(loaded, text: str, data) -> list[str]:
-    """The conditions of ``--update-with I,II,IV``: known, measured, each once."""
+    """The conditions of ``--update-with I,II,IV``, each once, with measurements to update with
+    (:func:`~feedtherm.analysis.uncertainty.update.bayesian_update` checks that each is known
+    and measured, before any run)."""
     conditions = [c.strip() for c in text.split(",")]
     if any(not c for c in conditions) or len(set(conditions)) != len(conditions):
         raise FeedthermError(f"--update-with: {text!r} is not a comma-separated list of distinct conditions, "
                              f"such as I,II,IV")
-    for c in conditions:
-        if c not in loaded.system.conditions:
-            raise FeedthermError(f"--update-with: no condition {c!r} in {loaded.origin}; conditions: "
-                                 f"{', '.join(loaded.system.conditions)}")
     if data is None:
         raise FeedthermError(f"--update-with: {loaded.origin} has no measurements to update with; give --measured CSV")
-    missing = [c for c in conditions if c not in data.conditions()]
-    if missing:
-        raise FeedthermError(f"--update-with: no measurements for {', '.join(missing)} in {data.source} "
-                             f"(measured: {', '.join(data.conditions())})")
     return conditions
 
 
