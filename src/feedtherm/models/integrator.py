@@ -72,9 +72,10 @@ class Trace:
     step_probe: list = field(default_factory=list)  # probe values at the end of each step
     sample_probe: list = field(default_factory=list)  # probe values at the sample times
     sample_screw: list = field(default_factory=list)  # screw profile at the sample times
+    sample_displacement: list = field(default_factory=list)  # D and the screw's displacement at the sample times
     sample_parts: list = field(default_factory=list)  # part means at the sample times
     sample_offset: list = field(default_factory=list)  # moving-group offset at the sample times [m]
-    snapshots: list = field(default_factory=list)  # (time, state, offset) every snapshot_interval
+    snapshots: list = field(default_factory=list)  # (time, the model's state, offset) every snapshot_interval
     heat_in: float = 0.0
     heat_lost: float = 0.0
     time_step: float = 0.0  # the (first moving segment's) step [s]
@@ -503,7 +504,7 @@ class Integrator:
                     state = (1 - w) * T + w * T_new
                     self._record_sample(trace, state, k_probe)
                     if next_sample >= next_snapshot - 1e-9 or next_sample >= t_end - 1e-9:
-                        trace.snapshots.append((next_sample, m.full_state(state), m.positions[k_probe]))
+                        trace.snapshots.append((next_sample, state, m.positions[k_probe]))
                         next_snapshot = next_sample + self.options.snapshot_interval
                     next_sample = next(samples, None)
                 step_end.append(t_new)
@@ -542,6 +543,7 @@ class Integrator:
         m = self.model
         trace.sample_probe.append(m.probe(state, k))
         trace.sample_screw.append(m.screw_mean(state))
+        trace.sample_displacement.append(m.displacements(state))
         trace.sample_parts.append({p: float(v) for p, v in m.part_means(state).items()})
         trace.sample_offset.append(m.positions[k])
 

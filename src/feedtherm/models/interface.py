@@ -27,7 +27,6 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..boundary import BoundaryConditions
-from ..physics.thermal_expansion import displacement_weights_axial
 from ..system.schema import FeedSystem
 
 Operator = np.ndarray | sp.spmatrix  # a 1-D array is a diagonal
@@ -143,11 +142,6 @@ def weighted_sum(weights, operators: list[Operator]) -> Operator:
     return total.tocsr() if sp.issparse(total) else total
 
 
-def elongation_row(edges: np.ndarray, fixed_at: float, read_at: float) -> np.ndarray:
-    """Weights [m] of the screw's section means in D = α Σ w_j (T̄_j − T_ref)."""
-    return displacement_weights_axial(edges, fixed_at, [read_at])[0]
-
-
 class ThermalModel(ABC):
     """A discretisation of a feed system that the shared integrator can run.
 
@@ -164,7 +158,13 @@ class ThermalModel(ABC):
     probe_names : list[str]
         The sensors (without the ambient one), then ``"D"``.
     screw_edges, screw_centres : ndarray
-        Axial sections of the screw [m] for its temperature profile.
+        Axial sections of the screw [m] for its temperature and displacement profiles.
+
+    Displacements are linear in the temperatures (linear thermoelasticity from the reference
+    temperature): :meth:`displacement_rows` reads them, the first row D (``mechanics.elongation``),
+    then the screw's axial displacement at ``screw_centres`` relative to the positioning
+    reference (``mechanics.positioning``), from which the positioning error along the stroke is
+    taken.  D is also the last probe.
     """
 
     system: FeedSystem
@@ -291,6 +291,21 @@ class ThermalModel(ABC):
         columns one by one.  A model whose readings do not depend on k returns the same ``rows``
         object at every position.
         """
+        return None
+
+    @abstractmethod
+    def displacement_rows(self) -> tuple[Operator, np.ndarray]:
+        """``(rows, offset)``: ``rows @ state + offset`` is D, then the screw's axial displacement at
+        ``screw_centres`` relative to the positioning reference [m] (see the class notes)."""
+
+    def displacements(self, state: np.ndarray) -> np.ndarray:
+        """D, then the screw's axial displacement profile [m], of ``state`` (:meth:`displacement_rows`)."""
+        rows, offset = self.displacement_rows()
+        return rows @ state + offset
+
+    def displacement_field(self, state: np.ndarray) -> np.ndarray | None:
+        """The displacement [m] of every vertex of :meth:`field_mesh`, shape (n, 3), or None if the
+        model has no such field."""
         return None
 
     @abstractmethod

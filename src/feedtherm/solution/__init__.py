@@ -52,14 +52,21 @@ class Solution:
     sensors : dict[str, ndarray]
         Sensor temperatures [K] at ``times``: the declared sensors and ``T6`` (ambient).
     elongation : ndarray, shape (n,)
-        The screw's axial elongation D [m] between the fixed point and the read point,
-        relative to the reference temperature (the quantity compared with measurements).
+        The elongation D [m]: what the declared displacement sensor reads
+        (``mechanics.elongation``), zero at the reference temperature (the quantity compared
+        with measurements).
     screw_x : ndarray, shape (m,)
         Axial positions [m] of the screw cells (centres).
     screw_temperature : ndarray, shape (n, m)
         Cross-section mean screw temperature [K] by time and position.
     screw_displacement : ndarray, shape (n, m)
-        Axial thermal displacement [m] along the screw, zero at the fixed point.
+        Axial thermal displacement [m] along the screw (its section mean at ``screw_x``),
+        relative to the positioning reference point (``mechanics.positioning``).
+    table_x : ndarray, shape (p,)
+        Table positions [m]: the nut's centre along x at each position of the stroke.
+    positioning_error : ndarray, shape (n, p)
+        The thermal positioning error E(x, t) [m]: the screw's axial displacement under the
+        nut at each table position, relative to the positioning reference.
     nut_offset : ndarray, shape (n,)
         Displacement [m] of the moving group from the middle of the stroke.
     part_temperatures : dict[str, ndarray]
@@ -85,6 +92,8 @@ class Solution:
     screw_x: np.ndarray
     screw_temperature: np.ndarray
     screw_displacement: np.ndarray
+    table_x: np.ndarray
+    positioning_error: np.ndarray
     nut_offset: np.ndarray
     part_temperatures: dict[str, np.ndarray]
     cycle_times: np.ndarray

@@ -40,6 +40,9 @@ class FieldSeries:
         The screw's axial thermal displacement at ``screw_x`` [m].
     title : str
         What the run was, e.g. ``"condition I, physics mode, fem model (medium mesh)"``.
+    displacements : ndarray, shape (k, n, 3), optional
+        Thermal displacement of every vertex [m] from the reference temperature (the
+        thermoelastic solution), or None.
     """
 
     points: np.ndarray
@@ -53,6 +56,7 @@ class FieldSeries:
     screw_x: np.ndarray
     screw_displacement: np.ndarray
     title: str = ""
+    displacements: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         fix = lambda name, value: object.__setattr__(self, name, value)  # noqa: E731
@@ -63,6 +67,8 @@ class FieldSeries:
         fix("moving_part", tuple(bool(flag) for flag in self.moving_part))
         for name in ("snapshot_times", "temperatures", "offsets", "screw_x", "screw_displacement"):
             fix(name, np.asarray(getattr(self, name), dtype=float))
+        if self.displacements is not None:
+            fix("displacements", np.asarray(self.displacements, dtype=float))
         self._check()
 
     def _check(self) -> None:
@@ -101,7 +107,11 @@ class FieldSeries:
         if b and np.any(np.diff(self.screw_x) <= 0):
             problems.append("screw_x must increase")
         expect("screw_displacement", (k, b))
-        for name in ("points", "snapshot_times", "temperatures", "offsets", "screw_x", "screw_displacement"):
+        checked = ["points", "snapshot_times", "temperatures", "offsets", "screw_x", "screw_displacement"]
+        if self.displacements is not None:
+            expect("displacements", (k, n, 3))
+            checked.append("displacements")
+        for name in checked:
             if not np.all(np.isfinite(getattr(self, name))):
                 problems.append(f"{name} holds NaN or infinite values")
         if problems:
@@ -148,10 +158,12 @@ def _moving_nodes(series: FieldSeries) -> np.ndarray:
 # --------------------------------------------------------------------------- ParaView files
 
 
-def field_series(mesh: FieldMesh, snapshots, screw_x, screw_displacement, title: str = "") -> FieldSeries:
-    """A FieldSeries from a model's mesh and its ``(time, state, offset)`` snapshots."""
+def field_series(mesh: FieldMesh, snapshots, screw_x, screw_displacement, title: str = "",
+                 displacements: np.ndarray | None = None) -> FieldSeries:
+    """A FieldSeries from a model's mesh and its ``(time, nodal temperatures, offset)`` snapshots."""
     return FieldSeries(points=mesh.points, tets=mesh.tets, part_id=mesh.part_id, part_names=mesh.part_names,
                        moving_part=mesh.moving_part, snapshot_times=np.array([t for t, _, _ in snapshots]),
                        temperatures=np.array([state for _, state, _ in snapshots]),
                        offsets=np.array([offset for _, _, offset in snapshots]),
-                       screw_x=screw_x, screw_displacement=screw_displacement, title=title)
+                       screw_x=screw_x, screw_displacement=screw_displacement, title=title,
+                       displacements=displacements)

@@ -11,7 +11,7 @@ import numpy as np
 
 from ..constants import AMBIENT_SENSOR, ELONGATION_PROBE
 from ..models.integrator import Integrator, Segment, Trace
-from ..physics.thermal_expansion import displacement_axial
+from ..system.geometry import nut_centre_x
 from ..system.schema import FeedSystem
 from . import EnergyBalance, Solution
 from .equilibrium import equilibrium_time
@@ -66,10 +66,9 @@ def pack_solution(system: FeedSystem, integrator: Integrator, segments: list[Seg
     final[AMBIENT_SENSOR] = window_ambient(segments, t_end - window, t_end)
     steady[AMBIENT_SENSOR] = last.bc.point.ambient
     screw_T = np.array(trace.sample_screw)
-    screw = system.parts[system.kinematics.screw]
-    alpha = system.materials[screw.material].expansion
-    displacement = displacement_axial(model.screw_edges, screw_T, alpha, system.temperatures.reference,
-                                      system.elongation.fixed_at, model.screw_centres)
+    displacement = np.array(trace.sample_displacement)[:, 1:]
+    table_x = nut_centre_x(system) + model.positions
+    positioning = along_stroke(model.screw_centres, displacement, table_x)
     info = {**info, "time_step_s": trace.time_step, "steps": len(step_end), "solver": integrator.solver_name,
             **({"cg_iterations": integrator.cg_iterations} if integrator.cg_iterations else {}),
             "unknowns": model.n_nodes, "cycle_window_s": window}
@@ -79,7 +78,10 @@ def pack_solution(system: FeedSystem, integrator: Integrator, segments: list[Seg
         rows = [int(np.argmin(np.abs(times - t))) for t, _, _ in trace.snapshots]
         title = (f"condition {info.get('condition')}, {info.get('mode')} mode, {info.get('model')} model"
                  + (f" ({info['mesh']} mesh)" if info.get("mesh") else ""))
-        fields = field_series(mesh, trace.snapshots, model.screw_centres, displacement[rows], title)
+        snapshots = [(t, model.full_state(state), offset) for t, state, offset in trace.snapshots]
+        vectors = [model.displacement_field(state) for _, state, _ in trace.snapshots]
+        fields = field_series(mesh, snapshots, model.screw_centres, displacement[rows], title,
+                              displacements=None if any(v is None for v in vectors) else np.array(vectors))
     return Solution(
         times=times,
         sensors=sensors,
@@ -87,6 +89,8 @@ def pack_solution(system: FeedSystem, integrator: Integrator, segments: list[Seg
         screw_x=model.screw_centres,
         screw_temperature=screw_T,
         screw_displacement=displacement,
+        table_x=table_x,
+        positioning_error=positioning,
         nut_offset=np.array(trace.sample_offset),
         part_temperatures={p: np.array([s[p] for s in trace.sample_parts]) for p in system.parts},
         cycle_times=times[in_cycle],
@@ -99,6 +103,13 @@ def pack_solution(system: FeedSystem, integrator: Integrator, segments: list[Seg
         info=info,
         fields=fields,
     )
+
+
+def along_stroke(screw_x: np.ndarray, profile: np.ndarray, table_x: np.ndarray) -> np.ndarray:
+    """The screw's displacement ``profile`` (n, m) at ``screw_x``, read at the table positions (n, p)
+    by linear interpolation between section centres (the end sections' values beyond them)."""
+    profile = np.atleast_2d(profile)
+    return np.array([np.interp(table_x, screw_x, row) for row in profile])
 
 
 def ambient_at(segments: list[Segment], t: float) -> float:

@@ -1,8 +1,8 @@
 """Consistency checks of a description that passed its schema: what ``feedtherm check`` lists.
 
 Two kinds of finding.  An *error* is a description no model can run as meant: a sensor
-outside the part it names, a face the part's shape does not have, a joint declared twice, the
-elongation read off the screw, a stroke longer than the thread, calibration bounds reversed or
+outside the part it names, a face the part's shape does not have, a joint declared twice, a
+displacement sensor's or support's point outside its part, supports and joints that leave a part free to move, a stroke longer than the thread, calibration bounds reversed or
 of another dimension than their value, a part that no path connects to the ambient, a declared
 uncertainty whose range excludes its value (system/uncertainties.py).
 :func:`~feedtherm.system.load.load_system` refuses such a description with the first error's
@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from ..constants import AMBIENT_SENSOR
 from ..physics.mechanics import speed_table
 from .geometry import bounds, contains, gap, screw_axis, surface_area
+from .holding import free_motions
 from .quantities import same_dimension, to_base_si
 from .schema import FeedSystem
 from .uncertainties import uncertainty_problems
@@ -49,6 +50,7 @@ def check_system(system: FeedSystem) -> list[Finding]:
         *_ambient_sensor(system),
         *_feed_speeds(system),
         *_joints_touch(system),
+        *_elastic_constants(system),
         *_uncertainties(system, "warning"),
         *_provenance(system),
     ]
@@ -67,6 +69,7 @@ def check_errors(system: FeedSystem) -> list[Finding]:
         *_stroke(system),
         *calibration_bounds(system),
         *_ambient_paths(system),
+        *_held(system),
     ]
     # The priors are judged against a valid description: a bad value is reported as such, not
     # (also) as a prior that excludes it.
@@ -110,15 +113,44 @@ def _geometry(system: FeedSystem) -> list[Finding]:
             continue
         if area <= 0.0:
             findings.append(Finding(f"surfaces.{name}", f"has no area ({area:g} m^2)", "error"))
-    screw_part = parts[system.kinematics.screw]
-    if screw_part.cylinders:
-        screw = screw_axis(screw_part)
-        for key in ("fixed_at", "read_at"):
-            x = getattr(system.elongation, key)
-            if not screw.start <= x <= screw.end:
-                findings.append(Finding(f"elongation.{key}", f"x = {x * 1e3:g} mm is not on the screw "
-                                        f"({screw.start * 1e3:g}..{screw.end * 1e3:g} mm)", "error"))
+    findings.extend(_mechanics_points(system))
     return findings
+
+
+def _mechanics_points(system: FeedSystem) -> list[Finding]:
+    """Every point the mechanics names lies in the part it names."""
+    mech, parts = system.mechanics, system.parts
+    named = [(f"mechanics.supports[{i}].point", s.part, s.point) for i, s in enumerate(mech.supports)]
+    named.append(("mechanics.elongation.target.point", mech.elongation.target.part, mech.elongation.target.point))
+    if not isinstance(mech.elongation.mount, str):
+        named.append(("mechanics.elongation.mount.point", mech.elongation.mount.part, mech.elongation.mount.point))
+    named.append(("mechanics.positioning.reference.point", mech.positioning.reference.part,
+                  mech.positioning.reference.point))
+    findings = []
+    for path, part, point in named:
+        if not contains(parts[part], point):
+            where = ", ".join(f"{x * 1e3:g}" for x in point)
+            findings.append(Finding(path, f"({where}) mm lies outside part {part!r}, which it names", "error"))
+    return findings
+
+
+def _held(system: FeedSystem) -> list[Finding]:
+    """The supports and the joints must hold every part: a free motion leaves displacements undefined."""
+    free = free_motions(system)
+    if not free:
+        return []
+    shown = "; ".join(free[:4]) + (f"; and {len(free) - 4} more" if len(free) > 4 else "")
+    return [Finding("mechanics.supports", f"the supports and joints leave the structure free to move ({shown}); "
+                    "hold it with supports or joints that do not release that motion", "error")]
+
+
+def _elastic_constants(system: FeedSystem) -> list[Finding]:
+    """The FE model's thermoelastic solve needs Young's modulus and Poisson's ratio of every part's material."""
+    used = sorted({part.material for part in system.parts.values()})
+    return [Finding(f"materials.{name}", "declares no youngs_modulus and poisson_ratio: the FE model, which computes "
+                    "the displacements in 3D, refuses it (the fast model needs only the expansion)")
+            for name in used
+            if system.materials[name].youngs_modulus is None or system.materials[name].poisson_ratio is None]
 
 
 def _ambient_sensor(system: FeedSystem) -> list[Finding]:

@@ -130,6 +130,12 @@ def gap(a: Part, b: Part) -> float:
     return math.sqrt(sum(x * x for x in d))
 
 
+def nut_centre_x(system) -> float:
+    """The nut's centre along x [m] at the middle of the stroke: where the table is."""
+    lo, hi = bounds(system.parts[system.kinematics.nut])
+    return 0.5 * (lo[0] + hi[0])
+
+
 @dataclass(frozen=True)
 class ScrewAxis:
     """The screw's extent along x [m] and its diameter [m]."""

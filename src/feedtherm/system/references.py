@@ -54,6 +54,7 @@ def check_references(system: "FeedSystem") -> None:
         raise ValueError(f"parts.{kin.nut}.moving: the nut travels with the table; set moving = true")
     if kin.drive == "single":
         _check_single_drive(system)
+    _check_mechanics(system)
     if system.paper is not None:
         paper = system.paper
         _require("condition", paper.reference_condition, system.conditions, "paper.reference_condition")
@@ -62,6 +63,17 @@ def check_references(system: "FeedSystem") -> None:
         for i, row in enumerate(paper.chtc):
             for target in row.surfaces:
                 _require("surface", target, surfaces, f"paper.chtc[{i}].surfaces")
+
+
+def _check_mechanics(system: "FeedSystem") -> None:
+    mech, parts = system.mechanics, system.parts
+    for i, support in enumerate(mech.supports):
+        _require("part", support.part, parts, f"mechanics.supports[{i}].part")
+    sensor = mech.elongation
+    _require("part", sensor.target.part, parts, "mechanics.elongation.target.part")
+    if not isinstance(sensor.mount, str):
+        _require("part", sensor.mount.part, parts, "mechanics.elongation.mount.part")
+    _require("part", mech.positioning.reference.part, parts, "mechanics.positioning.reference.part")
 
 
 def _check_single_drive(system: "FeedSystem") -> None:

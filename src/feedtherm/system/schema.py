@@ -22,6 +22,7 @@ from pydantic import (
 )
 
 from .base import ParameterPaths, Strict
+from .mechanics import Axis, Mechanics
 from .quantities import (
     AngularSpeed,
     Length,
@@ -117,13 +118,32 @@ class Part(Strict):
 
 
 class Joint(Strict):
-    """Thermal contact between two parts: conductance = area / tcr."""
+    """Contact between two parts: thermal conductance = area / tcr; mechanically a tie.
+
+    ``release`` lists the machine axes along which the joint does not hold its parts together
+    (a floating bearing, a guide carriage: ``["x"]``); the other axes are tied.
+    """
 
     between: tuple[str, str]
     tcr: PosContactResistance
     area: PosArea
     sliding: bool = False  # the contact travels with the table (nut-screw, slider-rail)
+    release: list[Axis] = []
     description: str = ""
+
+    @field_validator("release")
+    @classmethod
+    def _axes_once(cls, value: list[str]) -> list[str]:
+        if len(set(value)) != len(value):
+            raise ValueError(f"an axis is listed twice ({', '.join(value)})")
+        return sorted(value, key="xyz".index)
+
+    @model_serializer(mode="wrap")
+    def _omit_no_release(self, handler):
+        data = handler(self)
+        if isinstance(data, dict) and not self.release:
+            data.pop("release", None)  # a tie: descriptions that predate releases keep their form
+        return data
 
 
 # --------------------------------------------------------------------------- sensors
@@ -148,13 +168,6 @@ class Kinematics(Strict):
     reversal: Literal["both_reverse"] = "both_reverse"
 
 
-class Elongation(Strict):
-    """The screw's axial elongation: fixed bearing at ``fixed_at``, read at ``read_at``."""
-
-    fixed_at: Length
-    read_at: Length
-
-
 class Temperatures(Strict):
     """Initial and reference temperatures, and how temperature-dependent values are taken.
 
@@ -165,7 +178,7 @@ class Temperatures(Strict):
     """
 
     initial: Literal["ambient"] | Temperature = "ambient"
-    reference: Temperature  # of the elongation (zero-strain temperature)
+    reference: Temperature  # zero-strain temperature: every displacement and its sensors read 0 there
     convection_delta_t: PosTemperatureDifference  # frozen CHTCs are taken at this rise
     coupling: Literal["frozen", "nonlinear"] = "frozen"
 
@@ -318,7 +331,7 @@ class FeedSystem(Strict):
     surfaces: dict[str, Surface]
     sensors: dict[str, Sensor]
     kinematics: Kinematics
-    elongation: Elongation
+    mechanics: Mechanics
     temperatures: Temperatures
     room: Room = Room()
     conditions: dict[str, Condition]
