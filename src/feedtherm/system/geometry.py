@@ -136,6 +136,13 @@ def nut_centre_x(system) -> float:
     return 0.5 * (lo[0] + hi[0])
 
 
+def drive_point(system) -> tuple[float, float, float]:
+    """Where the thread holds the nut to the screw along the axis [m]: on the screw's surface
+    (its top), at the nut's centre along x (the moving group at the middle of the stroke)."""
+    screw = system.parts[system.kinematics.screw].cylinders[0]
+    return (nut_centre_x(system), screw.origin[1], screw.origin[2] + screw.outer_diameter / 2.0)
+
+
 @dataclass(frozen=True)
 class ScrewAxis:
     """The screw's extent along x [m] and its diameter [m]."""

@@ -3,7 +3,7 @@
 Each part is taken as a rigid body with six motions (three translations, three rotations
 about its centre).  A support holds its point along its axes; a joint ties its two parts
 along the axes it does not release, at the corners of the region where their bounding boxes
-meet.  The motions the structure may still make without deforming are the null space of
+meet; the drive holds the nut to the screw along x at the nut's centre.  The motions the structure may still make without deforming are the null space of
 those constraints: empty when every part is held.  A displacement computed on a structure
 with a free motion is undefined (its stiffness matrix is singular), so a description with one
 is an error, named by the part and the motion.
@@ -15,7 +15,7 @@ import itertools
 
 import numpy as np
 
-from .geometry import bounds
+from .geometry import bounds, drive_point
 from .mechanics import joint_holds
 
 #: A null-space vector's largest share below this is round-off (of unit-length vectors).
@@ -74,6 +74,9 @@ def free_motions(system) -> list[str]:
         for point in _contact_corners(*box[a], *box[b]):
             relative = block(a, point) - block(b, point)
             rows.extend(relative[k] for k in held)
+    kin = system.kinematics  # the thread holds the nut to the screw along the axis (the drive)
+    point = np.asarray(drive_point(system), dtype=float)
+    rows.append((block(kin.nut, point) - block(kin.screw, point))[0])
     if not rows:
         return ["the whole structure: every motion"]
     matrix = np.array(rows)

@@ -29,9 +29,10 @@ from ...errors import ModelError
 from ...system.geometry import bounds
 from ...system.schema import FeedSystem
 from ..fields import FieldMesh
-from ..interface import HeatInput, ThermalModel, elongation_row
+from ..interface import HeatInput, ThermalModel
 from .conduction import cell_basis, conduction_matrix
 from .coupling import CONTACT_TOLERANCE, Contact, ContactQuadrature, interface_matrix, side_load, touching
+from .deformation import Deformation
 from .faces import curvature_sag, surface_facets
 from .facets import RULE, NearestFacets, boundary_triangles
 from .geometry import mesh_system
@@ -213,9 +214,7 @@ class FemDiscretization(ThermalModel):
         self._probe = sp.vstack(rows).tocsr() if rows else sp.csr_matrix((0, self.n_nodes))
         screw = system.kinematics.screw
         self._screw_bins = slab_matrix(mesh.points, mesh.tets[:, mesh.part_tets(screw)], self.screw_edges, self.n_nodes)
-        self._alpha = system.materials[system.parts[screw].material].expansion
-        self._d_weights = elongation_row(self.screw_edges, system.elongation.fixed_at, system.elongation.read_at)
-        self._t_ref = system.temperatures.reference
+        self.deformation = Deformation(self)
         self._probe_rows = None
         self._part_weights = {}
         for name in mesh.parts:
@@ -332,9 +331,11 @@ class FemDiscretization(ThermalModel):
         states = np.asarray(states)
         return (self._screw_bins @ states.reshape(-1, self.n_nodes).T).T.reshape(*states.shape[:-1], -1)
 
-    def elongation(self, states: np.ndarray) -> np.ndarray:
-        """D [m] = α ∫ (T̄ − T_ref) dx from ``fixed_at`` to ``read_at``."""
-        return self._alpha * ((self.screw_mean(states) - self._t_ref) @ self._d_weights)
+    def displacement_rows(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.deformation.rows()
+
+    def displacement_field(self, state: np.ndarray) -> np.ndarray:
+        return self.deformation.field(state)
 
     def probe(self, T: np.ndarray, k: int | None = None) -> np.ndarray:
         """Sensor temperatures [K] (system order, without T6), then D [m].
@@ -342,15 +343,16 @@ class FemDiscretization(ThermalModel):
         ``k`` is accepted for the shared integrator; the moving group's sensors sit at fixed
         points of its own mesh, so the values do not depend on it.
         """
-        return np.append(self._probe @ T, self.elongation(T))
+        rows, offset = self.probe_rows()
+        return rows @ T + offset
 
     def probe_rows(self, k: int | None = None) -> tuple[sp.csr_matrix, np.ndarray]:
         """The sensors' rows and D's (:meth:`probe` as ``rows @ T + offset``), the same at every position."""
         if self._probe_rows is None:
-            d = self._alpha * (self._d_weights @ self._screw_bins)  # D = α (w @ bins) T − α T_ref Σ w
-            rows = sp.vstack([self._probe, sp.csr_matrix(d)]).tocsr()
+            d_rows, d_offset = self.displacement_rows()
+            rows = sp.vstack([self._probe, sp.csr_matrix(d_rows[:1])]).tocsr()
             offset = np.zeros(rows.shape[0])
-            offset[-1] = -self._alpha * self._t_ref * float(np.sum(self._d_weights))
+            offset[-1] = d_offset[0]
             self._probe_rows = (rows, offset)
         return self._probe_rows
 
@@ -367,7 +369,7 @@ class FemDiscretization(ThermalModel):
 
     @property
     def stats(self) -> dict:
-        return self._stats
+        return {**self._stats, **self.deformation.stats}
 
     def _summary(self, seconds: float) -> dict:
         mesh = self.mesh

@@ -1,0 +1,139 @@
+"""The FE model's displacements: the description's mechanics on the thermoelastic solve (:mod:`.elastic`).
+
+What is read, as rows on the nodal temperatures (``rows @ T + offset``, zero at the
+reference temperature):
+
+- **D**, the displacement sensor ``mechanics.elongation``: the P1 displacement at the target
+  point (in the tetrahedron of its part holding it) minus the mount point's (none for a mount
+  on the ground), along the sensor's direction;
+- **the screw's profile**: the axial displacement averaged over each axial slab of the screw
+  (the screw's sections, as its temperature profile), minus the positioning reference point's.
+
+The elastic system is built and factorised on first use (a run that never reads a
+displacement does not pay for it).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import scipy.sparse as sp
+
+from ...errors import ModelError
+from ...system.mechanics import GROUND, joint_holds
+from ...system.geometry import drive_point
+from .elastic import ElasticPart, PointTie, ThermoElastic, Tie
+from .readout import point_matrix
+
+__all__ = ["Deformation"]
+
+
+class Deformation:
+    """Displacement readings and fields of a :class:`~.bench.FemDiscretization`."""
+
+    def __init__(self, fem):
+        self.fem = fem
+        self._elastic: ThermoElastic | None = None
+        self._rows: tuple[np.ndarray, np.ndarray] | None = None
+        self.stats: dict = {}
+
+    # ------------------------------------------------------------------ set-up
+    def elastic(self) -> ThermoElastic:
+        if self._elastic is None:
+            fem, system = self.fem, self.fem.system
+            constants = []
+            for name in fem.part_names:
+                key = system.parts[name].material
+                material = system.materials[key]
+                for field in ("youngs_modulus", "poisson_ratio"):
+                    if getattr(material, field) is None:
+                        raise ModelError(f"materials.{key}.{field}: not declared; the FE model computes the "
+                                         f"displacements in 3D and needs it for every part's material ({name})")
+                constants.append(ElasticPart(material.youngs_modulus, material.poisson_ratio, material.expansion))
+            started = time.perf_counter()
+            self._elastic = ThermoElastic(fem.points, fem.tets, constants, np.asarray(fem.part_id),
+                                          self._ties(constants), self._supports())
+            self.stats = {"elastic_unknowns": int(self._elastic.unknowns),
+                          "elastic_assembly_seconds": round(time.perf_counter() - started, 2)}
+        return self._elastic
+
+    def _ties(self, constants: list[ElasticPart]) -> list[Tie]:
+        fem = self.fem
+        penalty = fem.system.mechanics.tie_penalty
+        modulus = {name: constants[i].youngs_modulus for i, name in enumerate(fem.part_names)}
+        ties = []
+        for j in fem.joints:
+            axes = joint_holds(j.joint.release)
+            if not axes:
+                continue
+            quadrature = j.contact.quadrature(0.0)  # the moving group where its mesh is: mid-stroke
+            stiffness = penalty * max(modulus[j.a], modulus[j.b]) / fem.mesh.sizes[j.a]
+            ties.append(Tie(quadrature, axes, stiffness, name=f"joints[{j.index}]"))
+        kin = fem.system.kinematics
+        point = drive_point(fem.system)
+        stiffness = penalty * max(modulus[kin.screw], modulus[kin.nut]) * fem.mesh.sizes[kin.screw]
+        ties.append(PointTie(self._point(kin.nut, point, "kinematics.nut"), self._point(kin.screw, point, "kinematics.screw"),
+                             [0], stiffness, name="the drive"))
+        return ties
+
+    def _supports(self) -> list[tuple[int, int]]:
+        fem = self.fem
+        held = []
+        for support in fem.system.mechanics.supports:
+            nodes = fem.mesh.part_nodes(support.part)
+            gaps = np.linalg.norm(fem.points[:, nodes] - np.asarray(support.point)[:, None], axis=0)
+            node = int(nodes[np.argmin(gaps)])
+            held.extend((node, "xyz".index(axis)) for axis in support.fix)
+        return held
+
+    def _point(self, part: str, point, path: str) -> sp.csr_matrix:
+        fem = self.fem
+        tets = fem.mesh.tets[:, fem.mesh.part_tets(part)]
+        try:
+            return point_matrix(fem.points, tets, [np.asarray(point, dtype=float)], fem.n_nodes)
+        except ValueError as exc:
+            raise ModelError(f"{path}: {exc} ({part})") from None
+
+    @staticmethod
+    def _along(row: sp.csr_matrix, direction) -> sp.csr_matrix:
+        """A scalar reading row (1, N) of the nodes as a reading (1, 3N) of the displacement along ``direction``."""
+        return sp.kron(row, sp.csr_matrix(np.asarray(direction, dtype=float)[None, :]), format="csr")
+
+    def readings(self) -> sp.csr_matrix:
+        """(1 + sections, 3N): D, then the screw's section-mean axial displacement less the reference's."""
+        fem, mech = self.fem, self.fem.system.mechanics
+        sensor = mech.elongation
+        d = self._along(self._point(sensor.target.part, sensor.target.point, "mechanics.elongation.target.point"),
+                        sensor.direction)
+        if sensor.mount != GROUND:
+            d = d - self._along(self._point(sensor.mount.part, sensor.mount.point, "mechanics.elongation.mount.point"),
+                                sensor.direction)
+        reference = mech.positioning.reference
+        ref = self._point(reference.part, reference.point, "mechanics.positioning.reference.point")
+        bins = fem._screw_bins
+        ones = sp.csr_matrix(np.ones((bins.shape[0], 1)))
+        axial = self._along(bins - ones @ ref, (1.0, 0.0, 0.0))
+        return sp.vstack([d, axial]).tocsr()
+
+    # ------------------------------------------------------------------ readout
+    def rows(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(rows, offset)`` reading D and the screw's profile [m] from nodal temperatures [K]."""
+        if self._rows is None:
+            elastic = self.elastic()
+            started = time.perf_counter()
+            rows = elastic.reading_rows(self.readings())
+            offset = -self.fem.system.temperatures.reference * rows.sum(axis=1)
+            self._rows = (rows, offset)
+            self.stats.update(elastic_factor_seconds=round(elastic.factor_seconds, 2),
+                              elastic_readings_seconds=round(time.perf_counter() - started, 2),
+                              elastic_factor_MB=round(elastic.factor_memory / 2**20, 1))
+        return self._rows
+
+    def field(self, temperatures: np.ndarray) -> np.ndarray:
+        """Displacement (N, 3) [m] of every node at nodal temperatures [K]."""
+        rise = np.asarray(temperatures, dtype=float) - self.fem.system.temperatures.reference
+        if not math.isfinite(float(rise.sum())):
+            raise ModelError("a displacement field was asked for a state with NaN or infinite temperatures")
+        return self.elastic().displacement(rise)

@@ -1,0 +1,207 @@
+r"""Linear thermoelasticity on the thermal model's mesh: the displacement of a temperature field.
+
+Small strains, isotropic materials, quasi-static (inertia is nil on thermal time scales).
+With P1 vector elements :math:`\mathbf v` on the same tetrahedra and temperatures as the
+thermal model, the displacement :math:`\mathbf u` solves
+
+.. math::
+
+    \int_\Omega \big(2\mu\,\varepsilon(\mathbf u):\varepsilon(\mathbf v)
+        + \lambda\,\operatorname{tr}\varepsilon(\mathbf u)\,\operatorname{tr}\varepsilon(\mathbf v)\big)\,dV
+    + \sum_{joints} k_p \int_{\Gamma} [\mathbf u]_h\cdot[\mathbf v]_h\,dA
+    = \int_\Omega (3\lambda + 2\mu)\,\alpha\,(T - T_{ref})\,\nabla\cdot\mathbf v\,dV
+
+(the thermal strain :math:`\alpha (T - T_{ref})\mathbf I` of each part's material; Timoshenko &
+Goodier, Theory of Elasticity, 3rd ed., §150; Zienkiewicz, Taylor & Zhu, The Finite Element
+Method, 7th ed., §6.2 for the initial-strain load), so :math:`\mathbf u = K^{-1} F (T - T_{ref})`.
+
+**Joints.** The parts' meshes do not share nodes; a joint ties them with a penalty on the jump
+:math:`[\mathbf u]` of its held components (the axes it does not release), integrated with the
+thermal model's contact quadrature (:mod:`.coupling`; the moving group at the middle of the
+stroke). The tie stiffness per area is :math:`k_p = \beta\,\max(E_a, E_b)/h_a` [N/m³], with
+:math:`h_a` the element size of the integrating side and :math:`\beta` the description's
+``mechanics.tie_penalty``: the joint then yields :math:`h_a/(\beta E)` per unit traction, a
+:math:`1/\beta` part of one element's own compliance.
+
+**The drive.** The thread holds the nut to the screw along the axis at the nut's centre: a
+spring :math:`\beta E h` [N/m] between the two parts' displacements at that point of the bore,
+along x (with a thread whose joint releases x, the nut's own expansion does not stretch the
+screw: a split nut's halves are preloaded against each other by springs).
+
+**Supports.** A support holds the node of its part nearest to its point along its axes
+(eliminated from the system).
+
+**The stiffness does not change in time**, so it is factorised once: every reading the
+models take (D, the screw's displacement profile) is a row :math:`r^T K^{-1} F` found by one
+solve per reading (:meth:`ThermoElastic.reading_rows`), so the time loop reads displacements
+as it reads temperatures; full fields (for ParaView) cost one solve each.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import scipy.sparse as sp
+from skfem import BilinearForm, CellBasis, ElementTetP1, ElementVector, MeshTet
+from skfem.helpers import ddot, div, sym_grad, trace
+
+from ...errors import ModelError
+from .. import pardiso
+from ..direct import factorize
+from .coupling import ContactQuadrature, interface_matrix
+
+__all__ = ["ElasticPart", "PointTie", "Tie", "ThermoElastic", "lame"]
+
+#: Elements assembled at once: bounds the assembly's temporary arrays (12 × 12 entries each).
+CHUNK = 100_000
+
+
+def lame(youngs_modulus: float, poisson_ratio: float) -> tuple[float, float]:
+    """Lamé's :math:`\\lambda = E\\nu/((1+\\nu)(1-2\\nu))` and :math:`\\mu = E/(2(1+\\nu))` [Pa]."""
+    E, nu = youngs_modulus, poisson_ratio
+    return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), E / (2.0 * (1.0 + nu))
+
+
+class ElasticPart:
+    """A part's elastic constants: Young's modulus [Pa], Poisson's ratio [-], expansion [1/K]."""
+
+    def __init__(self, youngs_modulus: float, poisson_ratio: float, expansion: float):
+        self.youngs_modulus, self.poisson_ratio, self.expansion = youngs_modulus, poisson_ratio, expansion
+
+
+class Tie:
+    """A joint's mechanical tie: its contact quadrature, the held axes, the stiffness per area [N/m³]."""
+
+    def __init__(self, quadrature: ContactQuadrature, axes: list[int], stiffness: float, name: str = ""):
+        self.quadrature, self.axes, self.stiffness, self.name = quadrature, axes, stiffness, name
+
+    def matrix(self, n: int) -> sp.csr_matrix:
+        """The scalar penalty matrix :math:`k_p \int (N_A - N_B)^T (N_A - N_B) dA` (n × n) [N/m]."""
+        return interface_matrix(n, self.quadrature, self.stiffness, lumped=False)
+
+
+class PointTie:
+    """Two parts held together at one point along the given axes: a spring of ``stiffness`` [N/m]
+    between the P1 displacements of the two parts at the point (``rows``: each part's (1, n) row)."""
+
+    def __init__(self, row_a: sp.spmatrix, row_b: sp.spmatrix, axes: list[int], stiffness: float, name: str = ""):
+        self.jump = sp.csr_matrix(row_a - row_b)
+        self.axes, self.stiffness, self.name = axes, stiffness, name
+
+    def matrix(self, n: int) -> sp.csr_matrix:
+        return (self.stiffness * (self.jump.T @ self.jump)).tocsr()
+
+
+@BilinearForm
+def _stiffness(u, v, w):
+    eu, ev = sym_grad(u), sym_grad(v)
+    return 2.0 * w.mu * ddot(eu, ev) + w.lam * trace(eu) * trace(ev)
+
+
+@BilinearForm
+def _thermal_load(t, v, w):  # t: the scalar temperature (trial), v: the vector test function
+    return w.beta * t * div(v)
+
+
+def _chunks(count: int):
+    for start in range(0, count, CHUNK):
+        yield np.arange(start, min(start + CHUNK, count))
+
+
+class ThermoElastic:
+    """Stiffness, thermal load and supports of a mesh; solves and reading rows.
+
+    Parameters
+    ----------
+    points : ndarray (3, N)
+        Vertices [m].
+    tets : ndarray (4, M)
+        Tetrahedra.
+    constants : list of (E [Pa], ν [-], α [1/K]) per tetrahedron's part, as ``part_of_tet`` indexes
+    part_of_tet : ndarray (M,)
+    ties : list of Tie or PointTie
+    supports : list of (node, axis index)
+        Held components.
+    """
+
+    def __init__(self, points: np.ndarray, tets: np.ndarray, constants: list[ElasticPart], part_of_tet: np.ndarray,
+                 ties: list[Tie], supports: list[tuple[int, int]]):
+        started = time.perf_counter()
+        self.n_nodes = points.shape[1]
+        n = 3 * self.n_nodes
+        lam_mu = np.array([lame(c.youngs_modulus, c.poisson_ratio) for c in constants])
+        beta_part = np.array([c.youngs_modulus / (1.0 - 2.0 * c.poisson_ratio) * c.expansion for c in constants])
+        mesh = MeshTet(np.ascontiguousarray(points), np.ascontiguousarray(tets))
+        K = sp.csr_matrix((n, n))
+        F = sp.csr_matrix((n, self.n_nodes))
+        for elements in _chunks(tets.shape[1]):
+            vector = CellBasis(mesh, ElementVector(ElementTetP1()), elements=elements, intorder=1)
+            scalar = CellBasis(mesh, ElementTetP1(), elements=elements, intorder=1)
+            part = part_of_tet[elements]
+            nq = vector.X.shape[-1]
+            lam = np.repeat(lam_mu[part, 0][:, None], nq, axis=1)
+            mu = np.repeat(lam_mu[part, 1][:, None], nq, axis=1)
+            beta = np.repeat(beta_part[part][:, None], nq, axis=1)
+            K = K + _stiffness.assemble(vector, lam=lam, mu=mu)
+            F = F + _thermal_load.assemble(scalar, vector, beta=beta)
+        for tie in ties:
+            scalar_tie = tie.matrix(self.n_nodes)
+            for axis in tie.axes:
+                pick = sp.csr_matrix(([1.0], ([axis], [axis])), shape=(3, 3))
+                K = K + sp.kron(scalar_tie, pick, format="csr")
+        held = np.array(sorted({3 * node + axis for node, axis in supports}), dtype=np.intp)
+        free = np.ones(n, dtype=bool)
+        free[held] = False
+        self.free = np.flatnonzero(free)
+        self._K_free = K.tocsr()[self.free][:, self.free].tocsr()
+        self._F_free = F.tocsr()[self.free]
+        self._factor = None
+        self.assembly_seconds = time.perf_counter() - started
+        self.factor_seconds = 0.0
+        self.factor_memory = 0.0
+
+    @property
+    def unknowns(self) -> int:
+        return self.free.size
+
+    def _solver(self):
+        if self._factor is None:
+            started = time.perf_counter()
+            A = self._K_free
+            if pardiso.suits(A.shape[0]):
+                with pardiso.openblas_on_one_thread():
+                    self._factor = pardiso.PardisoCholesky(A)
+                self.factor_memory = self._factor.memory
+            else:
+                self._factor = factorize(A)
+            self.factor_seconds += time.perf_counter() - started
+        return self._factor
+
+    def release(self) -> None:
+        """Drop the factorisation (a later solve factorises again)."""
+        self._factor = None
+
+    def _solve(self, rhs: np.ndarray) -> np.ndarray:
+        solution = self._solver().solve(rhs)
+        if not np.all(np.isfinite(solution)):
+            raise ModelError("mechanics: the thermoelastic system is singular; the supports and joints must hold "
+                             "every part (feedtherm check names a free motion)")
+        return solution
+
+    def displacement(self, temperature_rise: np.ndarray) -> np.ndarray:
+        """Nodal displacements (N, 3) [m] of nodal temperatures ``T − T_ref`` (N,) [K], or (k, N, 3) of (k, N)."""
+        rise = np.atleast_2d(temperature_rise)
+        rhs = np.asarray(self._F_free @ rise.T)
+        free = self._solve(rhs if rhs.shape[1] > 1 else rhs[:, 0])
+        out = np.zeros((3 * self.n_nodes, rise.shape[0]))
+        out[self.free] = free.reshape(self.free.size, -1)
+        u = out.T.reshape(rise.shape[0], self.n_nodes, 3)
+        return u if np.ndim(temperature_rise) == 2 else u[0]
+
+    def reading_rows(self, readings: sp.spmatrix) -> np.ndarray:
+        """Rows ``R`` (q, N) with ``readings @ u = R @ (T − T_ref)`` for readings (q, 3N) of the
+        displacements (interleaved x, y, z per node): one solve per reading (the adjoint)."""
+        C = sp.csr_matrix(readings)[:, self.free].toarray().T  # (free, q)
+        Y = self._solve(C if C.shape[1] > 1 else C[:, 0]).reshape(self.free.size, -1)
+        return np.asarray((self._F_free.T @ Y).T)
