@@ -98,9 +98,12 @@ def test_outputs_have_the_documented_shapes(run_i):
 
 
 def test_elongation_at_the_start_is_relative_to_the_reference(paper):
-    # Condition V starts at 25 degC everywhere: D(0) = 1.2e-5 * 0.400 m * (25 - 20) K = 24 µm
+    # Condition V starts at 25 degC everywhere. The laser's loop (base, front housing and bearing,
+    # screw) is steel at one alpha = 1.2e-5 1/K, so a uniform rise moves the screw's end face
+    # (x = 450 mm) relative to the mount on the base (x = 480 mm) by
+    # D(0) = 1.2e-5 * (450 - 480) mm * (25 - 20) K = -1.8 µm (tests/unit/fast/test_bars.py)
     run = simulate(paper, condition="V", duration=600.0)
-    assert run.elongation_um[0] == pytest.approx(24.0, rel=1e-9)
+    assert run.elongation_um[0] == pytest.approx(-1.8, rel=1e-9)
     assert run.elongation_change_um[0] == 0.0
 
 

@@ -7,8 +7,8 @@ bearing "cannot limit the axial displacement", docs/paper-audit.md §4):
 .. math:: u(x) = \int_{x_f}^{x} \alpha\,(\bar T(\xi) - T_{ref})\, d\xi
 
 with :math:`\bar T` the cross-section mean temperature, α the linear expansion coefficient
-and :math:`T_{ref}` the zero-strain temperature.  The screw's elongation D is u at the read
-point.  Every model and the solution use these functions, so D is defined once.
+and :math:`T_{ref}` the zero-strain temperature.  The fast model reads every part as such a
+bar, carried by its neighbours along the structure's axial load path (models/fast/bars.py).
 """
 
 from __future__ import annotations

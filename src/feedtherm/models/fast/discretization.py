@@ -7,9 +7,10 @@ import scipy.sparse as sp
 
 from ...constants import AMBIENT_SENSOR, ELONGATION_PROBE
 from ...system.schema import FeedSystem
-from ..interface import BoundaryBasis, HeatInput, ThermalModel, elongation_row, source_shares
+from ..interface import BoundaryBasis, HeatInput, ThermalModel, source_shares
 from ..options import ModelOptions
 from .assemble import Network
+from .bars import displacement_rows
 from .layout import build_layout
 
 
@@ -77,16 +78,13 @@ class FastDiscretization(ThermalModel):
         self.screw_edges = screw.edges
         self.screw_centres = screw.centres
         self._ring_share = screw.ring_areas() / screw.ring_areas().sum()
-        part = system.parts[system.kinematics.screw]
-        self._alpha = system.materials[part.material].expansion
-        self._d_weights = elongation_row(screw.edges, system.elongation.fixed_at, system.elongation.read_at)
-        self._t_ref = system.temperatures.reference
-        # one dense matrix reads every sensor and D (a probe is taken at every time step)
-        d_row = np.zeros(layout.n_nodes)
-        d_row[screw.nodes] = self._alpha * np.outer(self._d_weights, self._ring_share)
-        self._probe = np.vstack([*rows, d_row])
+        self._displacement = displacement_rows(layout)
+        # one dense matrix reads every sensor and D (a probe is taken at every time step);
+        # D is the displacements' first row, so the two readings cannot differ
+        d_rows, d_offset = self._displacement
+        self._probe = np.vstack([*rows, d_rows[0]])
         self._probe_offset = np.zeros(len(self.probe_names))
-        self._probe_offset[-1] = -self._alpha * self._t_ref * self._d_weights.sum()
+        self._probe_offset[-1] = d_offset[0]
         self._part_names = list(system.parts)
         means = np.zeros((len(self._part_names), layout.n_nodes))
         for i, part in enumerate(self._part_names):
@@ -97,14 +95,15 @@ class FastDiscretization(ThermalModel):
     def screw_mean(self, states: np.ndarray) -> np.ndarray:
         return states[..., self.layout.screw.nodes] @ self._ring_share
 
-    def elongation(self, states: np.ndarray) -> np.ndarray:
-        return self._alpha * ((self.screw_mean(states) - self._t_ref) @ self._d_weights)
-
     def probe(self, T: np.ndarray, k: int = 0) -> np.ndarray:
         return self._probe @ T + self._probe_offset
 
     def probe_rows(self, k: int = 0):
         return self._probe, self._probe_offset
+
+    def displacement_rows(self) -> tuple[np.ndarray, np.ndarray]:
+        """D, then the screw's displacement at its cell centres: axial bars (:mod:`.bars`)."""
+        return self._displacement
 
     def part_means(self, states: np.ndarray) -> dict[str, np.ndarray]:
         """Capacity-weighted mean temperature of every part."""
