@@ -8,8 +8,10 @@ a feed drive does: each part stretches freely along x by its section-mean therma
 (:func:`~feedtherm.physics.thermal_expansion.displacement_weights_axial`), and the parts
 carry each other along the structure's axial load path: a tree found breadth-first from the
 part(s) a support holds along x (anchored at the support, u = 0 there) over the joints that
-hold x (``release`` without ``x``).  A child is anchored at the x-centre of the region where
-its extent meets its parent's, and moves there with its parent.  Loops of x-holding joints
+hold x (``release`` without ``x``).  A child moves with its parent over the x-range where
+their extents meet (a housing bolted along its foot, a bearing in its bore) and stretches
+freely beyond it, so a point is reached from the nearest point of that range; the drive holds
+the nut to the screw at the nut's centre alone.  Loops of x-holding joints
 (a nut, its bearing, its housing, its motor and belt) are cut where the search first
 reaches a part: a bar model cannot share a load between two paths, and the parts of such a
 loop are not what D or the positioning error read.
@@ -29,7 +31,7 @@ import numpy as np
 
 from ...errors import ModelError
 from ...physics.thermal_expansion import displacement_weights_axial
-from ...system.geometry import bounds
+from ...system.geometry import bounds, drive_point
 from ...system.mechanics import GROUND
 from ...system.schema import FeedSystem
 from .grids import BoxGrid
@@ -84,25 +86,33 @@ class Bar:
         return rows
 
 
-def load_path(system: FeedSystem) -> dict[str, tuple[str | None, float]]:
+def load_path(system: FeedSystem) -> dict[str, tuple[str | None, float, float]]:
     """Each part the structure holds along x: its parent on the axial load path (None for a part
-    a support holds) and its anchor x [m]."""
-    tree: dict[str, tuple[str | None, float]] = {}
+    a support holds) and the x-range [m] over which it moves with its parent."""
+    tree: dict[str, tuple[str | None, float, float]] = {}
     for support in system.mechanics.supports:
         if "x" in support.fix and support.part not in tree:  # a second x support would restrain expansion
-            tree[support.part] = (None, support.point[0])
+            tree[support.part] = (None, support.point[0], support.point[0])
+    kin = system.kinematics
+    # the links that hold x: the joints that do not release it, and the drive (the thread holds
+    # the nut to the screw at the nut's centre)
+    links = [(*joint.between, None) for joint in system.joints if "x" not in joint.release]
+    links.append((kin.screw, kin.nut, drive_point(system)[0]))
     queue = deque(tree)
     while queue:
         parent = queue.popleft()
-        for joint in system.joints:
-            if "x" in joint.release or parent not in joint.between:
+        for a, b, at in links:
+            if parent not in (a, b):
                 continue
-            child = joint.between[1] if joint.between[0] == parent else joint.between[0]
+            child = b if a == parent else a
             if child in tree:
                 continue
-            (p_lo, p_hi), (c_lo, c_hi) = _x_extent(system, parent), _x_extent(system, child)
-            # the middle of where they meet along x (of the gap, if they are apart)
-            tree[child] = (parent, 0.5 * (max(p_lo, c_lo) + min(p_hi, c_hi)))
+            if at is None:  # where they meet along x (the middle of the gap, if they are apart)
+                (p_lo, p_hi), (c_lo, c_hi) = _x_extent(system, parent), _x_extent(system, child)
+                lo, hi = max(p_lo, c_lo), min(p_hi, c_hi)
+                tree[child] = (parent, lo, hi) if lo <= hi else (parent, 0.5 * (lo + hi), 0.5 * (lo + hi))
+            else:
+                tree[child] = (parent, at, at)
             queue.append(child)
     return tree
 
@@ -132,10 +142,14 @@ class Bars:
         if part not in self.tree:
             raise ModelError(f"{field}: part {part!r} is on no chain of joints holding x from a support "
                              "fixing x, so the fast model's bars cannot say how it moves along x")
-        parent, anchor = self.tree[part]
-        rows = self._bar(part).stretch(anchor, np.atleast_1d(np.asarray(x, dtype=float)), self.layout.n_nodes)
-        if parent is not None:
-            rows += self.at(parent, [anchor], field)
+        parent, lo, hi = self.tree[part]
+        xs = np.atleast_1d(np.asarray(x, dtype=float))
+        rows = np.zeros((xs.size, self.layout.n_nodes))
+        for i, xi in enumerate(xs):
+            anchor = min(max(xi, lo), hi)  # where the part last moves with its parent, on the way to xi
+            rows[i] = self._bar(part).stretch(anchor, [xi], self.layout.n_nodes)[0]
+            if parent is not None:
+                rows[i] += self.at(parent, [anchor], field)[0]
         return rows
 
 
