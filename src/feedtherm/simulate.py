@@ -100,6 +100,7 @@ def execute(plan: RunPlan, progress: Callable[[float], None] | None = None,
         "ambient_C": last.ambient - KELVIN_OFFSET,
         "warnings": sorted({w for seg in segments for w in seg.bc.warnings}),
         "coupling": system.temperatures.coupling,
+        "screw_part": system.kinematics.screw,  # which part of the field series the screw image shows
         "provenance": provenance(plan.loaded, plan.mode),
     }
     solution = pack_solution(system, integrator, segments, trace, T0, times, info)

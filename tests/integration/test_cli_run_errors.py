@@ -93,7 +93,8 @@ def fake_solution():
     field = np.full((2, 2), 293.65)
     return Solution(
         times=times, sensors=sensors, elongation=np.array([0.0, 1e-6]), screw_x=np.array([0.0, 0.1]),
-        screw_temperature=field, screw_displacement=np.zeros((2, 2)), nut_offset=np.zeros(2),
+        screw_temperature=field, screw_displacement=np.zeros((2, 2)), table_x=np.array([0.02, 0.05, 0.08]),
+        positioning_error=np.array([[0.0, 0.0, 0.0], [0.2e-6, 0.5e-6, 0.8e-6]]), nut_offset=np.zeros(2),
         part_temperatures={}, cycle_times=times, cycle_sensors=sensors, cycle_elongation=np.zeros(2),
         final={"T1": 294.15, "T6": 293.15, "D": 1e-6}, steady={"T1": 295.15, "T6": 293.15, "D": 2e-6},
         equilibrium_time=None, energy=EnergyBalance(10.0, 5.0, 5.0),
@@ -125,7 +126,7 @@ def test_valid_arguments_reach_the_plan_and_the_files_appear(tmp_path, monkeypat
                                                                pytest.approx(293.15))
     out = capsys.readouterr().out
     assert out == "out/paper_I_physics: T1 21.00 °C, D 1.00 µm, energy balance error 0 %\n"
-    assert len(list((tmp_path / "out" / "paper_I_physics").iterdir())) == 7
+    assert len(list((tmp_path / "out" / "paper_I_physics").iterdir())) == 9  # 5 tables, 4 plots
 
 
 def test_the_progress_bar_waits_for_a_slow_run():

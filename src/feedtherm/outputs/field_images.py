@@ -3,7 +3,10 @@
 - ``temperature_field.png`` — the outer surface of every part, coloured by temperature, in two
   isometric-ish views (from either end), with a colour bar in °C (the paper's Figs. 5–9a);
 - ``screw_deformation.png`` — the screw's axial thermal displacement [µm] along its length at
-  the final time and a few earlier ones, and the screw drawn coloured by it (Figs. 5–9b).
+  the final time and a few earlier ones, and the screw drawn coloured by it (Figs. 5–9b);
+- ``screw_axial_deformation.png`` — the screw part of the mesh alone, its surface coloured by
+  the axial component u_x [µm] of the 3-D displacement field at the last snapshot (Figs. 5–9b
+  as the FE program draws them); only for series that carry displacements.
 
 Rendering needs no display and no OpenGL: the surface is rasterised here with numpy (a
 z-buffer over the boundary triangles of the tetrahedral mesh, drawn at twice the output
@@ -24,39 +27,69 @@ from pathlib import Path
 import numpy as np
 
 from .fields import FieldSeries
+from .instants import spread_instants, time_label, time_unit
 from .render import Surface, View, render_surface
 
 __all__ = [
     "write_field_images",
     "plot_temperature_field",
     "plot_screw_deformation",
+    "plot_screw_axial_deformation",
     "render_surface",
     "Surface",
     "View",
     "DEFAULT_VIEWS",
     "TEMPERATURE_FIELD_PNG",
     "SCREW_DEFORMATION_PNG",
+    "SCREW_AXIAL_DEFORMATION_PNG",
 ]
 
 TEMPERATURE_FIELD_PNG = "temperature_field.png"
 SCREW_DEFORMATION_PNG = "screw_deformation.png"
+SCREW_AXIAL_DEFORMATION_PNG = "screw_axial_deformation.png"
 
 _DPI = 150
-_HOURS = 3600.0
 _COLOURMAP = "turbo"  # the blue-to-red scale engineers read in FE temperature plots
 #: (azimuth, elevation) [degrees]: from the −x end and from the +x end, front (−y) side, above
 DEFAULT_VIEWS: tuple[tuple[float, float], ...] = ((-145.0, 25.0), (-35.0, 25.0))
+#: (azimuth, elevation) [degrees] of the screw alone: from the front (−y), a little above, so
+#: that the picture's width is the screw's axis (+x to the right)
+SCREW_VIEW: tuple[float, float] = (-90.0, 20.0)
 
 
-def write_field_images(series: FieldSeries, out_dir: Path, snapshot: int = -1, width_px: int = 900) -> list[Path]:
-    """Write ``temperature_field.png`` (at ``snapshot``, default the last; ``width_px`` wide
-    per view) and ``screw_deformation.png`` into ``out_dir``; return their paths."""
+def write_field_images(series: FieldSeries, out_dir: Path, snapshot: int = -1, width_px: int = 900,
+                       screw_part: str | None = None) -> list[Path]:
+    """Write the field images into ``out_dir``; return their paths.
+
+    Parameters
+    ----------
+    series : FieldSeries
+    out_dir : Path
+        Created if missing.
+    snapshot : int
+        The snapshot of ``temperature_field.png``, default the last.
+    width_px : int
+        Width of each view of ``temperature_field.png`` [pixels].
+    screw_part : str, optional
+        The screw's part name (the description's ``kinematics.screw``).  With it, and when the
+        series carries displacements, ``screw_axial_deformation.png`` is drawn too.
+
+    Returns
+    -------
+    list of Path
+        ``temperature_field.png``, ``screw_deformation.png`` and, if drawn,
+        ``screw_axial_deformation.png``.
+    """
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     field, screw = out_dir / TEMPERATURE_FIELD_PNG, out_dir / SCREW_DEFORMATION_PNG
     plot_temperature_field(series, field, snapshot=snapshot, width_px=width_px)
     plot_screw_deformation(series, screw)
-    return [field, screw]
+    paths = [field, screw]
+    if series.displacements is not None and screw_part is not None:
+        paths.append(out_dir / SCREW_AXIAL_DEFORMATION_PNG)
+        plot_screw_axial_deformation(series, paths[-1], screw_part)
+    return paths
 
 
 # --------------------------------------------------------------------------- temperature field
@@ -113,8 +146,8 @@ def plot_temperature_field(
             ax.set_title(f"from the {side} end", fontsize=9, color="0.3")
     colourbar = figure.colorbar(ScalarMappable(norm, cmap), ax=list(axes), shrink=0.85, pad=0.01, aspect=30)
     colourbar.set_label("temperature [°C]")
-    unit = _time_unit(series.snapshot_times)
-    title = f"Temperature field at t = {_time_label(series.snapshot_times[snapshot], unit)}"
+    unit = time_unit(series.snapshot_times)
+    title = f"Temperature field at t = {time_label(series.snapshot_times[snapshot], unit)}"
     figure.suptitle(f"{title} — {series.title}" if series.title else title)
     figure.text(0.01, 0.01, f"min {low:.1f} °C, max {high:.1f} °C", fontsize=9, color="0.3")
     figure.savefig(path, dpi=_DPI, format="png")
@@ -133,15 +166,6 @@ def _draw_triad(ax, view: View) -> None:
                         fontsize=9, fontweight="bold")
 
 
-def _time_unit(times: np.ndarray) -> str:
-    """``h`` when the series reaches an hour, else ``s``: one unit for every label of a figure."""
-    return "h" if times[-1] >= _HOURS else "s"
-
-
-def _time_label(seconds: float, unit: str) -> str:
-    return f"{seconds / _HOURS:.2f} h" if unit == "h" else f"{seconds:.0f} s"
-
-
 # --------------------------------------------------------------------------- screw deformation
 
 
@@ -158,7 +182,7 @@ def plot_screw_deformation(series: FieldSeries, path: Path, n_curves: int = 5) -
     x_mm = series.screw_x * 1e3
     um = series.screw_displacement * 1e6
     final = um[-1]
-    unit = _time_unit(series.snapshot_times)
+    unit = time_unit(series.snapshot_times)
     figure = Figure(figsize=(9, 6), layout="constrained")
     top, bottom = figure.subplots(2, 1, sharex=True, height_ratios=[1, 4.5])
 
@@ -181,16 +205,16 @@ def plot_screw_deformation(series: FieldSeries, path: Path, n_curves: int = 5) -
         top.spines[side].set_visible(False)
     bar = figure.colorbar(mesh, ax=top, pad=0.01, aspect=6)
     bar.set_label("µm")
-    last = _time_label(series.snapshot_times[-1], unit)
+    last = time_label(series.snapshot_times[-1], unit)
     title = f"Axial deformation of the screw at t = {last}"
     figure.suptitle(f"{title} — {series.title}" if series.title else title)
 
     # profiles at a few times, the last one emphasised
-    picks = _profile_snapshots(series.snapshot_times, n_curves)
+    picks = spread_instants(series.snapshot_times, n_curves)
     shades = colormaps["Blues"](np.linspace(0.35, 0.8, max(len(picks) - 1, 1)))
     for colour, k in zip(shades, picks[:-1]):
         bottom.plot(x_mm, um[k], color=colour, linewidth=1.3,
-                    label=f"t = {_time_label(series.snapshot_times[k], unit)}")
+                    label=f"t = {time_label(series.snapshot_times[k], unit)}")
     bottom.plot(x_mm, final, color="black", linewidth=2.0, label=f"t = {last}")
     peak = int(np.argmax(np.abs(final)))
     bottom.plot(x_mm[peak], final[peak], "o", color="black", markersize=4)
@@ -208,19 +232,81 @@ def plot_screw_deformation(series: FieldSeries, path: Path, n_curves: int = 5) -
     figure.savefig(path, dpi=_DPI, format="png")
 
 
+def plot_screw_axial_deformation(series: FieldSeries, path: Path, screw_part: str, snapshot: int = -1, *,
+                                 view: tuple[float, float] = SCREW_VIEW, width_px: int = 1200) -> None:
+    """The screw part alone, its surface coloured by the axial displacement u_x [µm], with a colour bar.
+
+    Parameters
+    ----------
+    series : FieldSeries
+        Must carry ``displacements``; u_x is their x component as the ``.vtu`` files hold it
+        (relative to the supports, not to the positioning reference).
+    path : Path
+        The PNG to write.
+    screw_part : str
+        The screw's part name (``kinematics.screw``), one of ``series.part_names``.
+    snapshot : int
+        Which snapshot, default the last.
+    view : (azimuth, elevation) [degrees]
+        Where the viewer stands (as in :func:`plot_temperature_field`); the default's picture
+        has the screw's axis across, so that the axis below it reads as x [mm].
+    width_px : int
+        Width of the screw's picture [pixels]; drawn to scale, so a slender screw is a band.
+
+    Raises
+    ------
+    ValueError
+        No displacements in the series, or no part named ``screw_part`` (or it has no tetrahedra).
+    """
+    from matplotlib import colormaps
+    from matplotlib.cm import ScalarMappable
+    from matplotlib.colors import Normalize
+    from matplotlib.figure import Figure
+
+    if series.displacements is None:
+        raise ValueError("the field series holds no displacement field (displacements is None)")
+    if screw_part not in series.part_names:
+        raise ValueError(f"no part {screw_part!r} in the field series (parts: {', '.join(series.part_names)})")
+    snapshot = range(series.n_snapshots)[snapshot]
+    part = series.part_names.index(screw_part)
+    surface = Surface.of(series, snapshot, parts=[part])
+    if len(surface.triangles) == 0:
+        raise ValueError(f"part {screw_part!r} has no tetrahedra in the field series")
+    u_x = series.displacements[snapshot, :, 0] * 1e6
+    own = np.unique(series.tets[series.part_id == part])
+    low, high = float(u_x[own].min()), float(u_x[own].max())
+    if high - low < 1e-9:  # a uniform field still gets a readable scale
+        low, high = low - 0.5, high + 0.5
+    norm, cmap = Normalize(low, high), colormaps[_COLOURMAP]
+    camera = View.from_angles(*view)
+    scale = width_px / max(float(surface.extent(camera)[0]), 1e-12)
+    image = render_surface(surface, u_x, camera, norm, cmap, scale)
+    left, right, bottom, top = (1e3 * edge for edge in surface.frame(camera, scale))
+
+    height, width = image.shape[:2]
+    figure = Figure(figsize=(width / _DPI + 0.8, height / _DPI + 1.5), layout="constrained")
+    ax = figure.subplots()
+    ax.imshow(image, extent=(left, right, bottom, top), interpolation="antialiased")
+    ax.set_yticks([])
+    for side in ("left", "right", "top"):
+        ax.spines[side].set_visible(False)
+    if camera.right[0] > 0.999:  # the picture's width is the machine's +x axis: label it
+        ax.set_xlabel("axial position x [mm]")
+    else:
+        ax.set_xticks([])
+    colourbar = figure.colorbar(ScalarMappable(norm, cmap), ax=ax, location="bottom", shrink=0.6, aspect=40)
+    colourbar.set_label("axial displacement u_x [µm]")
+    unit = time_unit(series.snapshot_times)
+    title = f"Axial deformation of the screw at t = {time_label(series.snapshot_times[snapshot], unit)}"
+    figure.suptitle(f"{title} — {series.title}" if series.title else title)
+    figure.text(0.01, 0.01, f"min {float(u_x[own].min()):.1f} µm, max {float(u_x[own].max()):.1f} µm",
+                fontsize=9, color="0.3")
+    figure.savefig(path, dpi=_DPI, format="png")
+
+
 def _cell_edges(x: np.ndarray) -> np.ndarray:
     """Edges around the positions ``x``: midpoints between them, half a spacing beyond the ends."""
     if len(x) == 1:
         return np.array([x[0] - 0.5, x[0] + 0.5])
     mid = 0.5 * (x[1:] + x[:-1])
     return np.concatenate([[x[0] - (mid[0] - x[0])], mid, [x[-1] + (x[-1] - mid[-1])]])
-
-
-def _profile_snapshots(times: np.ndarray, n_curves: int) -> list[int]:
-    """Up to ``n_curves`` snapshots nearest to evenly spaced times after the first; the last always."""
-    last = len(times) - 1
-    if n_curves <= 1 or last == 0:
-        return [last]
-    targets = times[0] + (times[-1] - times[0]) * np.arange(1, n_curves + 1) / n_curves
-    picks = sorted({int(np.argmin(np.abs(times - target))) for target in targets} | {last})
-    return picks

@@ -1,9 +1,10 @@
-"""Temperature fields of the FE model as files: ``fields.pvd`` and one ``.vtu`` per snapshot.
+"""Fields of the FE and reduced models as files: ``fields.pvd`` and one ``.vtu`` per snapshot.
 
-A run of the finite element model carries its fields as a
+A run of a mesh-based model carries its fields as a
 :class:`~feedtherm.solution.fields.FieldSeries`: the mesh at rest,
 which parts move with the worktable, and per snapshot the nodal temperatures, the moving
-group's offset along x and the screw's axial displacement.  :func:`write_pvd` writes it as a
+group's offset along x, the screw's axial displacement and (when the model solves the
+thermoelastic problem) the 3-D displacement of every vertex.  :func:`write_pvd` writes it as a
 ParaView time series (:mod:`.vtu` writes the ``.vtu`` files, the mesh's arrays encoded once for
 all of them; the ``.pvd`` collection is plain XML);
 :mod:`feedtherm.outputs.field_images` draws it as PNG images.
@@ -29,18 +30,22 @@ __all__ = [
     "boundary_triangles",
     "PVD_NAME",
     "TEMPERATURE_FIELD",
+    "DISPLACEMENT_FIELD",
     "PART_FIELD",
 ]
 
 PVD_NAME = "fields.pvd"
 TEMPERATURE_FIELD = "temperature_C"  #: point data [°C]
+#: point data, 3 components [m]: the thermal displacement, in the points' unit (ParaView's Warp By Vector)
+DISPLACEMENT_FIELD = "displacement"
 PART_FIELD = "part_id"  #: cell data: index into ``FieldSeries.part_names``
 _VTU_STEM = "fields_"
 _VTU_PATTERN = re.compile(r"fields_(\d{4,})\.vtu")
 
 
 def snapshot_mesh(series: FieldSeries, snapshot: int):
-    """One snapshot as a ``meshio.Mesh``: displaced vertices, ``temperature_C``, ``part_id``."""
+    """One snapshot as a ``meshio.Mesh``: displaced vertices, ``temperature_C``, ``displacement``
+    (when the series has displacements) and ``part_id``."""
     import meshio
 
     tets = series.tets
@@ -50,7 +55,7 @@ def snapshot_mesh(series: FieldSeries, snapshot: int):
     return meshio.Mesh(
         np.ascontiguousarray(series.displaced_points(snapshot)),
         [("tetra", np.ascontiguousarray(tets))],
-        point_data={TEMPERATURE_FIELD: series.celsius(snapshot)},
+        point_data=_point_data(series, snapshot),
         cell_data={PART_FIELD: [series.part_id.astype(np.int32)]},
     )
 
@@ -64,10 +69,12 @@ def vtu_names(count: int) -> list[str]:
 def write_pvd(series: FieldSeries, out_dir: Path) -> list[Path]:
     """Write ``fields_0000.vtu`` … (one per snapshot) and ``fields.pvd`` into ``out_dir``.
 
-    Each ``.vtu`` holds the mesh with the moving parts displaced by that snapshot's offset,
-    point data ``temperature_C`` [°C] and cell data ``part_id``.  ``fields.pvd`` is a ParaView
-    collection of them, with ``timestep`` in seconds and file paths relative to itself; it
-    is written last, so it never names a missing file.  Older ``fields_NNNN.vtu`` files in
+    Each ``.vtu`` holds the mesh with the moving parts displaced by that snapshot's offset
+    (points in metres), point data ``temperature_C`` [°C], point data ``displacement``
+    (3 components, metres like the points; only when ``series.displacements`` is not None)
+    and cell data ``part_id``.  ``fields.pvd`` is a ParaView collection of them, with
+    ``timestep`` in seconds and file paths relative to itself; it is written last, so it
+    never names a missing file.  Older ``fields_NNNN.vtu`` files in
     ``out_dir`` that the new collection does not contain are removed (ParaView would
     otherwise group them with the new ones when the directory is opened as a file series).
 
@@ -78,11 +85,24 @@ def write_pvd(series: FieldSeries, out_dir: Path) -> list[Path]:
     names = vtu_names(series.n_snapshots)
     writer = TetSeriesWriter(len(series.points), series.tets, {PART_FIELD: series.part_id.astype(np.int32)})
     for snapshot, name in enumerate(names):
-        writer.write(out_dir / name, series.displaced_points(snapshot), {TEMPERATURE_FIELD: series.celsius(snapshot)})
+        writer.write(out_dir / name, series.displaced_points(snapshot), _point_data(series, snapshot))
     pvd = out_dir / PVD_NAME
     _write_collection(pvd, series, names)
     _remove_stale_snapshots(out_dir, set(names))
     return [pvd] + [out_dir / name for name in names]
+
+
+def _point_data(series: FieldSeries, snapshot: int) -> dict[str, np.ndarray]:
+    """The point arrays of one snapshot: temperature [°C] and, if known, the thermal displacement [m].
+
+    The displacement is the thermal one alone: the moving parts' offset is already in the
+    points, so that Warp By Vector on top of it does not move them a second time.  It stays in
+    metres, the points' unit, so that a warp scale factor of 1 is the true deformation.
+    """
+    data = {TEMPERATURE_FIELD: series.celsius(snapshot)}
+    if series.displacements is not None:
+        data[DISPLACEMENT_FIELD] = series.displacements[snapshot]
+    return data
 
 
 def _write_collection(path: Path, series: FieldSeries, names: list[str]) -> None:

@@ -1,4 +1,4 @@
-"""PNG plots of a run: sensor temperatures, the elongation, the screw temperature map.
+"""PNG plots of a run: sensor temperatures, the elongation, the screw temperature map, the positioning error.
 
 matplotlib is imported inside the functions (importing it costs ~0.3 s, which commands
 that draw nothing should not pay).  Figures are built with ``matplotlib.figure.Figure``
@@ -15,12 +15,14 @@ import numpy as np
 from ..constants import AMBIENT_SENSOR, KELVIN_OFFSET
 from ..solution import Solution
 from .files import staged_directory
+from .instants import spread_instants, time_label, time_unit
 from .sensor_order import ordered_sensor_names
 
 SENSORS_PNG = "sensors.png"
 ELONGATION_PNG = "elongation.png"
 SCREW_HEATMAP_PNG = "screw_heatmap.png"
-PLOT_NAMES = (SENSORS_PNG, ELONGATION_PNG, SCREW_HEATMAP_PNG)
+POSITIONING_ERROR_PNG = "positioning_error.png"
+PLOT_NAMES = (SENSORS_PNG, ELONGATION_PNG, SCREW_HEATMAP_PNG, POSITIONING_ERROR_PNG)
 
 _DPI = 150
 _HOURS = 3600.0
@@ -29,10 +31,11 @@ _MAX_HEATMAP_COLUMNS = 1500
 
 
 def write_run_plots(solution: Solution, out_dir: Path) -> list[Path]:
-    """Write ``sensors.png``, ``elongation.png`` and ``screw_heatmap.png`` into ``out_dir``.
+    """Write ``sensors.png``, ``elongation.png``, ``screw_heatmap.png`` and ``positioning_error.png``
+    into ``out_dir``.
 
     Staged and swapped in as one set (:func:`~feedtherm.outputs.files.staged_directory`):
-    all three appear, or none; other files in ``out_dir`` are kept.
+    all four appear, or none; other files in ``out_dir`` are kept.
     """
     out_dir = Path(out_dir)
     with staged_directory(out_dir) as stage:
@@ -41,10 +44,11 @@ def write_run_plots(solution: Solution, out_dir: Path) -> list[Path]:
 
 
 def draw_run_plots(solution: Solution, directory: Path) -> list[str]:
-    """Draw the three plots straight into ``directory`` (no staging); return their names."""
+    """Draw the four plots straight into ``directory`` (no staging); return their names."""
     plot_sensors(solution, directory / SENSORS_PNG)
     plot_elongation(solution, directory / ELONGATION_PNG)
     plot_screw_heatmap(solution, directory / SCREW_HEATMAP_PNG)
+    plot_positioning_error(solution, directory / POSITIONING_ERROR_PNG)
     return list(PLOT_NAMES)
 
 
@@ -118,7 +122,51 @@ def plot_screw_heatmap(solution: Solution, path: Path) -> None:
     _save(figure, path)
 
 
+def plot_positioning_error(solution: Solution, path: Path, n_curves: int = 5) -> None:
+    """The thermal positioning error E [µm] against the table position [mm] at a few times.
+
+    Up to ``n_curves`` instants evenly spread over the run, the last one in black with its
+    largest |E| marked: how the error along the stroke grows as the drive warms up.
+    """
+    x_mm = np.asarray(solution.table_x, dtype=float) * 1e3
+    error_um = np.asarray(solution.positioning_error, dtype=float) * 1e6
+    figure = _figure(figsize=(9, 5))
+    ax = figure.subplots()
+    unit = time_unit(solution.times)
+    picks = spread_instants(solution.times, n_curves)
+    # a single table position is a point, not a line: draw it as a marker
+    style = {"marker": "o"} if x_mm.size == 1 else {}
+    shades = _colormap("Blues")(np.linspace(0.35, 0.8, max(len(picks) - 1, 1)))
+    for colour, k in zip(shades, picks[:-1]):
+        ax.plot(x_mm, error_um[k], color=colour, linewidth=1.3,
+                label=f"t = {time_label(solution.times[k], unit)}", **style)
+    final = error_um[picks[-1]]
+    ax.plot(x_mm, final, color="black", linewidth=2.0, label=f"t = {time_label(solution.times[-1], unit)}",
+            **style)
+    if x_mm.size:
+        peak = int(np.nanargmax(np.abs(final))) if np.isfinite(final).any() else 0
+        right_half = x_mm[peak] > 0.5 * (x_mm[0] + x_mm[-1])
+        ax.plot(x_mm[peak], final[peak], "o", color="black", markersize=4)
+        ax.annotate(f"{final[peak]:.1f} µm at x = {x_mm[peak]:.0f} mm", xy=(x_mm[peak], final[peak]),
+                    xytext=(-8 if right_half else 8, 8 if final[peak] >= 0 else -14),
+                    textcoords="offset points", ha="right" if right_half else "left", fontsize=9)
+    ax.axhline(0.0, color="0.5", linewidth=0.8)
+    ax.set_xlabel("table position x [mm]")
+    ax.set_ylabel("positioning error E [µm]")
+    ax.set_title(f"Thermal positioning error along the stroke — {run_label(solution)}")
+    ax.margins(y=0.12)
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize=9, frameon=False)
+    _save(figure, path)
+
+
 # --------------------------------------------------------------------------- helpers
+
+
+def _colormap(name: str):
+    from matplotlib import colormaps
+
+    return colormaps[name]
 
 
 def _figure(figsize: tuple[float, float]):

@@ -7,6 +7,7 @@ interpolated across it, and part edges are outlined.  Used by :mod:`.field_image
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -48,8 +49,9 @@ class View:
 class Surface:
     """The outer surface of the mesh at one snapshot: triangles oriented outwards.
 
-    Every boundary face of the tetrahedra, the moving parts displaced, less the faces that
-    two parts share (a face with a coincident twin lies inside the assembly).
+    Every boundary face of the tetrahedra (of all parts, or of the chosen ones), the moving
+    parts displaced, less the faces that two parts share (a face with a coincident twin lies
+    inside the assembly).
     """
 
     points: np.ndarray  #: (n, 3) displaced vertices [m]
@@ -58,9 +60,12 @@ class Surface:
     normal: np.ndarray  #: (f, 3) unit outward normals
 
     @classmethod
-    def of(cls, series: FieldSeries, snapshot: int) -> "Surface":
+    def of(cls, series: FieldSeries, snapshot: int, parts: Sequence[int] | None = None) -> "Surface":
+        """The surface at ``snapshot``; ``parts`` (part ids): of those parts alone, default all."""
         points = series.displaced_points(snapshot)
-        triangles, owner = boundary_triangles(points, series.tets)
+        chosen = np.arange(len(series.tets)) if parts is None else np.flatnonzero(np.isin(series.part_id, parts))
+        triangles, owner = boundary_triangles(points, series.tets[chosen])
+        owner = chosen[owner]
         triangles, owner = _drop_shared_faces(points, triangles, owner)
         a, b, c = (points[triangles[:, j]] for j in range(3))
         normal = np.cross(b - a, c - a)
@@ -70,9 +75,29 @@ class Surface:
 
     def extent(self, view: View) -> np.ndarray:
         """Width and height of the surface's picture in that view [m]."""
+        if len(self.points) == 0:
+            return np.zeros(2)
+        lo, hi, _ = self._window(view)
+        return hi - lo
+
+    def frame(self, view: View, scale: float) -> tuple[float, float, float, float]:
+        """Where :func:`render_surface`'s image lies on the screen plane [m]: (left, right, bottom, top).
+
+        The image's pixels tile this rectangle (``scale`` pixels per metre), so a figure can
+        put a length axis under it: with a view whose ``right`` is +x, left and right are
+        machine x.
+        """
+        lo, hi, margin = self._window(view)
+        width, height = (int(np.ceil((hi[k] - lo[k] + 2 * margin) * scale)) for k in (0, 1))
+        left, top = lo[0] - margin, hi[1] + margin
+        return left, left + width / scale, top - height / scale, top
+
+    def _window(self, view: View) -> tuple[np.ndarray, np.ndarray, float]:
+        """Lowest and highest screen (right, up) coordinates of the drawn vertices, and the margin [m]."""
         used = np.unique(self.triangles) if len(self.triangles) else np.arange(len(self.points))
         screen = self.points[used] @ np.column_stack([view.right, view.up])
-        return np.ptp(screen, axis=0) if len(screen) else np.zeros(2)
+        lo, hi = screen.min(axis=0), screen.max(axis=0)
+        return lo, hi, 0.03 * max(float((hi - lo).max()), 1e-12)
 
 
 def render_surface(surface: Surface, values: np.ndarray, view: View, norm, cmap, scale: float) -> np.ndarray:
@@ -85,9 +110,7 @@ def render_surface(surface: Surface, values: np.ndarray, view: View, norm, cmap,
     triangles, normal, part = surface.triangles[facing], surface.normal[facing], surface.part[facing]
     points = surface.points
     screen = np.column_stack([points @ view.right, points @ view.up, points @ view.toward])
-    used = np.unique(surface.triangles) if len(surface.triangles) else np.arange(len(points))
-    lo, hi = screen[used, :2].min(axis=0), screen[used, :2].max(axis=0)
-    margin = 0.03 * max(float((hi - lo).max()), 1e-12)
+    lo, hi, margin = surface._window(view)
     pixels = scale * SUPERSAMPLE  # per metre, while rendering
     width, height = (int(np.ceil((hi[k] - lo[k] + 2 * margin) * scale)) * SUPERSAMPLE for k in (0, 1))
     x = (screen[:, 0] - lo[0] + margin) * pixels

@@ -1,4 +1,4 @@
-"""The files of ``feedtherm run``: sensor series, screw fields and a JSON summary.
+"""The files of ``feedtherm run``: sensor series, screw fields, the positioning error and a JSON summary.
 
 Everything is read from a :class:`~feedtherm.solution.Solution` (SI inside); the kelvin →
 °C and metre → µm conversions happen here, at the output edge.  The layout of every file is
@@ -20,6 +20,7 @@ import numpy as np
 from ..constants import AMBIENT_SENSOR, KELVIN_OFFSET
 from ..solution import Solution
 from .field_images import (
+    SCREW_AXIAL_DEFORMATION_PNG,
     SCREW_DEFORMATION_PNG,
     TEMPERATURE_FIELD_PNG,
     write_field_images,
@@ -32,10 +33,15 @@ from .sensor_order import ordered_sensor_names
 SENSORS_CSV = "sensors.csv"
 SCREW_CSV = "screw.csv"
 SCREW_DISPLACEMENT_CSV = "screw_displacement.csv"
+POSITIONING_ERROR_CSV = "positioning_error.csv"
 SUMMARY_JSON = "summary.json"
-TABLES = (SENSORS_CSV, SCREW_CSV, SCREW_DISPLACEMENT_CSV, SUMMARY_JSON)
+TABLES = (SENSORS_CSV, SCREW_CSV, SCREW_DISPLACEMENT_CSV, POSITIONING_ERROR_CSV, SUMMARY_JSON)
 #: Every file a run can write (glob patterns): an earlier run's files in its directory.
-RUN_FILES = (*TABLES, *PLOT_NAMES, PVD_NAME, "fields_*.vtu", TEMPERATURE_FIELD_PNG, SCREW_DEFORMATION_PNG)
+RUN_FILES = (*TABLES, *PLOT_NAMES, PVD_NAME, "fields_*.vtu", TEMPERATURE_FIELD_PNG, SCREW_DEFORMATION_PNG,
+             SCREW_AXIAL_DEFORMATION_PNG)
+#: ``solution.info`` key of the screw's part name (``kinematics.screw``): which part of a field
+#: series the screw image shows.
+SCREW_PART_KEY = "screw_part"
 
 # Fixed decimals keep the columns readable; 1e-4 °C and 1e-4 µm are far below any
 # measurement or model accuracy.
@@ -44,7 +50,8 @@ _VALUE_FORMAT = "%.4f"
 
 
 def write_run_outputs(solution: Solution, out_dir: Path, *, sample_interval: float) -> list[Path]:
-    """Write ``sensors.csv``, ``screw.csv``, ``screw_displacement.csv`` and ``summary.json``.
+    """Write ``sensors.csv``, ``screw.csv``, ``screw_displacement.csv``, ``positioning_error.csv``
+    and ``summary.json``.
 
     Parameters
     ----------
@@ -84,11 +91,17 @@ def write_run(solution: Solution, out_dir: Path, *, sample_interval: float, figu
 
 
 def write_field_outputs(solution: Solution, directory: Path, *, images: bool = True) -> list[str]:
-    """fields.pvd, its .vtu snapshots and (``images``) the two field images of an FE run (nothing otherwise)."""
+    """fields.pvd, its .vtu snapshots and (``images``) the field images of a run with fields (nothing otherwise).
+
+    The screw's axial deformation image needs the series' displacements and the screw's part
+    name, ``solution.info["screw_part"]`` (:data:`SCREW_PART_KEY`); without either it is left out.
+    """
     series = solution.fields
     if series is None:
         return []
-    paths = write_pvd(series, directory) + (write_field_images(series, directory) if images else [])
+    paths = write_pvd(series, directory)
+    if images:
+        paths += write_field_images(series, directory, screw_part=solution.info.get(SCREW_PART_KEY))
     return [Path(p).name for p in paths]
 
 
@@ -100,6 +113,9 @@ def write_tables(solution: Solution, directory: Path, *, sample_interval: float)
                     directory / SCREW_CSV)
     write_screw_csv(solution.times[rows], solution.screw_x, solution.screw_displacement[rows] * 1e6,
                     directory / SCREW_DISPLACEMENT_CSV)
+    # the same wide layout: its columns are table positions, the nut's centre on the same x axis
+    write_screw_csv(solution.times[rows], solution.table_x, solution.positioning_error[rows] * 1e6,
+                    directory / POSITIONING_ERROR_CSV)
     write_summary_json(solution, directory / SUMMARY_JSON)
     return list(TABLES)
 
@@ -139,15 +155,16 @@ def write_sensors_csv(solution: Solution, path: Path, rows: np.ndarray) -> None:
     _write_csv(path, header, np.column_stack(columns))
 
 
-def write_screw_csv(times: np.ndarray, screw_x: np.ndarray, values: np.ndarray, path: Path) -> None:
-    """A screw field in the wide layout: one row per time, one column per axial position.
+def write_screw_csv(times: np.ndarray, positions: np.ndarray, values: np.ndarray, path: Path) -> None:
+    """A field along x in the wide layout: one row per time, one column per axial position.
 
-    Header ``time_s,x_mm=<x0>,x_mm=<x1>,…`` with the cell centres in mm (the description's
-    axial coordinate); ``values`` has shape (times, positions) and is already in output units
-    (°C for ``screw.csv``, µm for ``screw_displacement.csv``).
+    Header ``time_s,x_mm=<x0>,x_mm=<x1>,…`` with the positions in mm (the description's
+    axial coordinate: the screw's cell centres, or for ``positioning_error.csv`` the table
+    positions); ``values`` has shape (times, positions) and is already in output units (°C for
+    ``screw.csv``, µm for ``screw_displacement.csv`` and ``positioning_error.csv``).
     """
-    positions = ",".join(f"x_mm={x * 1e3:.6g}" for x in screw_x)
-    header = f"time_s,{positions}" if positions else "time_s"
+    columns = ",".join(f"x_mm={x * 1e3:.6g}" for x in positions)
+    header = f"time_s,{columns}" if columns else "time_s"
     _write_csv(path, header, np.column_stack([times, values]))
 
 
@@ -174,6 +191,7 @@ def run_summary(solution: Solution) -> dict:
         "single_drive": info.get("single_drive", False),
         "final": final,
         "steady": steady,
+        "positioning_error": final_positioning_error(solution),
         "equilibrium_time_s": solution.equilibrium_time,
         "energy_balance_error": energy.relative_error,
         "energy_J": {"heat_in": energy.heat_in, "heat_lost": energy.heat_lost,
@@ -188,6 +206,28 @@ def run_summary(solution: Solution) -> dict:
         "mesh": info.get("mesh_statistics"),  # FE runs: vertices, tetrahedra, per part, element size
         "provenance": info.get("provenance", {}),
     })
+
+
+def final_positioning_error(solution: Solution) -> dict:
+    """The positioning error at the end of the run: its largest magnitude over the stroke, and where.
+
+    ``time_s`` the last sample, ``max_abs_um`` the largest |E| [µm] over the table positions,
+    ``E_um`` the signed E there [µm] and ``table_x_mm`` that table position [mm].  The values
+    of the last sample, not a cycle mean like ``final``: E is already resolved along the
+    stroke.  All but ``time_s`` None for a run without table positions, or one whose E is
+    not finite anywhere.
+    """
+    times = np.asarray(solution.times, dtype=float)
+    x = np.asarray(solution.table_x, dtype=float)
+    error = np.asarray(solution.positioning_error, dtype=float)
+    empty = {"time_s": float(times[-1]) if times.size else None, "max_abs_um": None, "E_um": None,
+             "table_x_mm": None}
+    if x.size == 0 or error.size == 0 or not np.isfinite(error[-1]).any():
+        return empty
+    last = error[-1]
+    peak = int(np.nanargmax(np.where(np.isfinite(last), np.abs(last), np.nan)))
+    return {**empty, "max_abs_um": abs(float(last[peak])) * 1e6, "E_um": float(last[peak]) * 1e6,
+            "table_x_mm": float(x[peak]) * 1e3}
 
 
 def write_summary_json(solution: Solution, path: Path) -> None:

@@ -1,17 +1,18 @@
 """VTK XML unstructured grids (``.vtu``) of one tetrahedral mesh at many instants, written fast.
 
-A run's field series is one mesh written many times: only the vertices (the moving parts move)
-and the temperatures change from one snapshot to the next.  meshio compresses every array of
-every file at zlib's default level and base64-encodes it; on the fine mesh (171,000 vertices,
-784,000 tetrahedra) that took 1.2 s per file, 20 s for a run's 19 snapshots.  This writer
-keeps the format ParaView and VTK read (binary, appended, zlib-compressed blocks: VTK's own
-writer's layout) and does the work once where it can:
+A run's field series is one mesh written many times: only the vertices (the moving parts move),
+the temperatures and the displacements change from one snapshot to the next.  meshio
+compresses every array of every file at zlib's default level and base64-encodes it; on the
+fine mesh (171,000 vertices, 784,000 tetrahedra) that took 1.2 s per file, 20 s for a run's
+19 snapshots.  This writer keeps the format ParaView and VTK read (binary, appended,
+zlib-compressed blocks: VTK's own writer's layout) and does the work once where it can:
 
 - the arrays that are the same in every file (connectivity, offsets, cell types, cell data)
   are compressed once per series, at zlib level 1: level 6 makes the connectivity 0.6 %
   smaller and takes five times as long;
-- the arrays that change (vertices, temperatures) are stored in zlib's "stored" blocks
-  (level 0): floating-point values compress by about 20 % only, at 50 ms a file.
+- the arrays that change (vertices, temperatures, displacements) are stored in zlib's
+  "stored" blocks (level 0): floating-point values compress by about 20 % only, at 50 ms a
+  file.
 
 The data is appended raw (not base64), so a file is its arrays' bytes and a short XML header.
 """
@@ -72,13 +73,24 @@ class TetSeriesWriter:
                            for name, a in cell_data.items()]
 
     def write(self, path: Path, points: np.ndarray, point_data: dict[str, np.ndarray]) -> None:
-        """One file: ``points`` (n, 3) [m] and ``point_data`` name → (n,) float arrays."""
+        """One file: ``points`` (n, 3) and ``point_data`` name → (n,) scalar or (n, c) vector arrays.
+
+        Values are written as given, in whatever unit the caller uses (the field files write
+        points in metres); a vector array's components are stored interleaved, per point, as
+        VTK's ``NumberOfComponents`` expects.
+        """
         points = _little_endian(np.asarray(points, dtype=float))
         if points.shape != (self.n_points, 3):
             raise ValueError(f"points has shape {points.shape}, expected ({self.n_points}, 3)")
         own_points = ("Points", "Float64", 3, _compressed(points, OWN_LEVEL))
-        own_data = [(name, _TYPES[_little_endian(a).dtype], 1, _compressed(_little_endian(a), OWN_LEVEL))
-                    for name, a in point_data.items()]
+        own_data = []
+        for name, values in point_data.items():
+            values = _little_endian(values)
+            if values.ndim not in (1, 2) or len(values) != self.n_points:
+                raise ValueError(f"point data {name!r} has shape {values.shape}, "
+                                 f"expected ({self.n_points},) or ({self.n_points}, components)")
+            components = 1 if values.ndim == 1 else values.shape[1]
+            own_data.append((name, _TYPES[values.dtype], components, _compressed(values, OWN_LEVEL)))
         offset = 0
         blobs: list[bytes] = []
 

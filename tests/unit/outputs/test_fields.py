@@ -1,8 +1,9 @@
 """FE field output: fields.pvd + .vtu snapshots (read back with meshio and with VTK's own reader) and
-the two PNG images.
+the PNG images.
 
 The field is synthetic: a fixed "base" box and a moving "table" box on top of it, meshed
-separately on the same grid lines (no shared nodes), with a temperature rising along x.
+separately on the same grid lines (no shared nodes), with a temperature rising along x; for
+the displacement outputs, a fixed slender "screw" bar beside them and a displacement field.
 """
 
 from __future__ import annotations
@@ -17,13 +18,17 @@ from skfem import MeshTet
 
 from feedtherm.outputs import field_images, render
 from feedtherm.outputs.field_images import (
+    SCREW_AXIAL_DEFORMATION_PNG,
     SCREW_DEFORMATION_PNG,
     TEMPERATURE_FIELD_PNG,
     Surface,
+    View,
+    plot_screw_axial_deformation,
     plot_screw_deformation,
     write_field_images,
 )
 from feedtherm.outputs.fields import FieldSeries, boundary_triangles, write_pvd
+from feedtherm.outputs.vtu import TetSeriesWriter
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 K = 273.15
@@ -56,9 +61,44 @@ def make_series(**changes) -> FieldSeries:
     return FieldSeries(**values)
 
 
+def make_screw_series(**changes) -> FieldSeries:
+    """make_series's boxes and a fixed "screw" bar beside them (0.4 × 0.02 × 0.02 m, its own nodes), with a
+    displacement field: u_x = α · (100 K/m) · x² / 2 [m] grows along x, small u_y and u_z; zero at t = 0."""
+    boxes = make_series()
+    screw_p, screw_t = box(0.0, 0.4, 0.25, 0.27, 0.0, 0.02, (20, 1, 1))
+    points = np.vstack([boxes.points, screw_p])
+    rise = np.array([0.0, 0.5, 1.0])[:, None]
+    x, y, z = points.T
+    unit_field = np.column_stack([11.5e-6 * 100.0 * x**2 / 2, 1e-6 * y, 2e-6 * z])
+    values = dict(
+        points=points, tets=np.vstack([boxes.tets, screw_t + len(boxes.points)]),
+        part_id=np.r_[boxes.part_id, np.full(len(screw_t), 2)], part_names=["base", "table", "screw"],
+        moving_part=[False, True, False], temperatures=K + 20.0 + rise * 100.0 * x[None, :],
+        displacements=rise[:, :, None] * unit_field[None, :, :],
+    )
+    values.update(changes)
+    return make_series(**values)
+
+
 @pytest.fixture(scope="module")
 def series():
     return make_series()
+
+
+@pytest.fixture(scope="module")
+def screw_series():
+    return make_screw_series()
+
+
+def read_vtu(path):
+    """The grid of a .vtu as VTK's XML reader (ParaView's) sees it."""
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+
+    reader = vtkXMLUnstructuredGridReader()
+    reader.SetFileName(str(path))
+    reader.Update()
+    assert reader.GetErrorCode() == 0
+    return reader.GetOutput()
 
 
 def png_size(path) -> tuple[int, int]:
@@ -271,3 +311,114 @@ def test_vtu_blocks_split_over_many_zlib_streams_read_back(series, tmp_path, mon
     np.testing.assert_array_equal(vtk_to_numpy(grid.GetPoints().GetData()), series.displaced_points(2))
     np.testing.assert_array_equal(vtk_to_numpy(grid.GetPointData().GetArray("temperature_C")), series.celsius(2))
     np.testing.assert_array_equal(vtk_to_numpy(grid.GetCellData().GetArray("part_id")), series.part_id)
+
+
+# --------------------------------------------------------------------------- displacements
+
+
+def test_vtu_displacement_array_is_the_series_thermal_displacement_in_metres(screw_series, tmp_path):
+    """Three components per point, in the points' unit (m), read back by VTK: ready for Warp By Vector."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    write_pvd(screw_series, tmp_path)
+    for k in range(screw_series.n_snapshots):
+        grid = read_vtu(tmp_path / f"fields_{k:04d}.vtu")
+        array = grid.GetPointData().GetArray("displacement")
+        assert array is not None and array.GetNumberOfComponents() == 3
+        np.testing.assert_array_equal(vtk_to_numpy(array), screw_series.displacements[k])
+        # the points carry the table's offset and no thermal displacement: a warp adds it once
+        np.testing.assert_array_equal(vtk_to_numpy(grid.GetPoints().GetData()), screw_series.displaced_points(k))
+        temperature = vtk_to_numpy(grid.GetPointData().GetArray("temperature_C"))
+        np.testing.assert_allclose(temperature, screw_series.celsius(k))
+    last = meshio.read(tmp_path / "fields_0002.vtu")
+    np.testing.assert_array_equal(last.point_data["displacement"], screw_series.displacements[2])
+    assert 90e-6 < last.point_data["displacement"][:, 0].max() < 93e-6  # 92 µm, written in metres
+
+
+def test_vtu_has_no_displacement_array_without_displacements(series, tmp_path):
+    write_pvd(series, tmp_path)
+    grid = read_vtu(tmp_path / "fields_0001.vtu")
+    assert grid.GetPointData().GetArray("displacement") is None
+    assert grid.GetPointData().GetNumberOfArrays() == 1
+
+
+def test_vtu_writer_rejects_point_data_of_the_wrong_length(series, tmp_path):
+    writer = TetSeriesWriter(len(series.points), series.tets, {})
+    with pytest.raises(ValueError, match="point data 'displacement' has shape"):
+        writer.write(tmp_path / "x.vtu", series.points, {"displacement": np.zeros((3, 3))})
+
+
+def test_surface_of_chosen_parts_has_their_faces_only(screw_series):
+    surface = Surface.of(screw_series, 2, parts=[2])
+    assert set(surface.part.tolist()) == {2}
+    a, b, c = (surface.points[surface.triangles[:, j]] for j in range(3))
+    area = np.linalg.norm(np.cross(b - a, c - a), axis=1).sum() / 2
+    assert area == pytest.approx(4 * 0.4 * 0.02 + 2 * 0.02 * 0.02)
+    assert set(Surface.of(screw_series, 2).part.tolist()) == {0, 1, 2}
+
+
+def test_screw_picture_frame_puts_machine_x_across(screw_series):
+    """The frame the screw image is drawn in: from the front, its width is x, the bar inside a small margin."""
+    surface = Surface.of(screw_series, 2, parts=[2])
+    view = View.from_angles(*field_images.SCREW_VIEW)
+    scale = 1000.0  # px/m
+    left, right, bottom, top = surface.frame(view, scale)
+    margin = 0.03 * 0.4
+    assert (left, right) == (pytest.approx(-margin), pytest.approx(0.4 + margin, abs=1.5 / scale))
+    from matplotlib import colormaps
+    from matplotlib.colors import Normalize
+
+    image = render.render_surface(surface, screw_series.displacements[2, :, 0], view, Normalize(0, 1e-4),
+                                  colormaps["turbo"], scale)
+    assert image.shape[:2] == (round((top - bottom) * scale), round((right - left) * scale))
+
+
+def test_field_images_add_the_screw_axial_deformation(screw_series, tmp_path, monkeypatch):
+    monkeypatch.setattr(field_images, "_DPI", 80)
+    paths = write_field_images(screw_series, tmp_path, width_px=300, screw_part="screw")
+    assert [p.name for p in paths] == [TEMPERATURE_FIELD_PNG, SCREW_DEFORMATION_PNG, SCREW_AXIAL_DEFORMATION_PNG]
+    width, height = png_size(paths[-1])
+    assert width > 300 and height > 100
+    # the colour bar's two ends appear, unshaded
+    from matplotlib import colormaps
+
+    pixels = png_pixels(paths[-1]).reshape(-1, 3)
+    for end in (0.0, 1.0):
+        colour = np.array(colormaps["turbo"](end)[:3])
+        assert np.abs(pixels - colour).max(axis=1).min() < 4 / 255
+
+
+def test_screw_axial_deformation_states_the_screws_range_in_micrometres(screw_series, tmp_path):
+    """u_x on the screw spans 0 … 92 µm at the last snapshot; the table and base are not drawn."""
+    from matplotlib.figure import Figure
+
+    texts, labels = [], []
+    original_text, original_savefig = Figure.text, Figure.savefig
+
+    def spy_text(self, x, y, s, *args, **kwargs):
+        texts.append(s)
+        return original_text(self, x, y, s, *args, **kwargs)
+
+    def spy_savefig(self, *args, **kwargs):
+        labels.extend(ax.get_xlabel() for ax in self.axes)
+        return original_savefig(self, *args, **kwargs)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(Figure, "text", spy_text)
+        patch.setattr(Figure, "savefig", spy_savefig)
+        plot_screw_axial_deformation(screw_series, tmp_path / "u.png", "screw", width_px=300)
+    assert texts[0].startswith("Axial deformation of the screw at t = 1800 s — two boxes")  # the suptitle
+    assert texts[-1] == "min 0.0 µm, max 92.0 µm"
+    assert "axial position x [mm]" in labels and "axial displacement u_x [µm]" in labels
+
+
+def test_no_screw_axial_deformation_without_displacements_or_screw_name(series, screw_series, tmp_path):
+    paths = write_field_images(series, tmp_path / "a", width_px=150, screw_part="table")
+    assert [p.name for p in paths] == [TEMPERATURE_FIELD_PNG, SCREW_DEFORMATION_PNG]
+    paths = write_field_images(screw_series, tmp_path / "b", width_px=150)
+    assert [p.name for p in paths] == [TEMPERATURE_FIELD_PNG, SCREW_DEFORMATION_PNG]
+    assert not list(tmp_path.glob("*/" + SCREW_AXIAL_DEFORMATION_PNG))
+    with pytest.raises(ValueError, match="no displacement field"):
+        plot_screw_axial_deformation(series, tmp_path / "u.png", "table")
+    with pytest.raises(ValueError, match="no part 'spindle'.*base, table, screw"):
+        plot_screw_axial_deformation(screw_series, tmp_path / "u.png", "spindle")

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import dataclasses
 import struct
 
 import matplotlib
+import numpy as np
 import pytest
 
 from feedtherm.outputs import plots
@@ -14,7 +16,7 @@ from feedtherm.outputs.plots import run_label, write_run_plots
 from test_run_files import make_solution
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
-NAMES = ["sensors.png", "elongation.png", "screw_heatmap.png"]
+NAMES = ["sensors.png", "elongation.png", "screw_heatmap.png", "positioning_error.png"]
 
 
 @pytest.fixture
@@ -30,7 +32,7 @@ def png_size(path) -> tuple[int, int]:
     return struct.unpack(">II", data[16:24])
 
 
-def test_three_valid_pngs_of_a_useful_size(solution, tmp_path):
+def test_four_valid_pngs_of_a_useful_size(solution, tmp_path):
     written = write_run_plots(solution, tmp_path / "run")
     assert [p.name for p in written] == NAMES
     for path in written:
@@ -67,6 +69,39 @@ def test_plotting_leaves_the_callers_backend_alone(solution, tmp_path):
     before = matplotlib.get_backend()
     write_run_plots(solution, tmp_path)
     assert matplotlib.get_backend() == before
+
+
+def test_positioning_error_plot_shows_a_few_instants_the_last_in_black_in_um_and_mm(solution, tmp_path,
+                                                                                    monkeypatch):
+    from matplotlib.axes import Axes
+
+    drawn = []
+    original = Axes.plot
+
+    def spy(self, *args, **kwargs):
+        drawn.append((self, args, kwargs))
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(Axes, "plot", spy)
+    plots.plot_positioning_error(solution, tmp_path / "e.png")
+    assert png_size(tmp_path / "e.png")
+    curves = [(args, kwargs) for _, args, kwargs in drawn if "label" in kwargs]
+    assert [kwargs["label"] for _, kwargs in curves] == ["t = 0.40 h", "t = 0.80 h", "t = 1.20 h", "t = 1.60 h",
+                                                         "t = 2.00 h"]
+    (x_mm, last_um), style = curves[-1]
+    assert style["color"] == "black"
+    np.testing.assert_allclose(x_mm, solution.table_x * 1e3)
+    np.testing.assert_allclose(last_um, solution.positioning_error[-1] * 1e6)
+    ax = drawn[0][0]
+    assert ax.get_xlabel() == "table position x [mm]" and ax.get_ylabel() == "positioning error E [µm]"
+    assert ax.get_title().endswith("— I, physics mode, fast model")
+
+
+def test_positioning_error_plot_of_a_single_table_position(solution, tmp_path):
+    standstill = dataclasses.replace(solution, table_x=solution.table_x[:1],
+                                     positioning_error=solution.positioning_error[:, :1])
+    plots.plot_positioning_error(standstill, tmp_path / "e.png")
+    assert png_size(tmp_path / "e.png")
 
 
 def test_run_label(solution):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import dataclasses
 import json
 import math
 
@@ -23,12 +24,14 @@ from feedtherm.solution import EnergyBalance, Solution
 
 T_AMBIENT = 293.15  # K (20 °C)
 EXPANSION = 11.5e-6  # 1/K, steel
+TABLE_X = np.linspace(0.15, 0.45, 13)  # m: the nut's centre over a 300 mm stroke, 25 mm apart
 
 
 def make_solution(*, sensor_names=("T1", "T2", "T3", "T4", "T5", "T6"), step=10.0, hours=2.0,
-                  equilibrium_time=4500.0, info=None) -> Solution:
+                  equilibrium_time=4500.0, info=None, fields=None) -> Solution:
     """A plausible warm-up: sensors rise exponentially to a few kelvin over ambient, the screw
-    is warmest near its middle, and D follows the mean screw rise (all SI, like a model's)."""
+    is warmest near its middle, D follows the mean screw rise, and the positioning error is the
+    screw's displacement under the nut relative to the screw's front end (all SI, like a model's)."""
     times = np.arange(0.0, hours * 3600.0 + step / 2, step)
     warm = 1.0 - np.exp(-times / 1800.0)
     sensors = {}
@@ -41,6 +44,8 @@ def make_solution(*, sensor_names=("T1", "T2", "T3", "T4", "T5", "T6"), step=10.
     cell = screw_x[1] - screw_x[0]
     displacement = EXPANSION * np.cumsum(screw_rise, axis=1) * cell  # m, growing from the fixed end
     elongation = 2e-6 + displacement[:, -1]  # m; 2 µm at start: reference below the initial temperature
+    table_x = TABLE_X
+    positioning = np.array([np.interp(table_x, screw_x, row) for row in displacement]) - displacement[:, :1]
     last = slice(-36, None)  # the "last full cycle": 6 minutes
     final = {name: float(values[last].mean()) for name, values in sensors.items()}
     final["D"] = float(elongation[last].mean())
@@ -49,7 +54,7 @@ def make_solution(*, sensor_names=("T1", "T2", "T3", "T4", "T5", "T6"), step=10.
     return Solution(
         times=times, sensors=sensors, elongation=elongation, screw_x=screw_x,
         screw_temperature=T_AMBIENT + screw_rise, screw_displacement=displacement,
-        nut_offset=0.1 * np.sin(times / 60.0), part_temperatures={"screw": T_AMBIENT + screw_rise.mean(axis=1)},
+        table_x=table_x, positioning_error=positioning, nut_offset=0.1 * np.sin(times / 60.0), part_temperatures={"screw": T_AMBIENT + screw_rise.mean(axis=1)},
         cycle_times=times[::6] + 30.0, cycle_sensors={k: v[::6] for k, v in sensors.items()},
         cycle_elongation=elongation[::6], final=final, steady=steady, equilibrium_time=equilibrium_time,
         energy=EnergyBalance(heat_in=1.0e5, heat_lost=6.0e4, heat_stored=3.99e4),
@@ -60,6 +65,7 @@ def make_solution(*, sensor_names=("T1", "T2", "T3", "T4", "T5", "T6"), step=10.
                            "description": "bundled:paper", "mode": "physics",
                            "assumptions": [{"paths": ["parts.screw"], "source": "feedtherm", "reason": "not printed"}]},
         },
+        fields=fields,
     )
 
 
@@ -149,6 +155,30 @@ def test_screw_displacement_csv_is_in_micrometres(solution, tmp_path):
     np.testing.assert_allclose(table[:, 0], temperature[:, 0])
 
 
+# --------------------------------------------------------------------------- positioning_error.csv
+
+
+def test_positioning_error_csv_is_time_by_table_position_in_micrometres(solution, tmp_path):
+    write_run_outputs(solution, tmp_path, sample_interval=10.0)
+    header, table = read_csv(tmp_path / "positioning_error.csv")
+    assert header == ["time_s"] + [f"x_mm={x:g}" for x in range(150, 451, 25)]  # table positions in mm
+    assert table.shape == (solution.times.size, 1 + solution.table_x.size)
+    np.testing.assert_allclose(table[:, 0], solution.times)
+    np.testing.assert_allclose(table[:, 1:], solution.positioning_error * 1e6, atol=1e-4)
+    assert 5.0 < table[-1, -1] < 100.0  # µm, not m: a few K warmer over a 0.45 m screw
+    text = (tmp_path / "positioning_error.csv").read_text(encoding="utf-8").splitlines()
+    assert text[1].split(",")[1] == "0.0000"  # 4 decimals, as every value column
+
+
+def test_positioning_error_csv_has_the_rows_of_the_screw_csvs(solution, tmp_path):
+    write_run_outputs(solution, tmp_path, sample_interval=600.0)
+    _, error = read_csv(tmp_path / "positioning_error.csv")
+    _, screw = read_csv(tmp_path / "screw_displacement.csv")
+    np.testing.assert_array_equal(error[:, 0], screw[:, 0])
+    np.testing.assert_allclose(error[:, 0], np.arange(0.0, 7201.0, 600.0))
+    np.testing.assert_allclose(error[:, 1:], solution.positioning_error[::60] * 1e6, atol=1e-4)
+
+
 # --------------------------------------------------------------------------- summary.json
 
 
@@ -170,6 +200,36 @@ def test_summary_json_keys_and_units(solution, tmp_path):
     assert summary["elongation_change_um"]["final"] == pytest.approx((solution.final["D"] - 2e-6) * 1e6)
     assert (summary["wall_time_s"], summary["time_step_s"], summary["unknowns"]) == (0.42, 10.0, 137)
     assert summary["provenance"] == solution.info["provenance"]
+
+
+def test_summary_json_gives_the_final_positioning_error_and_where(solution, tmp_path):
+    write_run_outputs(solution, tmp_path, sample_interval=10.0)
+    summary = json.loads((tmp_path / "summary.json").read_text(encoding="utf-8"))
+    final = solution.positioning_error[-1]
+    peak = int(np.argmax(np.abs(final)))
+    assert list(summary)[list(summary).index("steady") + 1] == "positioning_error"  # beside D
+    error = summary["positioning_error"]
+    assert error["time_s"] == solution.times[-1] == 7200.0
+    assert error["max_abs_um"] == pytest.approx(abs(final[peak]) * 1e6)
+    assert error["E_um"] == pytest.approx(final[peak] * 1e6)
+    assert error["table_x_mm"] == pytest.approx(solution.table_x[peak] * 1e3)
+    assert error["max_abs_um"] == pytest.approx(np.abs(final).max() * 1e6) and error["max_abs_um"] > 5.0
+
+
+def test_the_final_positioning_error_of_a_negative_error_keeps_its_sign(solution):
+    flipped = dataclasses.replace(solution, positioning_error=-solution.positioning_error)
+    error = run_summary(flipped)["positioning_error"]
+    assert error["E_um"] == pytest.approx(-error["max_abs_um"]) and error["E_um"] < 0
+
+
+def test_the_final_positioning_error_ignores_non_finite_positions_and_is_null_without_any(solution):
+    error = solution.positioning_error.copy()
+    error[-1, 3] = math.nan
+    summary = run_summary(dataclasses.replace(solution, positioning_error=error))["positioning_error"]
+    assert summary["max_abs_um"] == pytest.approx(np.nanmax(np.abs(error[-1])) * 1e6)
+    empty = dataclasses.replace(solution, table_x=np.empty(0), positioning_error=np.empty((solution.times.size, 0)))
+    assert run_summary(empty)["positioning_error"] == {"time_s": 7200.0, "max_abs_um": None, "E_um": None,
+                                                        "table_x_mm": None}
 
 
 def test_summary_json_writes_null_for_a_run_without_equilibrium(tmp_path):
@@ -237,7 +297,8 @@ def test_rewriting_replaces_our_files_and_keeps_others(solution, tmp_path):
     (out_dir / "sensors.csv").write_text("previous run\n")
     (out_dir / "notes.txt").write_text("mine\n")
     written = write_run_outputs(solution, out_dir, sample_interval=10.0)
-    assert [p.name for p in written] == ["sensors.csv", "screw.csv", "screw_displacement.csv", "summary.json"]
+    assert [p.name for p in written] == ["sensors.csv", "screw.csv", "screw_displacement.csv",
+                                         "positioning_error.csv", "summary.json"]
     assert all(p.parent == out_dir and p.is_file() for p in written)
     assert (out_dir / "sensors.csv").read_text().startswith("time_s,T1")
     assert (out_dir / "notes.txt").read_text() == "mine\n"
@@ -266,8 +327,8 @@ def test_an_os_error_becomes_one_feedtherm_error(solution, tmp_path, monkeypatch
 def test_write_run_writes_tables_and_plots_together(solution, tmp_path):
     written = write_run(solution, tmp_path / "run", sample_interval=60.0)
     assert sorted(p.name for p in (tmp_path / "run").iterdir()) == sorted(p.name for p in written) == [
-        "elongation.png", "screw.csv", "screw_displacement.csv", "screw_heatmap.png", "sensors.csv",
-        "sensors.png", "summary.json"]
+        "elongation.png", "positioning_error.csv", "positioning_error.png", "screw.csv", "screw_displacement.csv",
+        "screw_heatmap.png", "sensors.csv", "sensors.png", "summary.json"]
 
 
 def test_without_figures_a_run_writes_the_tables_and_removes_an_earlier_runs_plots(solution, tmp_path):
@@ -275,7 +336,7 @@ def test_without_figures_a_run_writes_the_tables_and_removes_an_earlier_runs_plo
     write_run(solution, out_dir, sample_interval=60.0)
     written = write_run(solution, out_dir, sample_interval=60.0, figures=False)
     assert sorted(p.name for p in out_dir.iterdir()) == sorted(p.name for p in written) == [
-        "screw.csv", "screw_displacement.csv", "sensors.csv", "summary.json"]
+        "positioning_error.csv", "screw.csv", "screw_displacement.csv", "sensors.csv", "summary.json"]
 
 
 def test_a_run_replaces_every_file_of_an_earlier_run_and_keeps_others(solution, tmp_path):
@@ -283,12 +344,12 @@ def test_a_run_replaces_every_file_of_an_earlier_run_and_keeps_others(solution, 
     out_dir = tmp_path / "run"
     out_dir.mkdir()
     for name in ("summary.json", "fields.pvd", "fields_0000.vtu", "fields_0012.vtu", "temperature_field.png",
-                 "screw_deformation.png"):
+                 "screw_deformation.png", "screw_axial_deformation.png"):
         (out_dir / name).write_text("earlier FE run\n")
     (out_dir / "notes.txt").write_text("mine\n")
     written = write_run(solution, out_dir, sample_interval=600.0)
     assert sorted(p.name for p in out_dir.iterdir()) == sorted([p.name for p in written] + ["notes.txt"])
-    assert len(written) == 7 and (out_dir / "notes.txt").read_text() == "mine\n"
+    assert len(written) == 9 and (out_dir / "notes.txt").read_text() == "mine\n"
     assert json.loads((out_dir / "summary.json").read_text())["model"] == "fast"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
 
