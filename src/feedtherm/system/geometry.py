@@ -136,11 +136,15 @@ def nut_centre_x(system) -> float:
     return 0.5 * (lo[0] + hi[0])
 
 
-def drive_point(system) -> tuple[float, float, float]:
+def drive_point(system) -> tuple[float, float, float] | None:
     """Where the thread holds the nut to the screw along the axis [m]: on the screw's surface
-    (its top), at the nut's centre along x (the moving group at the middle of the stroke)."""
+    (its top), at the nut's centre along x (the moving group at the middle of the stroke); None
+    when the nut does not sit on the screw there (a description without a thread)."""
     screw = system.parts[system.kinematics.screw].cylinders[0]
-    return (nut_centre_x(system), screw.origin[1], screw.origin[2] + screw.outer_diameter / 2.0)
+    point = (nut_centre_x(system), screw.origin[1], screw.origin[2] + screw.outer_diameter / 2.0)
+    if not contains(system.parts[system.kinematics.nut], point, tol=1e-6):
+        return None
+    return point
 
 
 @dataclass(frozen=True)

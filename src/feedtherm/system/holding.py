@@ -75,8 +75,9 @@ def free_motions(system) -> list[str]:
             relative = block(a, point) - block(b, point)
             rows.extend(relative[k] for k in held)
     kin = system.kinematics  # the thread holds the nut to the screw along the axis (the drive)
-    point = np.asarray(drive_point(system), dtype=float)
-    rows.append((block(kin.nut, point) - block(kin.screw, point))[0])
+    if (point := drive_point(system)) is not None:
+        point = np.asarray(point, dtype=float)
+        rows.append((block(kin.nut, point) - block(kin.screw, point))[0])
     if not rows:
         return ["the whole structure: every motion"]
     matrix = np.array(rows)

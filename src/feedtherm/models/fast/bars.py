@@ -97,7 +97,8 @@ def load_path(system: FeedSystem) -> dict[str, tuple[str | None, float, float]]:
     # the links that hold x: the joints that do not release it, and the drive (the thread holds
     # the nut to the screw at the nut's centre)
     links = [(*joint.between, None) for joint in system.joints if "x" not in joint.release]
-    links.append((kin.screw, kin.nut, drive_point(system)[0]))
+    if (drive := drive_point(system)) is not None:
+        links.append((kin.screw, kin.nut, drive[0]))
     queue = deque(tree)
     while queue:
         parent = queue.popleft()

@@ -73,9 +73,10 @@ class Deformation:
             ties.append(Tie(quadrature, axes, stiffness, name=f"joints[{j.index}]"))
         kin = fem.system.kinematics
         point = drive_point(fem.system)
-        stiffness = penalty * max(modulus[kin.screw], modulus[kin.nut]) * fem.mesh.sizes[kin.screw]
-        ties.append(PointTie(self._point(kin.nut, point, "kinematics.nut"), self._point(kin.screw, point, "kinematics.screw"),
-                             [0], stiffness, name="the drive"))
+        if point is not None:
+            stiffness = penalty * max(modulus[kin.screw], modulus[kin.nut]) * fem.mesh.sizes[kin.screw]
+            ties.append(PointTie(self._point(kin.nut, point, "kinematics.nut"),
+                                 self._point(kin.screw, point, "kinematics.screw"), [0], stiffness, name="the drive"))
         return ties
 
     def _supports(self) -> list[tuple[int, int]]:
