@@ -8,10 +8,10 @@ a feed drive does: each part stretches freely along x by its section-mean therma
 (:func:`~feedtherm.physics.thermal_expansion.displacement_weights_axial`), and the parts
 carry each other along the structure's axial load path: a tree found breadth-first from the
 part(s) a support holds along x (anchored at the support, u = 0 there) over the joints that
-hold x (``release`` without ``x``).  A child moves with its parent over the x-range where
-their extents meet (a housing bolted along its foot, a bearing in its bore) and stretches
-freely beyond it, so a point is reached from the nearest point of that range; the drive holds
-the nut to the screw at the nut's centre alone.  Loops of x-holding joints
+hold x (``release`` without ``x``).  A child fastened to its parent over an x-range (a housing
+bolted along its foot, a bearing in its bore) is held at the middle of that range and expands
+freely from there, as a bolted part expands about the centre of its joint; the drive holds the
+nut to the screw at the nut's centre alone.  Loops of x-holding joints
 (a nut, its bearing, its housing, its motor and belt) are cut where the search first
 reaches a part: a bar model cannot share a load between two paths, and the parts of such a
 loop are not what D or the positioning error read.
@@ -144,13 +144,10 @@ class Bars:
             raise ModelError(f"{field}: part {part!r} is on no chain of joints holding x from a support "
                              "fixing x, so the fast model's bars cannot say how it moves along x")
         parent, lo, hi = self.tree[part]
-        xs = np.atleast_1d(np.asarray(x, dtype=float))
-        rows = np.zeros((xs.size, self.layout.n_nodes))
-        for i, xi in enumerate(xs):
-            anchor = min(max(xi, lo), hi)  # where the part last moves with its parent, on the way to xi
-            rows[i] = self._bar(part).stretch(anchor, [xi], self.layout.n_nodes)[0]
-            if parent is not None:
-                rows[i] += self.at(parent, [anchor], field)[0]
+        anchor = 0.5 * (lo + hi)  # a part fastened over a range is held at its middle and expands from there
+        rows = self._bar(part).stretch(anchor, np.atleast_1d(np.asarray(x, dtype=float)), self.layout.n_nodes)
+        if parent is not None:
+            rows += self.at(parent, [anchor], field)
         return rows
 
 
