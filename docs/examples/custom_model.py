@@ -13,17 +13,19 @@ rows that read the elongation D (the description's ``mechanics.elongation``, a d
 sensor: target relative to mount along x) and the screw's axial displacement relative to
 ``mechanics.positioning.reference``.  An isothermal part of one α expands uniformly,
 α (T − T_ref) per metre, so a part's point moves by α (T − T_ref) (x − x_anchor) relative to
-where the part is held, and the parts carry each other along the structure's axial load path
-(``load_path``: each part's parent and the x-range over which it moves with it, as the fast
-model finds it from the supports and the joints that hold x).  With every part at one
-temperature D = α (T − T_ref) (x_target − x_mount), as for one lumped body.
+where the part is held, and the parts carry each other along the structure's axial load path.
+The fast model's ``anchors`` (feedtherm/models/fast/bars.py) gives each part's parent and its
+anchor x_anchor, as the fast model finds them from the supports and the joints that hold x: a
+part fastened over a range is held at the middle of it (the screw at the middle of its front
+bearing), the nut by the drive at its centre.  With every part at one temperature
+D = α (T − T_ref) (x_target − x_mount), as for one lumped body.
 """
 
 import numpy as np
 import scipy.sparse as sp
 
 from feedtherm.constants import AMBIENT_SENSOR, ELONGATION_PROBE, KELVIN_OFFSET
-from feedtherm.models.fast.bars import load_path
+from feedtherm.models.fast.bars import anchors
 from feedtherm.models.interface import ThermalModel
 from feedtherm.models.registry import ModelEntry, register_model
 from feedtherm.simulate import simulate, steady_solve
@@ -56,7 +58,7 @@ class PartLumped(ThermalModel):
         screw = system.parts[system.kinematics.screw]
         self.screw_edges = np.array([screw_axis(screw).start, screw_axis(screw).end])  # one axial section
         self.screw_centres = self.screw_edges.mean(keepdims=True)
-        self.path = load_path(system)  # part -> (parent, x-range over which it moves with the parent)
+        self.anchors = anchors(system)  # part -> (its parent, the x where it is held on it)
         if system.mechanics.elongation.axis != 0:
             raise ValueError("mechanics.elongation.direction: this model reads displacements along x only")
 
@@ -72,8 +74,7 @@ class PartLumped(ThermalModel):
 
     def axial(self, part, x):
         """Row over the nodes: ``row @ (T − T_ref)`` is the displacement along x of ``part`` at ``x`` [m]."""
-        parent, lo, hi = self.path[part]
-        anchor = min(max(x, lo), hi)  # where the part last moves with its parent, on the way to x
+        parent, anchor = self.anchors[part]  # the part expands from its anchor, which moves with the parent
         row = np.zeros(self.n_nodes)
         row[self.node[part]] = self.system.materials[self.system.parts[part].material].expansion * (x - anchor)
         return row if parent is None else row + self.axial(parent, anchor)

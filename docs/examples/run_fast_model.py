@@ -12,17 +12,22 @@ that changing heat; the run reports the heat of its last boundary conditions in
 
 D is what the description's displacement sensor reads (``mechanics.elongation``): on the
 paper bench a laser on a stand on the base, aimed along the axis at the screw's rear end
-face.  The fast model reads it along the structure's axial load path: the screw stretches
-freely beyond its front (fixed) bearing, by α ∫ (T̄ − T_ref) dx of its section-mean
-temperature, and the laser's stand moves with the base, whose own expansion between the
-front bearing's housing and the stand the laser sees too.
+face.  The fast model reads it along the structure's axial load path (``anchors`` in
+feedtherm/models/fast/bars.py), each part expanding by α ∫ (T̄ − T_ref) dx of its section-mean
+temperature from where it is held: a part fastened over a range at the middle of it.  The
+base is held at its support (x = −250 mm); the front housing at the middle of its foot on the
+base (−95 mm); the front (fixed) bearing at the middle of the housing's bore and the screw at
+the middle of the bearing (both x = 0).  So the screw stretches from x = 0 to the laser's
+target, the housing's stretch from −95 mm to 0 carries it, and the laser's stand moves with
+the base, whose own expansion from −95 mm to the stand the laser sees too:
+D = screw (0 → 450 mm) + front housing (−95 → 0 mm) − base (−95 → 480 mm).
 """
 
 import numpy as np
 
 from feedtherm.constants import KELVIN_OFFSET
+from feedtherm.models.fast.bars import anchors
 from feedtherm.simulate import simulate
-from feedtherm.system.geometry import bounds
 from feedtherm.system.load import load_system
 
 SENSORS = ["T1", "T2", "T3", "T4", "T5"]
@@ -38,11 +43,14 @@ def main(duration: float = 3600.0) -> dict:
     # displacement relative to the positioning reference (the base under the front bearing).
     x = run.screw_x
     screw = run.screw_temperature[-1] - KELVIN_OFFSET
-    # The screw moves with its front bearing where it sits in it and stretches freely beyond:
-    # from there to the laser's target, α ∫ (T̄ − T_ref) dx over the cells in between.
-    held_to = bounds(system.parts["front_bearing"])[1][0]
+    # Where each part is held on its parent along x (the middle of their joint): the screw at the
+    # middle of its front bearing, the front housing at the middle of its foot on the base, the
+    # base at its support.  From its anchor to the laser's target the screw stretches by
+    # α ∫ (T̄ − T_ref) dx over the cells in between.
+    held = anchors(system)
+    screw_anchor = held[system.kinematics.screw][1]
     target = system.mechanics.elongation.target.point[0]
-    free = (x > held_to) & (x < target)
+    free = (x > screw_anchor) & (x < target)
     alpha = system.materials[system.parts[system.kinematics.screw].material].expansion
     t_ref = system.temperatures.reference - KELVIN_OFFSET
     width = np.gradient(x)  # the cells' widths (5 mm, uniform)
@@ -57,7 +65,11 @@ def main(duration: float = 3600.0) -> dict:
         "screw_C": screw,
         "screw_displacement_um": run.screw_displacement[-1] * 1e6,
         "screw_stretch_um": stretch * 1e6,
-        "screw_free_m": (held_to, target),
+        "screw_stretch_m": (screw_anchor, target),
+        "housing_anchor_m": held["front_housing"][1],
+        "base_support_m": held["base"][1],
+        "laser_mount_m": system.mechanics.elongation.mount.point[0],
+        "front_housing_C": float(run.part_temperatures["front_housing"][-1]) - KELVIN_OFFSET,
         "base_C": float(run.part_temperatures["base"][-1]) - KELVIN_OFFSET,
         "table_x_m": run.table_x,
         "positioning_error_um": run.positioning_error[-1] * 1e6,  # E(x) at the last sample
@@ -74,10 +86,13 @@ if __name__ == "__main__":
           + "  ".join(f"{n} {t:.2f}" for n, t in r["final_C"].items()))
     print("steady state, °C:                          "
           + "  ".join(f"{n} {t:.2f}" for n, t in r["steady_C"].items()))
-    lo, hi = r["screw_free_m"]
-    print(f"elongation D = {r['D_um']:.1f} µm: the screw stretches {r['screw_stretch_um']:.1f} µm from its "
-          f"front bearing ({lo * 1e3:.0f} mm) to the laser's target ({hi * 1e3:.0f} mm); the base, expanding "
-          f"under the laser's stand, takes {r['screw_stretch_um'] - r['D_end_um']:.2f} µm off")
+    lo, hi = r["screw_stretch_m"]
+    print(f"elongation D = {r['D_um']:.1f} µm: the screw stretches {r['screw_stretch_um']:.1f} µm from the middle "
+          f"of its front bearing (x = {lo * 1e3:.0f} mm) to the laser's target ({hi * 1e3:.0f} mm); the front "
+          f"housing's stretch from the middle of its foot on the base ({r['housing_anchor_m'] * 1e3:.0f} mm) to "
+          f"the bearing, less the base's from there to the laser's stand ({r['laser_mount_m'] * 1e3:.0f} mm; the "
+          f"base held at its support, {r['base_support_m'] * 1e3:.0f} mm), adds "
+          f"{r['D_end_um'] - r['screw_stretch_um']:+.2f} µm")
     x, e = r["table_x_m"], r["positioning_error_um"]
     print(f"positioning error E = {e[0]:.1f} µm at x = {x[0] * 1e3:.1f} mm, {e[len(e) // 2]:.1f} µm at "
           f"{x[len(x) // 2] * 1e3:.1f} mm, {e[-1]:.1f} µm at {x[-1] * 1e3:.1f} mm")

@@ -77,7 +77,7 @@ class Tie:
         self.quadrature, self.axes, self.stiffness, self.name = quadrature, axes, stiffness, name
 
     def matrix(self, n: int) -> sp.csr_matrix:
-        """The scalar penalty matrix :math:`k_p \int (N_A - N_B)^T (N_A - N_B) dA` (n × n) [N/m]."""
+        r"""The scalar penalty matrix :math:`k_p \int (N_A - N_B)^T (N_A - N_B) dA` (n × n) [N/m]."""
         return interface_matrix(n, self.quadrature, self.stiffness, lumped=False)
 
 
