@@ -174,3 +174,16 @@ def test_sigterm_stops_a_run_cleanly(tmp_path):
     assert process.returncode == 128 + signal.SIGTERM, err
     assert err.strip() == "feedtherm: terminated"
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_fe_model_refuses_a_material_without_elastic_constants(tmp_path):
+    # the fast model needs only the expansion; the FE model solves the displacements in 3D
+    from feedtherm.benches import bench
+
+    text = bench("paper").description.read_text(encoding="utf-8")
+    old = 'youngs_modulus = "0.05 GPa"\n'
+    assert old in text
+    (tmp_path / "no_modulus.toml").write_text(text.replace(old, "", 1), encoding="utf-8")
+    result = run(tmp_path, "no_modulus.toml", "--condition", "I", "--model", "fem", "--duration", "600")
+    assert_one_line_error_and_nothing_written(result, tmp_path, "materials.belt_rubber.youngs_modulus",
+                                              "needs it for every part's material", inputs=["no_modulus.toml"])

@@ -207,6 +207,11 @@ class Integrator:
         self.over_budget = 0  # step matrices solved by cg because their factors would exceed the budget
         self.cg_iterations = 0  # conjugate-gradient iterations of every time step so far
 
+    def release(self) -> None:
+        """Drop every cached factorisation and iterative solver (a later step builds them again)."""
+        self._lu.clear()
+        self._cg.clear()
+
     @property
     def solver_name(self) -> str:
         if self.dense:

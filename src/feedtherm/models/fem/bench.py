@@ -32,7 +32,7 @@ from ..fields import FieldMesh
 from ..interface import HeatInput, ThermalModel
 from .conduction import cell_basis, conduction_matrix
 from .coupling import CONTACT_TOLERANCE, Contact, ContactQuadrature, interface_matrix, side_load, touching
-from .deformation import Deformation
+from .deformation import Deformation, elastic_constants
 from .faces import curvature_sag, surface_facets
 from .facets import RULE, NearestFacets, boundary_triangles
 from .geometry import mesh_system
@@ -88,6 +88,7 @@ class FemDiscretization(ThermalModel):
                  min_positions: int = 20, lumped_contact: bool = True, use_cache: bool = True,
                  conductivity_factor: dict[str, float] | None = None):
         started = time.perf_counter()
+        elastic_constants(system)  # refused before meshing: the run would need them at its first step
         self.system = system
         self.density = density
         self.lumped_contact = lumped_contact

@@ -22,12 +22,31 @@ import numpy as np
 import scipy.sparse as sp
 
 from ...errors import ModelError
-from ...system.mechanics import GROUND, joint_holds
 from ...system.geometry import drive_point
+from ...system.mechanics import GROUND, joint_holds
+from .. import pardiso
 from .elastic import ElasticPart, PointTie, ThermoElastic, Tie
 from .readout import point_matrix
 
-__all__ = ["Deformation"]
+__all__ = ["Deformation", "elastic_constants", "KEEP_SHARE"]
+
+#: The factorisation is kept for the run's displacement fields when it holds at most this share of
+#: the memory budget of the time loop's factors (models/pardiso.py); a larger one (the fine mesh's,
+#: 2.8 GB) is dropped after the readings and built again for the fields, after the time loop.
+KEEP_SHARE = 0.25
+
+
+def elastic_constants(system) -> dict[str, ElasticPart]:
+    """Each part's E, ν and α; a ModelError naming the field when a part's material lacks E or ν."""
+    constants = {}
+    for name, part in system.parts.items():
+        material = system.materials[part.material]
+        for field in ("youngs_modulus", "poisson_ratio"):
+            if getattr(material, field) is None:
+                raise ModelError(f"materials.{part.material}.{field}: not declared; the FE model computes the "
+                                 f"displacements in 3D and needs it for every part's material ({name})")
+        constants[name] = ElasticPart(material.youngs_modulus, material.poisson_ratio, material.expansion)
+    return constants
 
 
 class Deformation:
@@ -42,16 +61,9 @@ class Deformation:
     # ------------------------------------------------------------------ set-up
     def elastic(self) -> ThermoElastic:
         if self._elastic is None:
-            fem, system = self.fem, self.fem.system
-            constants = []
-            for name in fem.part_names:
-                key = system.parts[name].material
-                material = system.materials[key]
-                for field in ("youngs_modulus", "poisson_ratio"):
-                    if getattr(material, field) is None:
-                        raise ModelError(f"materials.{key}.{field}: not declared; the FE model computes the "
-                                         f"displacements in 3D and needs it for every part's material ({name})")
-                constants.append(ElasticPart(material.youngs_modulus, material.poisson_ratio, material.expansion))
+            fem = self.fem
+            by_part = elastic_constants(fem.system)
+            constants = [by_part[name] for name in fem.part_names]
             started = time.perf_counter()
             self._elastic = ThermoElastic(fem.points, fem.tets, constants, np.asarray(fem.part_id),
                                           self._ties(constants), self._supports())
@@ -127,6 +139,9 @@ class Deformation:
             rows = elastic.reading_rows(self.readings())
             offset = -self.fem.system.temperatures.reference * rows.sum(axis=1)
             self._rows = (rows, offset)
+            if elastic.factor_memory > KEEP_SHARE * pardiso.memory_budget():
+                elastic.release()  # the time loop's factors need the room; the fields factorise again
+                self.stats["elastic_factor_released"] = True
             self.stats.update(elastic_factor_seconds=round(elastic.factor_seconds, 2),
                               elastic_readings_seconds=round(time.perf_counter() - started, 2),
                               elastic_factor_MB=round(elastic.factor_memory / 2**20, 1))
