@@ -49,6 +49,20 @@ def elastic_constants(system) -> dict[str, ElasticPart]:
     return constants
 
 
+def _facet_owner(tets: np.ndarray, facets: np.ndarray) -> np.ndarray:
+    """Index (into ``tets`` (4, m)) of the tetrahedron each boundary facet (q, 3 node indices) belongs to."""
+    n = int(max(tets.max(), facets.max())) + 1
+    faces = np.sort(np.concatenate([tets[[0, 1, 2]], tets[[0, 1, 3]], tets[[0, 2, 3]], tets[[1, 2, 3]]], axis=1).T, axis=1)
+    keys = (faces[:, 0].astype(np.int64) * n + faces[:, 1]) * n + faces[:, 2]
+    order = np.argsort(keys)
+    wanted = np.sort(facets, axis=1)
+    query = (wanted[:, 0].astype(np.int64) * n + wanted[:, 1]) * n + wanted[:, 2]
+    at = np.searchsorted(keys[order], query)
+    if np.any(keys[order][np.minimum(at, keys.size - 1)] != query):
+        raise ModelError("a contact facet is not a face of its part's tetrahedra (mesh inconsistent)")
+    return order[at] % tets.shape[1]
+
+
 class Deformation:
     """Displacement readings and fields of a :class:`~.bench.FemDiscretization`."""
 
@@ -82,7 +96,9 @@ class Deformation:
                 continue
             quadrature = j.contact.quadrature(0.0)  # the moving group where its mesh is: mid-stroke
             stiffness = penalty * max(modulus[j.a], modulus[j.b]) / fem.mesh.sizes[j.a]
-            ties.append(Tie(quadrature, axes, stiffness, name=f"joints[{j.index}]"))
+            b_nodes, b_values, x = self._under_facets(j.b, quadrature)
+            ties.append(Tie(quadrature.a_nodes, quadrature.a_bary, b_nodes, b_values, quadrature.weights, axes,
+                            stiffness, name=f"joints[{j.index}]"))
         kin = fem.system.kinematics
         point = drive_point(fem.system)
         if point is not None:
@@ -90,6 +106,23 @@ class Deformation:
             ties.append(PointTie(self._point(kin.nut, point, "kinematics.nut"),
                                  self._point(kin.screw, point, "kinematics.screw"), [0], stiffness, name="the drive"))
         return ties
+
+    def _under_facets(self, part: str, cq) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """B's tetrahedron under each matched facet, and its basis values at A's quadrature point.
+
+        Returns the tetrahedra's nodes (q, 4), the four barycentric coordinates of each point
+        (q, 4; a point off the facet by a chord's height lies just outside, so they may be
+        slightly negative) and the points (q, 3) [m].
+        """
+        fem = self.fem
+        x = np.einsum("qk,iqk->qi", cq.a_bary, fem.points[:, cq.a_nodes])  # (q, 3)
+        tets = fem.mesh.tets[:, fem.mesh.part_tets(part)]
+        owner = _facet_owner(tets, cq.b_nodes)
+        nodes = tets[:, owner].T  # (q, 4)
+        corners = fem.points[:, nodes]  # (3, q, 4)
+        J = (corners[:, :, 1:] - corners[:, :, :1]).transpose(1, 0, 2)  # (q, 3, 3): edges from vertex 0
+        lam = np.linalg.solve(J, (x - corners[:, :, 0].T)[:, :, None])[:, :, 0]
+        return nodes, np.column_stack([1.0 - lam.sum(axis=1), lam]), x
 
     def _supports(self) -> list[tuple[int, int]]:
         fem = self.fem

@@ -49,7 +49,6 @@ from skfem.helpers import ddot, div, sym_grad, trace
 from ...errors import ModelError
 from .. import pardiso
 from ..direct import factorize
-from .coupling import ContactQuadrature, interface_matrix
 
 __all__ = ["ElasticPart", "PointTie", "Tie", "ThermoElastic", "lame"]
 
@@ -71,14 +70,29 @@ class ElasticPart:
 
 
 class Tie:
-    """A joint's mechanical tie: its contact quadrature, the held axes, the stiffness per area [N/m³]."""
+    r"""A joint's mechanical tie: :math:`k_p \int (N_A - N_B)^T (N_A - N_B)\,dA` along the held axes.
 
-    def __init__(self, quadrature: ContactQuadrature, axes: list[int], stiffness: float, name: str = ""):
-        self.quadrature, self.axes, self.stiffness, self.name = quadrature, axes, stiffness, name
+    At each quadrature point of A's facets, ``a_nodes``/``a_values`` are A's nodes and basis
+    values there and ``b_nodes``/``b_values`` B's, both evaluated at the *same* point: B's
+    linear field in the tetrahedron under its facet, extended the chord's height to the point.
+    A field linear over both parts (a uniform expansion) then has no jump and the tie no
+    force, whatever the two triangulations of a curved face (the patch test).
+    """
+
+    def __init__(self, a_nodes: np.ndarray, a_values: np.ndarray, b_nodes: np.ndarray, b_values: np.ndarray,
+                 weights: np.ndarray, axes: list[int], stiffness: float, name: str = ""):
+        self.nodes = np.hstack([a_nodes, b_nodes])  # (q, na + nb)
+        self.values = np.hstack([a_values, -b_values])
+        self.weights = np.asarray(weights, dtype=float)
+        self.axes, self.stiffness, self.name = axes, stiffness, name
 
     def matrix(self, n: int) -> sp.csr_matrix:
-        r"""The scalar penalty matrix :math:`k_p \int (N_A - N_B)^T (N_A - N_B) dA` (n × n) [N/m]."""
-        return interface_matrix(n, self.quadrature, self.stiffness, lumped=False)
+        """The scalar penalty matrix (n × n) [N/m]."""
+        k = self.nodes.shape[1]
+        values = (self.stiffness * self.weights)[:, None, None] * self.values[:, :, None] * self.values[:, None, :]
+        rows = np.repeat(self.nodes[:, :, None], k, axis=2)
+        cols = np.repeat(self.nodes[:, None, :], k, axis=1)
+        return sp.coo_matrix((values.ravel(), (rows.ravel(), cols.ravel())), shape=(n, n)).tocsr()
 
 
 class PointTie:
