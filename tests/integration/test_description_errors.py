@@ -81,8 +81,17 @@ CASES = {
         [('ambient = "20 degC"', 'ambient = "-300 degC"')], ["conditions.I.ambient", "outside the accepted range"]),
     "a stroke longer than the screw": (
         [('stroke = "200 mm"', 'stroke = "900 mm"')], ["kinematics.stroke", "longer than the screw"]),
-    "the elongation read off the screw": (
-        [('read_at = "400 mm"', 'read_at = "700 mm"')], ["elongation.read_at", "is not on the screw"]),
+    "the laser's mount outside its part": (
+        [('mount = { part = "base", point = ["480 mm", "0 mm", "-60 mm"] }',
+          'mount = { part = "base", point = ["480 mm", "0 mm", "60 mm"] }')],
+        ["mechanics.elongation.mount.point", "lies outside part 'base'"]),
+    "a zero sensing direction": (
+        [('direction = [1, 0, 0]', 'direction = [0, 0, 0]')], ["mechanics.elongation.direction", "zero vector"]),
+    "a support on an unknown part": (
+        [('part = "base"\npoint = ["650 mm"', 'part = "bsae"\npoint = ["650 mm"')],
+        ["mechanics.supports[1].part", "no part named 'bsae'", "did you mean 'base'"]),
+    "a structure the supports do not hold": (
+        [('fix = ["z"]', 'fix = ["y"]')], ["mechanics.supports", "free to move", "the whole structure: rotate about x"]),
 }
 
 

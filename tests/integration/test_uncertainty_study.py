@@ -17,7 +17,7 @@ from feedtherm.analysis.uncertainty.sampling import POSTERIOR
 from feedtherm.analysis.uncertainty.study import run_uncertainty
 from feedtherm.errors import FeedthermError
 from feedtherm.outputs.calibration_files import calibrated_toml
-from feedtherm.system.load import parse_toml, validate_description
+from feedtherm.system.load import parse_toml, validate_data, validate_description
 
 TINY = {"samples": 2, "sobol_base": None, "conditions": ["I"]}
 
@@ -73,18 +73,24 @@ def test_two_workers_give_the_serial_study(paper):
 
 
 def test_sobol_indices_vanish_where_a_parameter_cannot_act(paper):
-    found = run_uncertainty(paper, samples=2, sobol_base=2, conditions=["I"])
+    # where the laser's stand sits on the base changes no temperature: Saltelli's differences are
+    # exactly zero there, and not on D
+    data = paper.system.model_dump(mode="json")
+    data["uncertainty"]["parameters"]["laser_stand_x"] = {
+        "kind": "value", "paths": ["mechanics.elongation.mount.point[0]"], "distribution": "uniform",
+        "range": ["460 mm", "500 mm"], "reason": "test: a value only D reads"}
+    with_stand = validate_data(data, "test")
+    found = run_uncertainty(with_stand, samples=2, sobol_base=2, conditions=["I"])
     prior = found.sets[0]
     assert prior.sobol_condition == "I"
     names = [p.name for p in prior.parameters]
     assert len(prior.sobol) == 6 * len(names)  # T1-T5 and D; the ambient T6 does not vary
     assert found.settings["sobol_runs"] == 2 * (len(names) + 2)
-    # where the laser reads changes no temperature: Saltelli's differences are exactly zero there
     for index in prior.sobol:
-        if index.parameter == "elongation_read_at" and index.quantity != "D_um":
+        if index.parameter == "laser_stand_x" and index.quantity != "D_um":
             assert index.S1 == 0.0 and index.ST == 0.0
-    read_at_on_d = next(i for i in prior.sobol if i.parameter == "elongation_read_at" and i.quantity == "D_um")
-    assert read_at_on_d.ST > 0.0
+    stand_on_d = next(i for i in prior.sobol if i.parameter == "laser_stand_x" and i.quantity == "D_um")
+    assert stand_on_d.ST > 0.0
 
 
 def test_a_failed_run_fails_the_study_naming_the_point(paper, monkeypatch):
@@ -126,15 +132,15 @@ def fake_calibration(paper, folder, fitted: dict[str, float], errors: dict[str, 
 
 
 def test_a_calibrated_description_leaves_out_the_priors_of_fitted_values(paper, tmp_path):
-    # 0.2 m lies outside the declared prior of where the laser reads (350-450 mm): the calibrated
+    # a factor of 3 on the screw's film lies outside its declared prior (0.4-2.5): the calibrated
     # description must not carry that prior, or it would not load
-    fake_calibration(paper, tmp_path / "cal", {"elongation_read_at": 0.2, "chtc_screw": 1.3},
-                     {"elongation_read_at": 0.01, "chtc_screw": 0.1})
+    fake_calibration(paper, tmp_path / "cal", {"chtc_screw": 3.0, "screw_nut_preload": 200.0},
+                     {"chtc_screw": 0.1, "screw_nut_preload": 20.0})
     text = (tmp_path / "cal" / "calibrated.toml").read_text(encoding="utf-8")
     calibrated = validate_description(parse_toml(text, "calibrated"), "calibrated")
     kept = set(calibrated.system.uncertainty.parameters)
-    assert kept == set(paper.system.uncertainty.parameters) - {"elongation_read_at", "chtc_screw"}
-    assert calibrated.system.elongation.read_at == pytest.approx(0.2)
+    assert kept == set(paper.system.uncertainty.parameters) - {"chtc_screw", "screw_nut_preload"}
+    assert calibrated.system.surfaces["screw_shaft"].chtc_factor == pytest.approx(3.0)
 
 
 def test_the_calibrated_set_samples_the_posterior_and_keeps_the_other_priors(paper, tmp_path):

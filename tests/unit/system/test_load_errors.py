@@ -71,7 +71,7 @@ def test_missing_part_section_is_named(tmp_path):
 
 def test_missing_required_section(tmp_path):
     start = BENCH.index("[kinematics]")
-    end = BENCH.index("[elongation]")
+    end = BENCH.index("[[mechanics.supports]]")
     path = tmp_path / "no_kinematics.toml"
     path.write_text(BENCH[:start] + BENCH[end:])
     assert "kinematics: missing (required)" in load_error(str(path))

@@ -119,7 +119,7 @@ def test_the_paper_bench_declares_its_values_inside_their_ranges(paper):
     # a quantity in the range is read in SI: 50 N to 365 N, and the unit is the value's
     assert (by_name["screw_nut_preload"].low, by_name["screw_nut_preload"].high) == (50.0, 365.0)
     assert by_name["screw_nut_preload"].unit == "N"
-    assert by_name["elongation_read_at"].low == pytest.approx(0.35)
+    assert by_name["room_air_speed"].high == pytest.approx(0.3) and by_name["room_air_speed"].unit == "m/s"
 
 
 def test_a_system_without_declarations_is_one_line(paper):
