@@ -10,7 +10,7 @@ Bar E = 5 GPa, ν = 0.3, α = 2e-5 1/K, 100 mm long, 20 mm across; walls 1000 ti
 (``fields.displacements``) and temperatures by ``elastic.stress`` (constant in each
 tetrahedron, linear elements).
 
-What the FE model gives (coarse / medium): the bar's mean σ_xx is −E α ΔT (1 − 4.1e-4) on both,
+What the FE model gives (coarse / medium): the bar's mean σ_xx is −E α ΔT (1 − 4.0e-4 / 4.1e-4),
 the walls' compliance (the bar's ends move the walls by 2.2e-8 m each: D, the bar's length
 change, is 4.4e-8 m against a free expansion of 1e-4 m); element by element σ_xx scatters by up to
 1.2 % / 0.95 % and the other components reach 0.45 % / 0.31 % of E α ΔT. The scatter does not
