@@ -26,6 +26,7 @@ from .solution import Solution
 from .solution.health import check_health
 from .solution.pack import pack_solution, sample_times
 from .system.load import LoadedSystem
+from .system.mechanics import loop_summary
 from .system.schema import FeedSystem
 
 
@@ -101,6 +102,7 @@ def execute(plan: RunPlan, progress: Callable[[float], None] | None = None,
         "warnings": sorted({w for seg in segments for w in seg.bc.warnings}),
         "coupling": system.temperatures.coupling,
         "screw_part": system.kinematics.screw,  # which part of the field series the screw image shows
+        "measuring_loop": loop_summary(system.mechanics),
         "provenance": provenance(plan.loaded, plan.mode),
     }
     solution = pack_solution(system, integrator, segments, trace, T0, times, info)

@@ -14,6 +14,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from feedtherm.boundary import boundary_conditions, boundary_conditions_at
@@ -27,11 +28,48 @@ EXAMPLES = Path(__file__).resolve().parents[2] / "docs" / "examples"
 SENSORS = ["T1", "T2", "T3", "T4", "T5"]
 NAMES = ["load_and_inspect", "run_fast_model", "compare_models", "sweep_speeds", "calibrate", "custom_model"]
 
-# The paper's Table 4 (GCr15 screw) and the bench's 400 mm from the fixed front bearing to the
-# read point (description [elongation], an assumption documented there).
+# The paper's Table 4: GCr15 (screw, bearings) and Q345B (base, housings) expand alike.
 ALPHA_SCREW = 1.2e-5  # [1/K]
-SCREW_SPAN = 0.400  # [m]
-AMBIENT_I = 20.0  # [°C], Table 5, condition I
+ALPHA_HOUSING = 1.2e-5  # [1/K] the front housing
+ALPHA_BASE = 1.2e-5  # [1/K]
+AMBIENT_I = 20.0  # [°C], Table 5, condition I; also the bench's reference temperature (ISO 1)
+# The elongation D by hand, from the bench's description (mechanics, joints, parts; mm):
+# the laser (mechanics.elongation) reads the screw's rear end face, x = 450, relative to the
+# base at x = 480, along +x.  The base (x from -300 to 700) is held along x at its front foot,
+# x = -250; the chain of joints that hold x from it to the screw is base -> front_housing
+# (bolted along its foot: they meet over x from -220 to 30) -> front_bearing (in the housing's
+# bore, -15 to 15) -> screw (in the bearing, -15 to 15; the rear bearing floats, release x).
+# A part fastened to its parent over a range is held at the middle of it and expands freely
+# from there (models/fast/bars.py), so the anchors are
+#     base at its support -250;  front_housing (-220 + 30)/2 = -95;
+#     front_bearing (-15 + 15)/2 = 0;  screw (-15 + 15)/2 = 0,
+# and a part's point x moves by its anchor's displacement on the parent plus α ∫ ΔT̄ dx from
+# the anchor to x (rises ΔT̄ over T_ref, section means):
+#     u_base(x)    = α_b ∫_-250^x ΔT̄_base dx
+#     u_housing(x) = u_base(-95) + α_h ∫_-95^x ΔT̄_housing dx
+#     u_bearing(x) = u_housing(0) + α_r ∫_0^x ΔT̄_bearing dx       (u_bearing(0) = u_housing(0))
+#     u_screw(x)   = u_bearing(0) + α_s ∫_0^x ΔT̄_screw dx
+# so the bearing, held at 0 and holding the screw at 0, stretches nothing D reads, and
+#     D = u_screw(450) − u_base(480)
+#       = α_s ∫_0^450 ΔT̄_screw dx + α_h ∫_-95^0 ΔT̄_housing dx − α_b ∫_-95^480 ΔT̄_base dx;
+# against the positioning reference, the base at x = 0,
+#     u_screw(x) − u_base(0)
+#       = α_s ∫_0^x ΔT̄_screw dx + α_h ∫_-95^0 ΔT̄_housing dx − α_b ∫_-95^0 ΔT̄_base dx.
+BASE_SUPPORT = -0.250  # [m] the base's front foot, held along x
+HOUSING_ANCHOR = -0.095  # [m] the middle of the front housing's foot on the base, (-220 + 30)/2
+SCREW_ANCHOR = 0.0  # [m] the middle of the front bearing, (-15 + 15)/2: the screw expands from there
+LASER_TARGET = 0.450  # [m] the screw's rear end face
+LASER_MOUNT = 0.480  # [m] the laser's stand on the base
+# The base over all of -95..480 mm: slab 400 x 40 mm plus two risers 40 x 90 mm (x from -200 to
+# 600) in section, A = 23200 mm²; in all, V = 1000·400·40 + 2·800·40·90 = 21.76e6 mm³.
+BASE_SECTION = 23200e-6  # [m²]
+BASE_VOLUME = 21.76e6 * 1e-9  # [m³]
+# The front housing: the bearing housing 60 x 110 x 95 mm (x from -30 to 30) with a 62 mm bore
+# through it, 110·95 − π·31² = 7430.9 mm² in section, and the motor's bracket plate (x from
+# -220 to -30), 80 x 30 = 2400 mm²: over -95..0 mm its section is at least A = 2400 mm²; in all,
+# V = 60·110·95 − π·31²·60 + 190·80·30 = 901855.8 mm³.
+HOUSING_MIN_SECTION = 2400e-6  # [m²]
+HOUSING_VOLUME = (60 * 110 * 95 - math.pi * 31**2 * 60 + 190 * 80 * 30) * 1e-9  # [m³]
 
 
 def load(name):
@@ -166,11 +204,62 @@ def test_run_fast_model_conserves_energy_and_heats_towards_steady(fast_result, p
     assert r["ambient_C"] == pytest.approx(AMBIENT_I)
     for n in SENSORS:  # starting at ambient, one hour in: warmer than the air, not yet at steady state
         assert AMBIENT_I < r["final_C"][n] < r["steady_C"][n], n
-    # D = α ∫ (T̄ − T_ref) dx over the 400 mm from the fixed bearing, with the screw's mean temperature
-    assert r["screw_length_m"] == pytest.approx(SCREW_SPAN)
-    assert r["D_um"] == pytest.approx(ALPHA_SCREW * SCREW_SPAN * (r["screw_mean_C"] - 20.0) * 1e6, rel=0.02)
     lines = printed("run_fast_model", r, capsys)
-    assert len(lines) == 4 and f"{r['D_um']:.1f} µm" in lines[2]
+    assert len(lines) == 5 and f"D = {r['D_um']:.1f} µm" in lines[2] and f"{r['screw_stretch_um']:.1f} µm" in lines[2]
+    assert all(f"{at}" in lines[2] for at in ("(x = 0 mm)", "(450 mm)", "(-95 mm)", "(480 mm;", "-250 mm"))
+    assert f"adds {r['D_end_um'] - r['screw_stretch_um']:+.2f} µm" in lines[2]
+    e = r["positioning_error_um"]
+    assert f"E = {e[0]:.1f} µm at x = 113.5 mm" in lines[3] and f"{e[-1]:.1f} µm at 313.5 mm" in lines[3]
+
+
+def test_run_fast_model_elongation_and_positioning_error_by_hand(fast_result):
+    """D and E(x) at the last sample from the screw's, the front housing's and the base's
+    temperatures (the chain above LASER_TARGET)."""
+    r = fast_result
+    # The screw's cells: 510 mm (x from -60 to 450) in 102 cells of 5 mm, 0 and 450 mm among their edges.
+    x, T, u = r["screw_x_m"], r["screw_C"], r["screw_displacement_um"]
+    np.testing.assert_allclose(np.diff(x), 0.005, rtol=1e-9)
+    assert (len(x), x[0], x[-1]) == (102, pytest.approx(-0.0575), pytest.approx(0.4475))
+    free = x > SCREW_ANCHOR  # the 90 cells from 0 to 450 mm
+    assert free.sum() == 90 and r["screw_stretch_m"] == pytest.approx((SCREW_ANCHOR, LASER_TARGET))
+    assert (r["housing_anchor_m"], r["base_support_m"], r["laser_mount_m"]) == pytest.approx(
+        (HOUSING_ANCHOR, BASE_SUPPORT, LASER_MOUNT))
+    # The screw is one bar held at x = 0: along all of it, on either side of its anchor, it
+    # stretches by its section-mean strain, cell by cell: between two cell centres by
+    # α · 5 mm · (half of each cell's rise), exactly (whatever the housing and the base do).
+    between = ALPHA_SCREW * 0.005 * ((T[:-1] + T[1:]) / 2 - AMBIENT_I) * 1e6
+    np.testing.assert_allclose(np.diff(u), between, rtol=1e-9, atol=1e-12)
+    # so from 0 to 450 mm: α · 5 mm · Σ ΔT̄ over the 90 cells
+    stretch = ALPHA_SCREW * 0.005 * np.sum(T[free] - AMBIENT_I) * 1e6  # [µm]
+    assert r["screw_stretch_um"] == pytest.approx(stretch, rel=1e-12)
+    assert np.all(T > AMBIENT_I)  # the screw warms along all its length
+    # The housing's and the base's terms.  Ambient = initial = T_ref and every source heats, so no
+    # node of the implicit steps falls below 20 °C (their maximum principle): 0 ≤ ΔT̄.  Where a
+    # part's section is at least A, ∫ ΔT̄ dx ≤ (1/A) ∫_V ΔT dV = V/A · ΔT_mean: over -95..480 mm
+    # the base's section is one (A = 23200 mm²), over -95..0 mm the housing's at least 2400 mm².
+    base_bound = ALPHA_BASE * BASE_VOLUME / BASE_SECTION * (r["base_C"] - AMBIENT_I) * 1e6  # [µm]
+    housing_bound = ALPHA_HOUSING * HOUSING_VOLUME / HOUSING_MIN_SECTION * (r["front_housing_C"] - AMBIENT_I) * 1e6
+    assert 0.0 < base_bound < 0.1 * stretch  # one hour in, the base has barely warmed
+    assert housing_bound > 0.0
+    # D − stretch = α_h ∫_-95^0 ΔT̄_housing dx − α_b ∫_-95^480 ΔT̄_base dx, each term from 0 to its bound
+    assert stretch - base_bound <= r["D_end_um"] <= stretch + housing_bound
+    # The screw at its anchor, x = 0, against the positioning reference (the first cell's
+    # centre, 2.5 mm, less half a cell's stretch):
+    #   u_screw(0) − u_base(0) = α_h ∫_-95^0 ΔT̄_housing dx − α_b ∫_-95^0 ΔT̄_base dx.
+    at_anchor = u[free][0] - ALPHA_SCREW * 0.0025 * (T[free][0] - AMBIENT_I) * 1e6
+    assert -base_bound <= at_anchor <= housing_bound
+    # and D from it: u_screw(450) − u_base(0) = at_anchor + stretch, so
+    #   at_anchor + stretch − D = u_base(480) − u_base(0) = α_b ∫_0^480 ΔT̄_base dx, in (0, base_bound].
+    at_target = u[-1] + ALPHA_SCREW * 0.0025 * (T[-1] - AMBIENT_I) * 1e6  # the rear cell's centre plus half a cell
+    assert at_target == pytest.approx(at_anchor + stretch, rel=1e-9)
+    assert 0.0 < at_anchor + stretch - r["D_end_um"] <= base_bound
+    # The positioning error: the screw's displacement relative to the base at x = 0 under the
+    # nut's centre, which travels 213.5 mm (the nut spans 170 to 257 mm) ± 100 mm (stroke 200 mm).
+    table_x = r["table_x_m"]
+    np.testing.assert_allclose(table_x, 0.2135 + np.linspace(-0.100, 0.100, len(table_x)), rtol=0, atol=1e-12)
+    E = r["positioning_error_um"]
+    np.testing.assert_allclose(E, np.interp(table_x, x, u), rtol=1e-12)
+    assert np.all(np.diff(E) > 0)  # a warm screw: E grows along the stroke, away from the fixed bearing
 
 
 # --------------------------------------------------------------------------- compare_models
@@ -275,9 +364,38 @@ def test_custom_model_runs_through_simulate_and_conserves_energy(custom, capsys)
     assert abs(r["energy_relative_error"]) < 1e-6
     for n in SENSORS:
         assert r["ambient_C"] < r["final_C"][n] < r["steady_C"][n], n
-    # The screw is one isothermal node read by T4: D = α · 400 mm · (T_screw − 20 °C).
-    assert r["steady_D_um"] == pytest.approx(ALPHA_SCREW * SCREW_SPAN * (r["steady_C"]["T4"] - 20.0) * 1e6, rel=1e-9)
-    assert len(printed("custom_model", r, capsys)) == 3
+    # Every part is one isothermal node; the screw's is read by T4.  Each part stretches
+    # uniformly from its anchor, the middle of where it meets its parent (the chain above
+    # LASER_TARGET), so the front bearing, held at x = 0 and holding the screw there, stretches
+    # nothing D reads:
+    #   D = α_s (T_screw − 20) (450 − 0) mm + α_h (T_housing − 20) (0 − (−95)) mm
+    #       − α_b (T_base − 20) (480 − (−95)) mm.
+    parts = r["steady_parts_C"]
+    assert parts["screw"] == pytest.approx(r["steady_C"]["T4"], abs=1e-9)
+    hand = (ALPHA_SCREW * (parts["screw"] - AMBIENT_I) * (LASER_TARGET - SCREW_ANCHOR)
+            + ALPHA_HOUSING * (parts["front_housing"] - AMBIENT_I) * (SCREW_ANCHOR - HOUSING_ANCHOR)
+            - ALPHA_BASE * (parts["base"] - AMBIENT_I) * (LASER_MOUNT - HOUSING_ANCHOR))
+    assert r["steady_D_um"] == pytest.approx(hand * 1e6, rel=1e-9)
+    lines = printed("custom_model", r, capsys)
+    assert len(lines) == 3 and f"D {r['steady_D_um']:.1f} µm" in lines[1]
+
+
+def test_custom_model_reads_a_uniform_rise_as_one_lumped_body(custom, paper):
+    """With every part at T_ref + ΔT the loop expands as one body of α: along the chain of anchors
+    (base −250, housing −95, bearing 0, screw 0) D = α ΔT [(−95 + 250) + (0 + 95) + (0 − 0)
+    + (450 − 0) − (480 + 250)] mm = α · 10 K · (450 − 480) mm, and the screw's one section (its
+    centre, (−60 + 450)/2 = 195 mm) moves α ΔT [155 + 95 + 0 + 195 − (0 + 250)] mm = α ΔT · 195 mm
+    from the positioning reference, the base at x = 0."""
+    module, _ = custom
+    model = module.PartLumped(paper.system, None)
+    rows, offset = model.displacement_rows()
+    assert rows.shape == (2, len(paper.system.parts))
+    reference = paper.system.temperatures.reference
+    np.testing.assert_allclose(model.displacements(model.uniform_state(reference)), 0.0, atol=1e-17)
+    D, at_centre = model.displacements(model.uniform_state(reference + 10.0))
+    assert D == pytest.approx(ALPHA_SCREW * 10.0 * (LASER_TARGET - LASER_MOUNT), rel=1e-9)
+    assert D == pytest.approx(-3.6e-6, rel=1e-9)
+    assert at_centre == pytest.approx(ALPHA_SCREW * 10.0 * 0.195, rel=1e-9)
 
 
 def test_custom_model_steady_state_loses_all_the_heat_put_in(custom, paper):

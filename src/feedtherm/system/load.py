@@ -95,6 +95,11 @@ def validate_data(data: dict, origin: str) -> LoadedSystem:
     return LoadedSystem(system, origin, hashlib.sha256(canonical.encode()).hexdigest())
 
 
+#: Sections that descriptions of earlier versions had, and what replaced them.
+_REPLACED = {"elongation": "the elongation D is now what a declared displacement sensor reads; replace [elongation] "
+                           "by a [mechanics] section (supports, elongation, positioning; docs/system-description.md)"}
+
+
 def describe_error(exc: ValidationError) -> str:
     """One line for the first error of a pydantic ValidationError: ``path: reason``."""
     errors = exc.errors(include_url=False)
@@ -107,6 +112,8 @@ def describe_error(exc: ValidationError) -> str:
     if kind == "extra_forbidden":
         key = str(loc[-1])
         parent = _dotted(loc[:-1])
+        if not parent and key in _REPLACED:
+            return f"unknown key {key!r}: {_REPLACED[key]}"
         valid = _valid_keys(raw_loc[:-1])
         where = f" in {parent}" if parent else ""
         hint = difflib.get_close_matches(key, valid, n=1, cutoff=0.5)

@@ -120,10 +120,24 @@ class Mechanics(Strict):
         return self
 
 
+def _where(point: MaterialPoint | str) -> str:
+    if isinstance(point, str):
+        return point
+    return f"{point.part} at ({', '.join(f'{c * 1e3:g}' for c in point.point)}) mm"
+
+
+def loop_summary(mechanics: Mechanics) -> dict:
+    """What D and the positioning error are, in words and millimetres (for summaries and reports)."""
+    sensor = mechanics.elongation
+    return {"elongation": {"target": _where(sensor.target), "mount": _where(sensor.mount),
+                           "direction": [round(c, 6) for c in sensor.direction], "description": sensor.description},
+            "positioning_reference": _where(mechanics.positioning.reference)}
+
+
 def joint_holds(release: list[str]) -> list[int]:
     """Indices of the machine axes a joint with ``release`` holds."""
     return [i for i, axis in enumerate(AXES) if axis not in release]
 
 
 __all__ = ["AXES", "Axis", "DisplacementSensor", "GROUND", "MaterialPoint", "Mechanics", "Positioning", "Support",
-           "joint_holds"]
+           "joint_holds", "loop_summary"]

@@ -8,10 +8,10 @@ a feed drive does: each part stretches freely along x by its section-mean therma
 (:func:`~feedtherm.physics.thermal_expansion.displacement_weights_axial`), and the parts
 carry each other along the structure's axial load path: a tree found breadth-first from the
 part(s) a support holds along x (anchored at the support, u = 0 there) over the joints that
-hold x (``release`` without ``x``).  A child moves with its parent over the x-range where
-their extents meet (a housing bolted along its foot, a bearing in its bore) and stretches
-freely beyond it, so a point is reached from the nearest point of that range; the drive holds
-the nut to the screw at the nut's centre alone.  Loops of x-holding joints
+hold x (``release`` without ``x``).  A child fastened to its parent over an x-range (a housing
+bolted along its foot, a bearing in its bore) is held at the middle of that range and expands
+freely from there, as a bolted part expands about the centre of its joint; the drive holds the
+nut to the screw at the nut's centre alone.  Loops of x-holding joints
 (a nut, its bearing, its housing, its motor and belt) are cut where the search first
 reaches a part: a bar model cannot share a load between two paths, and the parts of such a
 loop are not what D or the positioning error read.
@@ -118,6 +118,14 @@ def load_path(system: FeedSystem) -> dict[str, tuple[str | None, float, float]]:
     return tree
 
 
+def anchors(system: FeedSystem) -> dict[str, tuple[str | None, float]]:
+    """Each part the structure holds along x: its parent on the axial load path (None for a part
+    a support holds) and the x [m] where it is held, from which it expands freely: the middle of
+    the range over which it meets its parent (a part fastened over a range expands about the
+    middle of its joint), the support's point, or the nut's centre for the drive."""
+    return {part: (parent, 0.5 * (lo + hi)) for part, (parent, lo, hi) in load_path(system).items()}
+
+
 def _x_extent(system: FeedSystem, part: str) -> tuple[float, float]:
     lo, hi = bounds(system.parts[part])
     return lo[0], hi[0]
@@ -129,7 +137,7 @@ class Bars:
     def __init__(self, layout: Layout):
         self.system = system = layout.system
         self.layout = layout
-        self.tree = load_path(system)
+        self.anchors = anchors(system)
         self._bars: dict[str, Bar] = {}  # built when read: only the parts on a chain to a read point
 
     def _bar(self, part: str) -> Bar:
@@ -140,17 +148,13 @@ class Bars:
     def at(self, part: str, x, field: str) -> np.ndarray:
         """Rows (len(x), n_nodes): ``rows @ T`` is α ∫ T̄ along the path to ``part`` at each ``x``
         (the displacement plus a constant that a state at T_ref cancels)."""
-        if part not in self.tree:
+        if part not in self.anchors:
             raise ModelError(f"{field}: part {part!r} is on no chain of joints holding x from a support "
                              "fixing x, so the fast model's bars cannot say how it moves along x")
-        parent, lo, hi = self.tree[part]
-        xs = np.atleast_1d(np.asarray(x, dtype=float))
-        rows = np.zeros((xs.size, self.layout.n_nodes))
-        for i, xi in enumerate(xs):
-            anchor = min(max(xi, lo), hi)  # where the part last moves with its parent, on the way to xi
-            rows[i] = self._bar(part).stretch(anchor, [xi], self.layout.n_nodes)[0]
-            if parent is not None:
-                rows[i] += self.at(parent, [anchor], field)[0]
+        parent, anchor = self.anchors[part]  # held there (the middle of its joint), expanding from there
+        rows = self._bar(part).stretch(anchor, np.atleast_1d(np.asarray(x, dtype=float)), self.layout.n_nodes)
+        if parent is not None:
+            rows += self.at(parent, [anchor], field)
         return rows
 
 
@@ -176,4 +180,4 @@ def displacement_rows(layout: Layout) -> tuple[np.ndarray, np.ndarray]:
     return rows, -system.temperatures.reference * rows.sum(axis=1)
 
 
-__all__ = ["Bar", "Bars", "displacement_rows", "load_path", "node_extents"]
+__all__ = ["Bar", "Bars", "anchors", "displacement_rows", "load_path", "node_extents"]

@@ -128,6 +128,15 @@ class ProjectedModel(ThermalModel):
         rows, offset = self._probe_rows(k)
         return rows @ state + offset
 
+    def displacement_rows(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.projection.displacement_rows, self.projection.displacement_offsets
+
+    def displacement_field(self, state: np.ndarray) -> np.ndarray | None:
+        p = self.projection
+        if p.displacement_basis is None:
+            return None
+        return (p.displacement_basis @ np.asarray(state, dtype=np.float32) + p.displacement_origin).reshape(-1, 3)
+
     def screw_mean(self, states: np.ndarray) -> np.ndarray:
         return np.asarray(states) @ self.projection.screw
 

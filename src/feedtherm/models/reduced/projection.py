@@ -12,8 +12,10 @@ out again, so a position costs the few nodes under the nut.  Only the surfaces t
 group covers and uncovers change with the position (two of 21 on the paper's bench): their
 change from position 0 is kept per position, the others' exposure once, so that a coupled run
 weighs 21 matrices by their coefficients once per evaluation, not once per position.  The
-readouts (sensors, D, the screw's sections, the parts' means) are the full model's rows
-times :math:`V`.
+readouts (sensors, D, the screw's sections and displacement profile, the parts' means) are
+the full model's rows times :math:`V`, and the displacement field of each basis vector (the
+thermoelastic solution of the full model, :math:`K^{-1} F V`) is kept in single precision, for
+the fields a run writes.
 
 A :class:`Projection` is arrays and names only: everything
 :class:`~feedtherm.models.reduced.model.ProjectedModel` runs and reads with, so that it can be
@@ -54,6 +56,10 @@ class Projection:
     probe_rows: np.ndarray  # (K, p, r): probe(z, k) = probe_rows[k] @ z + probe_offsets[k]
     probe_offsets: np.ndarray  # (K, p)
     screw: np.ndarray  # (r, sections): screw_mean(z) = z @ screw
+    displacement_rows: np.ndarray  # (1 + sections, r): displacements(z) = rows @ z + offsets (D, the screw's profile)
+    displacement_offsets: np.ndarray  # (1 + sections,)
+    displacement_basis: np.ndarray | None  # (3n, r) float32: the field of z is basis @ z + displacement_origin
+    displacement_origin: np.ndarray | None  # (3n,) [m]: the field of z = 0
     parts: dict[str, np.ndarray]  # part → (r,): its mean is z @ parts[part]
     averaged: BoundaryBasis  # the full model's cycle-averaged one: coupled readings and links
     positions: np.ndarray
@@ -115,6 +121,20 @@ def _probes(full: ThermalModel, V: np.ndarray, n_positions: int) -> tuple[np.nda
     return np.array(rows_out), np.array(offsets)
 
 
+def _displacement_fields(full: ThermalModel, V: np.ndarray) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """The full model's displacement field of each basis vector, and of the zero state (None without fields).
+
+    The field is affine in the state, ``u(T) = K⁻¹F (T − T_ref)``: the field of ``V z`` is
+    ``Σ z_j (u(V_j) − u(0)) + u(0)``.
+    """
+    origin = full.displacement_field(np.zeros(full.n_nodes))
+    if origin is None:
+        return None, None
+    origin = np.asarray(origin, dtype=float).ravel()
+    columns = np.asarray(full.displacement_field(V.T))  # (r, n, 3): one solve with r right-hand sides
+    return (columns.reshape(V.shape[1], -1).T - origin[:, None]).astype(np.float32), origin
+
+
 def project(full: ThermalModel, basis: Basis) -> Projection:
     """``full`` projected onto ``basis`` at every position (module notes)."""
     V = np.ascontiguousarray(basis.vectors)  # sparse @ V copies a Fortran-ordered V on every product
@@ -130,6 +150,8 @@ def project(full: ThermalModel, basis: Basis) -> Projection:
     changes = [_changed(b.exposure, reference.exposure) for b in bases]
     moving = np.unique(np.concatenate([np.unique(c.nonzero()[0]) for c in changes])).astype(np.intp)
     rows, offsets = _probes(full, V, K)
+    d_rows, d_offsets = full.displacement_rows()
+    field_basis, field_origin = _displacement_fields(full, V)
     return Projection(
         basis=basis,
         full_capacity=C,
@@ -146,6 +168,10 @@ def project(full: ThermalModel, basis: Basis) -> Projection:
         probe_rows=rows,
         probe_offsets=offsets,
         screw=np.asarray(full.screw_mean(V.T)),
+        displacement_rows=np.asarray(d_rows @ V),
+        displacement_offsets=np.asarray(d_offsets, dtype=float),
+        displacement_basis=field_basis,
+        displacement_origin=field_origin,
         parts={name: np.asarray(v) for name, v in full.part_means(V.T).items()},
         averaged=full.boundary_basis(None),
         positions=np.asarray(full.positions, dtype=float),

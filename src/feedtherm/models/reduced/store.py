@@ -46,7 +46,7 @@ from .projection import Projection, project
 __all__ = ["cached_projected_model", "file_digest", "package_digest", "projection_key", "projection_cache_path"]
 
 #: Changes whenever the file layout below changes (the package digest covers it too; this names it).
-STORE_VERSION = 1
+STORE_VERSION = 2
 #: The distributions whose code builds a full model, its basis or its projection.
 LIBRARIES = ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "pymor")
 _PACKAGE = Path(__file__).resolve().parents[2]  # src/feedtherm
@@ -123,7 +123,7 @@ def cached_projected_model(system: FeedSystem, tolerance: float, build_full: Cal
 # ---------------------------------------------------------------------------- file layout
 _ARRAYS = ("full_capacity", "stored", "conductance", "exposure", "moving_surfaces", "exposure_change",
            "exposure_rows", "exposure_areas", "entries", "probe_rows", "probe_offsets", "screw", "positions",
-           "screw_edges", "screw_centres")
+           "screw_edges", "screw_centres", "displacement_rows", "displacement_offsets")
 
 
 def _sparse(prefix: str, matrix: sp.csr_matrix) -> dict[str, np.ndarray]:
@@ -148,6 +148,9 @@ def _to_arrays(p: Projection, key: str) -> dict[str, np.ndarray]:
                "basis_tolerance": b.tolerance, "basis_snapshots": b.snapshots, "basis_seconds": b.seconds,
                "basis_cached": b.cached}
     arrays |= _sparse("averaged_exposure", p.averaged.exposure) | _sparse("averaged_distribution", p.averaged.distribution)
+    arrays["has_displacement_fields"] = p.displacement_basis is not None
+    if p.displacement_basis is not None:
+        arrays |= {"displacement_basis": p.displacement_basis, "displacement_origin": p.displacement_origin}
     mesh = p.field_mesh
     arrays["has_field_mesh"] = mesh is not None
     if mesh is not None:
@@ -174,5 +177,7 @@ def _from_arrays(data, key: str) -> Projection | None:
         averaged=BoundaryBasis(list(surfaces), list(sources), _read_sparse(data, "averaged_exposure"),
                                _read_sparse(data, "averaged_distribution")),
         field_mesh=mesh, full_stats=json.loads(str(data["full_stats"])),
+        displacement_basis=data["displacement_basis"] if bool(data["has_displacement_fields"]) else None,
+        displacement_origin=data["displacement_origin"] if bool(data["has_displacement_fields"]) else None,
         **{name: data[name] for name in _ARRAYS},
     )

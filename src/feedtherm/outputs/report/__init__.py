@@ -6,12 +6,13 @@ no JavaScript.  It reads only the Validation (and the paper's Table 5 and 6 for 
 speeds and the names of the measuring points).  Sections, in order (docs/report.md):
 
 1. title and summary · 2. headline: predictive accuracy (physics mode, held out, leave-one-out,
-the paper's in-sample) · 3. deviation tables · 4. sensor curves (Fig. 10) · 5. screw field
-(Fig. 11) · 6. equilibrium time · 7. final values against speed and ambient · 8. dual against
-single drive · 9. heat budget · 10. inferred heat per source · 11. measurement consistency ·
-12. sensitivity ranking · 13. the paper's inconsistencies · 14. calibrated values ·
-15. assumptions and provenance · 16. thermal-error compensation (with ``validate --compensation``) ·
-17. prediction bands and Sobol indices (with ``validate --uncertainty``).
+the paper's in-sample) · 3. deviation tables · 4. the thermal error as a displacement (the
+measuring loop, the gain, the error along the stroke) · 5. sensor curves (Fig. 10) · 6. screw
+field (Fig. 11) · 7. equilibrium time · 8. final values against speed and ambient · 9. dual
+against single drive · 10. heat budget · 11. inferred heat per source · 12. measurement
+consistency · 13. sensitivity ranking · 14. the paper's inconsistencies · 15. calibrated values ·
+16. assumptions and provenance · 17. thermal-error compensation (with ``validate --compensation``) ·
+18. prediction bands and Sobol indices (with ``validate --uncertainty``).
 
 Modules: ``html`` (escaping builders and the page), ``figures`` (the PNGs), ``data`` (shared
 numbers), and one module per group of sections (``comparison``, ``fidelity``, ``transients``,
@@ -31,6 +32,7 @@ from ...errors import FeedthermError
 from .comparison import deviations_section, title_section
 from .compensation import compensation_section
 from .context import assumptions_section, calibrated_section, inconsistencies_section, sensitivity_section
+from .displacement import displacement_section
 from .fidelity import consistency_section, headline_section, inferred_heat_section
 from .html import page
 from .operating import dual_single_section, heat_budget_section, trends_section
@@ -42,6 +44,7 @@ REPORT_HTML = "report.html"
 _SECTIONS = (
     headline_section,
     deviations_section,
+    displacement_section,
     sensor_curves_section,
     screw_field_section,
     equilibrium_section,

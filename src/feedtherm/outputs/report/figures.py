@@ -104,6 +104,25 @@ def screw_field(solution: Solution, condition: str, profile_count: int = 5) -> b
     return _png(figure)
 
 
+def positioning_error(solutions: dict[str, Solution]) -> bytes:
+    """E [µm] along the stroke at each run's end (solid) over the screw's displacement profile (dotted)."""
+    figure = _figure(4.2)
+    ax = figure.subplots()
+    for index, (condition, solution) in enumerate(solutions.items()):
+        colour = f"C{index}"
+        ax.plot(solution.screw_x * 1e3, solution.screw_displacement[-1] * 1e6, color=colour, linestyle=":",
+                linewidth=1.0)
+        ax.plot(solution.table_x * 1e3, solution.positioning_error[-1] * 1e6, color=colour, linewidth=2.0,
+                label=f"{condition}: E from {solution.positioning_error[-1, 0] * 1e6:.1f} to "
+                      f"{solution.positioning_error[-1, -1] * 1e6:.1f} µm")
+    ax.set_xlabel("position along the axis, x [mm] (solid: the table's positions over the stroke)")
+    ax.set_ylabel("axial displacement [µm]")
+    ax.axhline(0.0, color="0.6", linewidth=0.8)
+    ax.legend(fontsize=8, ncol=2)
+    ax.grid(alpha=0.3)
+    return _png(figure)
+
+
 def trends(speed: Sequence[tuple[str, float | None]], ambient: Sequence[tuple[str, float | None]],
            rows: dict[tuple[str, str], Comparison]) -> bytes:
     """Final T1–T5 [°C] and D [µm] against screw speed and against ambient, simulated and measured.
