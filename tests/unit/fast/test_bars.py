@@ -8,25 +8,17 @@ Every expected value is worked out by hand below from the paper bench's descript
 * the base is held along x at the front foot, x = -250; the chain to the laser's target
   (the screw's rear end face, x = 450) over the joints that hold x is
   base -> front_housing -> front_bearing -> screw (the rear bearing releases x).
-* each part moves with its parent over the x-range where their extents meet and stretches
-  freely beyond it, from the nearest point of that range: front_housing with the base over
-  [-300, 700] ∩ [-220, 30] = [-220, 30]; front_bearing with the housing over
-  [-220, 30] ∩ [-15, 15] = [-15, 15]; the screw with the bearing over [-15, 15] ∩ [-60, 450]
-  = [-15, 15].  Write c = clamp(x, -15, 15), the point of that range nearest x.
+* anchors: front_housing at the middle of [-300, 700] ∩ [-220, 30] = [-220, 30]: -95;
+  front_bearing at the middle of [-220, 30] ∩ [-15, 15]: 0; screw at the middle of
+  [-15, 15] ∩ [-60, 450]: 0.
 * mount: the base at x = 480; positioning reference: the base at x = 0.
 * α = 1.2e-5 1/K for the base and housings (Q345B) and the bearing and screw (GCr15).
 
-So, with part temperatures uniform per part (rises ΔT_b, ΔT_h, ΔT_r, ΔT_s over T_ref): the
-screw reaches x from c, c lies in the bearing's and the housing's shared ranges (each moves
-with its parent there, stretching by nothing of its own), so
+So, with part temperatures uniform per part (rises ΔT_b, ΔT_h, ΔT_r, ΔT_s over T_ref):
 
-    u_screw(x) = u_base(c) + α ΔT_s (x - c)
+    u_screw(x) = α [ΔT_b (-95 + 250) + ΔT_h (0 + 95) + ΔT_r (0 - 0) + ΔT_s (x - 0)]
     u_base(x)  = α ΔT_b (x + 250)
-    D          = u_screw(450) - u_base(480) = α [ΔT_b (15 + 250 - 480 - 250) + ΔT_s (450 - 15)]
-               = α [-465 ΔT_b + 435 ΔT_s]
-
-(the housing's and the bearing's own temperatures do not enter D: the screw is held at the
-bearing's rear edge, x = 15 mm, which the base itself carries through them).
+    D          = u_screw(450) - u_base(480)
 """
 
 from types import SimpleNamespace
@@ -60,7 +52,7 @@ def at_rises(model, rises: dict[str, float], others: float = 0.0) -> np.ndarray:
 
 
 def test_a_uniform_rise_moves_the_target_by_the_expansion_between_it_and_the_mount(model):
-    # every part of the loop is steel at α: D = α ΔT [-465 + 435] mm = α ΔT (-30 mm)
+    # every part of the loop is steel at α: D = α ΔT [155 + 95 + 0 + 450 - 730] mm = α ΔT (-30 mm)
     dT = 10.0
     D = model.displacements(at_rises(model, {}, others=dT))[0]
     assert D == pytest.approx(ALPHA * dT * (155 + 95 + 0 + 450 - 730) * MM, rel=1e-9)
@@ -69,11 +61,10 @@ def test_a_uniform_rise_moves_the_target_by_the_expansion_between_it_and_the_mou
 
 def test_each_part_of_the_chain_counts_over_its_own_stretch(model):
     # base +1 K, front housing +2 K, front bearing +3 K, screw +4 K; the rest (nut group,
-    # rear bearing and housing, motors, guideways) +50 K, which is on no stretch D reads;
-    # nor are the housing and the bearing (the screw is carried from x = 15 mm, in both ranges):
-    # D = α [-465·1 + 435·4] mm = α · 1275 mm
+    # rear bearing and housing, motors, guideways) +50 K, which is on no stretch D reads:
+    # D = α [1·155 + 2·95 + 3·0 + 4·450 - 1·730] mm = α · 1415 mm
     T = at_rises(model, {"base": 1.0, "front_housing": 2.0, "front_bearing": 3.0, "screw": 4.0}, others=50.0)
-    assert model.displacements(T)[0] == pytest.approx(ALPHA * 1275 * MM, rel=1e-9)
+    assert model.displacements(T)[0] == pytest.approx(ALPHA * 1415 * MM, rel=1e-9)
     # D is the last probe, read by the same row
     (probe, probe_offset), (rows, offset) = model.probe_rows(), model.displacement_rows()
     assert np.array_equal(probe[-1], rows[0]) and probe_offset[-1] == offset[0]
@@ -81,46 +72,40 @@ def test_each_part_of_the_chain_counts_over_its_own_stretch(model):
 
 def test_a_linear_rise_along_the_screw_gives_the_exact_integral(model):
     # T = T_ref + g (x - x0) on the screw (x0 = -60 mm, its front end), T_ref elsewhere: the
-    # base, housing and bearing do not move, so D = u_screw(450) = α g ∫_15^450 (x + 60) dx
-    # (the screw strains freely from the bearing's rear edge, x = 15 mm)
-    # = α g [(0.45²/2 + 0.06 · 0.45) - (0.015²/2 + 0.06 · 0.015)] m²
-    # = α g (0.12825 - 0.0010125) m² = α g · 0.1272375 m². Cell-wise constant temperatures
-    # integrate a linear rise exactly over whole cells; x = 15 and 450 mm are cell edges.
+    # base, housing and bearing do not move, so D = u_screw(450) = α g ∫_0^450 (x + 60) dx
+    # = α g [0.45²/2 + 0.06 · 0.45] m² = α g · 0.12825 m². Cell-wise constant temperatures
+    # integrate a linear rise exactly over whole cells; x = 0 and 450 mm are cell edges.
     g = 20.0  # [K/m]
     screw = model.layout.screw
-    assert np.isclose(screw.edges, 0.015).any() and screw.edges[-1] == pytest.approx(0.45)
+    assert np.isclose(screw.edges, 0.0).any() and screw.edges[-1] == pytest.approx(0.45)
     T = at_rises(model, {})
     T[screw.nodes] += g * (screw.centres[:, None] - (-0.060))
-    assert model.displacements(T)[0] == pytest.approx(ALPHA * g * 0.1272375, rel=1e-9)
-    assert ALPHA * g * 0.1272375 == pytest.approx(3.0537e-5)
+    assert model.displacements(T)[0] == pytest.approx(ALPHA * g * 0.12825, rel=1e-9)
+    assert ALPHA * g * 0.12825 == pytest.approx(3.078e-5)
 
 
 def test_the_base_strains_by_its_section_mean(model):
     # Only the base's two risers (x from -200 to 600, section 40 x 90 mm each) at +ΔT; the slab
     # (400 x 40 mm) at T_ref: between x = -200 and 600 the section mean is ΔT · 7200/23200,
-    # the slab alone beyond. u_screw(450) = u_base(15) = α ΔT (7200/23200)(15 + 200) mm,
-    # u_base(480) = α ΔT (7200/23200)(480 + 200) mm: D = -α ΔT (7200/23200) · 465 mm.
+    # the slab alone beyond. u_screw(450) = u_base(-95) = α ΔT (7200/23200)(-95 + 200) mm,
+    # u_base(480) = α ΔT (7200/23200)(480 + 200) mm: D = -α ΔT (7200/23200) · 575 mm.
     base = model.layout.cells["base"]
     dT = 10.0
     T = at_rises(model, {})
     for grid, first in zip(base.grids[1:], base.first[1:]):  # boxes 1 and 2: the risers
         T[first:first + grid.size] += dT
-    assert model.displacements(T)[0] == pytest.approx(-ALPHA * dT * 7200 / 23200 * 465 * MM, rel=1e-9)
+    assert model.displacements(T)[0] == pytest.approx(-ALPHA * dT * 7200 / 23200 * 575 * MM, rel=1e-9)
 
 
 def test_the_screw_profile_is_relative_to_the_positioning_reference(model):
-    # u_screw(x) - u_base(0) = u_base(c) - u_base(0) + α ΔT_s (x - c), c = clamp(x, -15, 15) mm:
-    # uniform ΔT: α ΔT [c + x - c] = α ΔT x;
-    # per part (base 1, housing 2, bearing 3, screw 4 K): α [c + 4 (x - c)] (mm), i.e. α (4 x + 45)
-    # in front of the bearing, α x within it, α (4 x - 45) behind it
+    # u_screw(x) - u_base(0): uniform ΔT: α ΔT [155 + 95 + x - 250] = α ΔT x;
+    # per part (base 1, housing 2, bearing 3, screw 4 K): α [155 - 250 + 2·95 + 4 x] = α (95 + 4 x) mm
     x = model.screw_centres
     profile = model.displacements(at_rises(model, {}, others=5.0))[1:]
     np.testing.assert_allclose(profile, ALPHA * 5.0 * x, rtol=1e-9, atol=1e-18)
     assert profile[-1] == pytest.approx(ALPHA * 5.0 * 0.4475, rel=1e-9)  # the rear cell, 445-450 mm
     T = at_rises(model, {"base": 1.0, "front_housing": 2.0, "front_bearing": 3.0, "screw": 4.0}, others=50.0)
-    c = np.clip(x, -0.015, 0.015)
-    np.testing.assert_allclose(model.displacements(T)[1:], ALPHA * (c + 4 * (x - c)), rtol=1e-9)
-    assert model.displacements(T)[-1] == pytest.approx(ALPHA * (4 * 0.4475 - 0.045), rel=1e-9)
+    np.testing.assert_allclose(model.displacements(T)[1:], ALPHA * (0.095 + 4 * x), rtol=1e-9)
 
 
 def test_the_reference_temperature_reads_zero(model):
@@ -131,7 +116,7 @@ def test_the_reference_temperature_reads_zero(model):
 
 
 def test_a_sensor_on_a_stand_of_its_own_and_one_looking_back(paper):
-    # mount "ground": D = u_screw(450) = α ΔT (265 + 435) mm; direction -x: -D
+    # mount "ground": D = u_screw(450) = α ΔT (155 + 95 + 450) mm; direction -x: -D
     dT = 10.0
     grounded = FastDiscretization(with_values(paper, {"mechanics.elongation.mount": "ground"}).system,
                                   ModelOptions())
