@@ -50,7 +50,7 @@ from ...errors import ModelError
 from .. import pardiso
 from ..direct import factorize
 
-__all__ = ["ElasticPart", "PointTie", "Tie", "ThermoElastic", "lame"]
+__all__ = ["ElasticPart", "PointTie", "Tie", "ThermoElastic", "lame", "stress"]
 
 #: Elements assembled at once: bounds the assembly's temporary arrays (12 × 12 entries each).
 CHUNK = 100_000
@@ -60,6 +60,57 @@ def lame(youngs_modulus: float, poisson_ratio: float) -> tuple[float, float]:
     """Lamé's :math:`\\lambda = E\\nu/((1+\\nu)(1-2\\nu))` and :math:`\\mu = E/(2(1+\\nu))` [Pa]."""
     E, nu = youngs_modulus, poisson_ratio
     return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), E / (2.0 * (1.0 + nu))
+
+
+def stress(points: np.ndarray, tets: np.ndarray, displacement: np.ndarray, temperature_rise: np.ndarray,
+           constants: list["ElasticPart"], part_of_tet: np.ndarray) -> np.ndarray:
+    r"""Cauchy stress of each tetrahedron [Pa] from a P1 displacement field and the temperatures.
+
+    .. math::
+
+        \sigma = \lambda\,\operatorname{tr}(\varepsilon - \alpha\,\Delta T\,\mathbf I)\,\mathbf I
+                 + 2\mu\,(\varepsilon - \alpha\,\Delta T\,\mathbf I)
+
+    with :math:`\varepsilon = \tfrac12(\nabla\mathbf u + \nabla\mathbf u^T)` constant in each
+    tetrahedron (linear elements) and :math:`\Delta T` the rise at its centroid, the mean of its
+    four nodes' (the one-point rule of the thermal load in :class:`ThermoElastic`), so that the
+    stresses are the ones the solve balances.
+
+    Parameters
+    ----------
+    points : ndarray, shape (3, N)
+        Vertices [m].
+    tets : ndarray of int, shape (4, M)
+        Tetrahedra (vertex indices).
+    displacement : ndarray, shape (N, 3)
+        Nodal displacements [m], e.g. :meth:`ThermoElastic.displacement` or a snapshot of a
+        run's ``fields.displacements``.
+    temperature_rise : ndarray, shape (N,)
+        Nodal temperatures less the reference temperature, ``T − T_ref`` [K].
+    constants : list of ElasticPart
+        Each part's Young's modulus, Poisson's ratio and expansion, indexed by ``part_of_tet``.
+    part_of_tet : ndarray of int, shape (M,)
+
+    Returns
+    -------
+    ndarray, shape (M, 3, 3)
+        The symmetric stress tensor of each tetrahedron [Pa], tension positive.
+    """
+    points = np.asarray(points, dtype=float)
+    tets = np.asarray(tets)
+    u = np.asarray(displacement, dtype=float)
+    corners = points[:, tets].transpose(2, 1, 0)  # (M, 4, 3)
+    edges = corners[:, 1:] - corners[:, :1]  # (M, 3, 3): rows x_i − x_0
+    du = u[tets[1:].T] - u[tets[0]][:, None, :]  # (M, 3, 3): rows u_i − u_0
+    grad = np.linalg.solve(edges, du).transpose(0, 2, 1)  # (M, 3, 3): ∂u_i/∂x_j, from edges @ G^T = du
+    strain = 0.5 * (grad + grad.transpose(0, 2, 1))
+    part = np.asarray(part_of_tet)
+    lam_mu = np.array([lame(c.youngs_modulus, c.poisson_ratio) for c in constants])
+    alpha = np.array([c.expansion for c in constants])
+    rise = np.asarray(temperature_rise, dtype=float)[tets].mean(axis=0)  # (M,) at the centroids
+    elastic = strain - (alpha[part] * rise)[:, None, None] * np.eye(3)
+    trace_ = np.trace(elastic, axis1=1, axis2=2)
+    return (lam_mu[part, 0] * trace_)[:, None, None] * np.eye(3) + 2.0 * lam_mu[part, 1][:, None, None] * elastic
 
 
 class ElasticPart:
