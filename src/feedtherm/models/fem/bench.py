@@ -214,7 +214,12 @@ class FemDiscretization(ThermalModel):
         self.probe_names = [*names, ELONGATION_PROBE]
         self._probe = sp.vstack(rows).tocsr() if rows else sp.csr_matrix((0, self.n_nodes))
         screw = system.kinematics.screw
-        self._screw_bins = slab_matrix(mesh.points, mesh.tets[:, mesh.part_tets(screw)], self.screw_edges, self.n_nodes)
+        try:
+            self._screw_bins = slab_matrix(mesh.points, mesh.tets[:, mesh.part_tets(screw)], self.screw_edges,
+                                           self.n_nodes)
+        except ValueError as exc:  # a screw shorter than a few of its elements: a section without a tetrahedron
+            raise ModelError(f"parts.{screw}: the mesh cannot resolve the screw's {len(self.screw_edges) - 1} "
+                             f"axial sections of {self.dx * 1e3:.3g} mm ({exc}); use a finer mesh or a longer screw") from None
         self.deformation = Deformation(self)
         self._probe_rows = None
         self._part_weights = {}

@@ -18,7 +18,8 @@ Method, 7th ed., §6.2 for the initial-strain load), so :math:`\mathbf u = K^{-1
 **Joints.** The parts' meshes do not share nodes; a joint ties them with a penalty on the jump
 :math:`[\mathbf u]` of its held components (the axes it does not release), integrated with the
 thermal model's contact quadrature (:mod:`.coupling`; the moving group at the middle of the
-stroke). The tie stiffness per area is :math:`k_p = \beta\,\max(E_a, E_b)/h_a` [N/m³], with
+stroke), both sides' fields read at the same points (:class:`Tie`: a uniform expansion strains
+no joint, however the two meshes facet a curved face). The tie stiffness per area is :math:`k_p = \beta\,\max(E_a, E_b)/h_a` [N/m³], with
 :math:`h_a` the element size of the integrating side and :math:`\beta` the description's
 ``mechanics.tie_penalty``: the joint then yields :math:`h_a/(\beta E)` per unit traction, a
 :math:`1/\beta` part of one element's own compliance.
