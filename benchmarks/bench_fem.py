@@ -4,6 +4,7 @@ Run:
     .venv/bin/python benchmarks/bench_fem.py run --mesh fine      # wall time + peak memory of a full run
     .venv/bin/python benchmarks/bench_fem.py timestep              # time-step study of the transient
     .venv/bin/python benchmarks/bench_fem.py mesh                  # mesh study: coarse, medium, fine
+    .venv/bin/python benchmarks/bench_fem.py loop --mesh fine      # FE D and E beside the fast model's, I and V
 
 ``run`` times the position-resolved ``feedtherm run --model fem --mesh M --condition I``
 over 10,800 s (>= 20 steps per stroke) as a whole command in a child process.  ``timestep``
@@ -128,6 +129,32 @@ def study_mesh() -> None:
     save("fem_mesh_study", figures)
 
 
+def study_loop(mesh: str) -> None:
+    """D and the positioning error of the 3-D thermoelastic solution beside the fast model's bars.
+
+    Conditions I and V of the paper's bench over their 10,800 s, position-resolved: the final D
+    (the mean over the last cycle) and E at the stroke's start, middle and end, each model from
+    its own temperatures, and T4 (the screw mid-span), to tell a thermal difference between
+    the models from a mechanical one.
+    """
+    loaded = load_system("paper")
+    figures: dict = {"mesh": mesh}
+    for condition in ("I", "V"):
+        per_model = {}
+        for model in ("fast", "fem"):
+            started = time.perf_counter()
+            run = simulate(loaded, condition=condition, model=model, **({"mesh": mesh} if model == "fem" else {}))
+            ends = run.positioning_error[-1][[0, len(run.table_x) // 2, -1]]  # stroke's start, middle, end
+            per_model[model] = {"D_um": round(run.final["D"] * 1e6, 3),
+                                "E_end_um": [round(v * 1e6, 3) for v in ends],
+                                "T4_C": round(run.final["T4"] - 273.15, 3),
+                                "seconds": round(time.perf_counter() - started, 1)}
+        figures[condition] = {**per_model, "D_fem_minus_fast_um": round(per_model["fem"]["D_um"]
+                                                                        - per_model["fast"]["D_um"], 3)}
+    figures["peak_rss_MB"] = round(peak_rss_mb(), 1)
+    save(f"fem_loop_{mesh}", figures)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="what", required=True)
@@ -139,11 +166,15 @@ def main() -> None:
     step = sub.add_parser("timestep")
     step.add_argument("--duration", type=float, default=10_800.0)
     sub.add_parser("mesh")
+    loop = sub.add_parser("loop")
+    loop.add_argument("--mesh", default="fine", choices=["coarse", "medium", "fine"])
     args = parser.parse_args()
     if args.what == "run":
         bench_run(args.mesh, args.condition, args.duration, args.solver)
     elif args.what == "timestep":
         study_timestep(args.duration)
+    elif args.what == "loop":
+        study_loop(args.mesh)
     else:
         study_mesh()
 
