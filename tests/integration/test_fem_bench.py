@@ -153,8 +153,13 @@ def test_readout_of_a_uniform_field(fem, loaded):
     values = fem.probe(T, 0)
     assert fem.probe_names == [*SENSORS, "D"]
     np.testing.assert_allclose(values[:-1], 310.0, rtol=1e-12)
-    alpha = system.materials["gcr15"].expansion
-    assert values[-1] == pytest.approx(alpha * 0.400 * (310.0 - system.temperatures.reference), rel=1e-9)
+    alpha = system.materials["gcr15"].expansion  # the screw's; the base's (Q345B) is the same
+    laser = system.mechanics.elongation
+    span = laser.target.point[0] - laser.mount.point[0]  # the end face 30 mm in front of the stand: -0.030 m
+    # a uniform rise expands the steel loop freely: D = α ΔT (x_target − x_mount); the parts of
+    # other expansion tied to it (the rails on the base, the copper nut on the screw) strain it
+    # by a few per cent (a structure of one α passes exactly: tests/verification/test_expansion_free_bar.py)
+    assert values[-1] == pytest.approx(alpha * span * (310.0 - system.temperatures.reference), rel=0.03)
     states = np.stack([T, T + 1.0])
     assert fem.screw_mean(states).shape == (2, len(fem.screw_centres))
     means = fem.part_means(states)

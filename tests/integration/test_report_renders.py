@@ -24,11 +24,12 @@ from feedtherm.system.load import load_system
 
 CHROMIUM = "/usr/bin/chromium"
 CONDITIONS = ("I", "II", "III", "IV", "V")
-SECTION_IDS = ["headline", "deviations", "sensor-curves", "screw-field", "equilibrium", "trends", "dual-single",
+SECTION_IDS = ["headline", "deviations", "displacement", "sensor-curves", "screw-field", "equilibrium", "trends", "dual-single",
                "heat-budget", "inferred-heat", "consistency", "sensitivity", "inconsistencies", "calibrated",
                "assumptions"]
-# 5 sensor-curve figures, the screw field, trends, dual/single, heat budget, sensitivity ranking.
-EXPECTED_IMAGES = len(CONDITIONS) + 5
+# the positioning error, 5 sensor-curve figures, the screw field, trends, dual/single, heat budget,
+# sensitivity ranking.
+EXPECTED_IMAGES = len(CONDITIONS) + 6
 FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
          "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 

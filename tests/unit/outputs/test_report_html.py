@@ -149,7 +149,7 @@ def test_every_text_from_the_validation_is_escaped(rendered):
 
 def test_sections_in_order_and_no_external_resources(rendered):
     ids = re.findall(r'<section id="([^"]+)"', rendered)
-    assert ids == ["headline", "deviations", "sensor-curves", "screw-field", "equilibrium", "trends", "dual-single",
+    assert ids == ["headline", "deviations", "displacement", "sensor-curves", "screw-field", "equilibrium", "trends", "dual-single",
                    "heat-budget", "inferred-heat", "consistency", "sensitivity", "inconsistencies", "calibrated",
                    "assumptions"]
     assert "generated 2024-05-01 00:00 UTC" in rendered
@@ -160,8 +160,9 @@ def test_images_are_valid_pngs(rendered):
     from PIL import Image
 
     encoded = DATA_URI.findall(rendered)
-    # 2 sensor-curve figures, the screw field, trends, dual/single, heat budget, sensitivity
-    assert len(encoded) == 7
+    # the positioning error, 2 sensor-curve figures, the screw field, trends, dual/single, heat budget,
+    # sensitivity
+    assert len(encoded) == 8
     for data in encoded:
         with Image.open(io.BytesIO(base64.b64decode(data))) as image:
             assert image.format == "PNG" and image.size[0] >= 1000
@@ -203,7 +204,7 @@ def test_without_single_drive_sensitivities_or_budget():
     html = render_report(synthetic_validation(single_drive={}, sensitivities=[], heat_budget={}))
     assert "No single-drive runs were made." in html
     assert "No sensitivities were computed." in html and "No heat budget was computed." in html
-    assert len(DATA_URI.findall(html)) == 4
+    assert len(DATA_URI.findall(html)) == 5
 
 
 def test_write_report_into_a_directory_or_to_a_file(tmp_path, monkeypatch):

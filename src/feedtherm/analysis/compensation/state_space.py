@@ -43,7 +43,6 @@ from ...constants import ELONGATION_PROBE
 from ...errors import FeedthermError
 from ...models.interface import cycle_weights, source_powers, surface_coefficients, weighted_sum
 from ...simulate import discretize
-from ...system.geometry import bounds
 from ...system.load import LoadedSystem
 
 #: States of the reduced model (besides the uniform field): "a few dozen" (issue 16); the
@@ -140,8 +139,9 @@ def reduce_model(loaded: LoadedSystem, outputs: list[str], reference: OperatingP
     B = np.column_stack([*(s * distribution[j] * max(q_ref[j], 1.0) for j in range(len(q_ref))),
                          s * (exposure.T @ h_ref)])
     part = system.parts[system.kinematics.screw]
-    screw_lo, screw_hi = bounds(part)
-    per_kelvin = system.materials[part.material].expansion * (screw_hi[0] - screw_lo[0])  # D's scale: µm per K
+    # D's scale [m/K]: the screw's expansion per kelvin from the positioning reference to the laser's target
+    span = abs(system.mechanics.elongation.target.point[0] - system.mechanics.positioning.reference.point[0])
+    per_kelvin = system.materials[part.material].expansion * max(span, 1e-3)
     scale = np.array([1.0 / per_kelvin if o == ELONGATION_PROBE else 1.0 for o in outputs])
     Cm = (scale[:, None] * out_rows * s[None, :]) @ V  # outputs in the eigenbasis
     Bm = V.T @ B

@@ -40,6 +40,8 @@ def gains(validation: Validation) -> tuple[float | None, float | None, list[str]
     if len(points) < 2:
         return None, None, []
     t, simulated, measured = (np.array(v) for v in zip(*points))
+    if np.ptp(t) < 1e-6:  # one mean temperature: no slope to tell
+        return None, None, []
     model = float(np.polyfit(t, simulated, 1)[0])
     bench = law.slope_um_per_k if law is not None else float(np.polyfit(t, measured, 1)[0])
     return model, bench, list(names)
