@@ -17,7 +17,8 @@ from feedtherm.analysis.uncertainty.sampling import POSTERIOR
 from feedtherm.analysis.uncertainty.study import run_uncertainty
 from feedtherm.errors import FeedthermError
 from feedtherm.outputs.calibration_files import calibrated_toml
-from feedtherm.system.load import parse_toml, validate_data, validate_description
+from feedtherm.benches import bench
+from feedtherm.system.load import load_system, parse_toml, validate_description
 
 TINY = {"samples": 2, "sobol_base": None, "conditions": ["I"]}
 
@@ -72,14 +73,15 @@ def test_two_workers_give_the_serial_study(paper):
         assert np.array_equal(a.bands["I"].nominal[q], b.bands["I"].nominal[q])
 
 
-def test_sobol_indices_vanish_where_a_parameter_cannot_act(paper):
+def test_sobol_indices_vanish_where_a_parameter_cannot_act(tmp_path):
     # where the laser's stand sits on the base changes no temperature: Saltelli's differences are
     # exactly zero there, and not on D
-    data = paper.system.model_dump(mode="json")
-    data["uncertainty"]["parameters"]["laser_stand_x"] = {
-        "kind": "value", "paths": ["mechanics.elongation.mount.point[0]"], "distribution": "uniform",
-        "range": ["460 mm", "500 mm"], "reason": "test: a value only D reads"}
-    with_stand = validate_data(data, "test")
+    text = bench("paper").description.read_text(encoding="utf-8")
+    stand = ('[uncertainty.parameters.laser_stand_x]\nkind = "value"\npaths = ["mechanics.elongation.mount.point[0]"]\n'
+             'distribution = "uniform"\nrange = ["460 mm", "500 mm"]\nreason = "test: a value only D reads"\n\n')
+    anchor = "[uncertainty.parameters.screw_nut_friction]"
+    (tmp_path / "with_stand.toml").write_text(text.replace(anchor, stand + anchor, 1), encoding="utf-8")
+    with_stand = load_system(str(tmp_path / "with_stand.toml"))
     found = run_uncertainty(with_stand, samples=2, sobol_base=2, conditions=["I"])
     prior = found.sets[0]
     assert prior.sobol_condition == "I"

@@ -57,6 +57,15 @@ def si_unit_at(system: FeedSystem, path: str) -> str | None:
     Raises ``KeyError``/``IndexError``/``AttributeError`` where the path names no value.
     """
     keys = split_path(path)
+    if len(keys) >= 2 and isinstance(keys[-1], int) and isinstance(_walk(system, keys[:-1]), tuple):
+        # an element of a fixed-length tuple field (a point's coordinate, a box's size)
+        owner, name = _walk(system, keys[:-2]), keys[-2]
+        if not isinstance(owner, BaseModel) or name not in type(owner).model_fields:
+            raise KeyError(path)
+        elements = typing.get_args(type(owner).model_fields[name].annotation)
+        if keys[-1] >= len(elements):
+            raise IndexError(path)
+        return _si_unit_in([elements[keys[-1]]])
     parent = _walk(system, keys[:-1])
     if not isinstance(parent, BaseModel) or keys[-1] not in type(parent).model_fields:
         raise KeyError(path)
