@@ -44,18 +44,13 @@ import time
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import BilinearForm, CellBasis, ElementTetP1, ElementVector, MeshTet
-from skfem.helpers import ddot, div, sym_grad, trace
 
 from ...errors import ModelError
 from .. import pardiso
 from ..direct import factorize
+from .elastic_assembly import gradients, node_pairs, stiffness_matrix, thermal_load_matrix
 
 __all__ = ["ElasticPart", "PointTie", "Tie", "ThermoElastic", "lame", "stress"]
-
-#: Elements assembled at once: bounds the assembly's temporary arrays (12 × 12 entries each).
-CHUNK = 100_000
-
 
 def lame(youngs_modulus: float, poisson_ratio: float) -> tuple[float, float]:
     """Lamé's :math:`\\lambda = E\\nu/((1+\\nu)(1-2\\nu))` and :math:`\\mu = E/(2(1+\\nu))` [Pa]."""
@@ -159,22 +154,6 @@ class PointTie:
         return (self.stiffness * (self.jump.T @ self.jump)).tocsr()
 
 
-@BilinearForm
-def _stiffness(u, v, w):
-    eu, ev = sym_grad(u), sym_grad(v)
-    return 2.0 * w.mu * ddot(eu, ev) + w.lam * trace(eu) * trace(ev)
-
-
-@BilinearForm
-def _thermal_load(t, v, w):  # t: the scalar temperature (trial), v: the vector test function
-    return w.beta * t * div(v)
-
-
-def _chunks(count: int):
-    for start in range(0, count, CHUNK):
-        yield np.arange(start, min(start + CHUNK, count))
-
-
 class ThermoElastic:
     """Stiffness, thermal load and supports of a mesh; solves and reading rows.
 
@@ -198,22 +177,18 @@ class ThermoElastic:
         n = 3 * self.n_nodes
         lam_mu = np.array([lame(c.youngs_modulus, c.poisson_ratio) for c in constants])
         beta_part = np.array([c.youngs_modulus / (1.0 - 2.0 * c.poisson_ratio) * c.expansion for c in constants])
-        mesh = MeshTet(np.ascontiguousarray(points), np.ascontiguousarray(tets))
-        K = sp.csr_matrix((n, n))
-        F = sp.csr_matrix((n, self.n_nodes))
-        for elements in _chunks(tets.shape[1]):
-            vector = CellBasis(mesh, ElementVector(ElementTetP1()), elements=elements, intorder=1)
-            scalar = CellBasis(mesh, ElementTetP1(), elements=elements, intorder=1)
-            part = part_of_tet[elements]
-            nq = vector.X.shape[-1]
-            lam = np.repeat(lam_mu[part, 0][:, None], nq, axis=1)
-            mu = np.repeat(lam_mu[part, 1][:, None], nq, axis=1)
-            beta = np.repeat(beta_part[part][:, None], nq, axis=1)
-            K = K + _stiffness.assemble(vector, lam=lam, mu=mu)
-            F = F + _thermal_load.assemble(scalar, vector, beta=beta)
+        g, volume = gradients(points, tets)
+        pattern, pairs = node_pairs(tets, self.n_nodes)
+        K = stiffness_matrix(g, volume, lam_mu[part_of_tet, 0], lam_mu[part_of_tet, 1], pairs, pattern)
+        F = thermal_load_matrix(g, volume, beta_part[part_of_tet], pairs, pattern)
+        del g, pairs
+        tied = [None, None, None]  # per axis: the sum of the scalar tie matrices that hold it
         for tie in ties:
             scalar_tie = tie.matrix(self.n_nodes)
             for axis in tie.axes:
+                tied[axis] = scalar_tie if tied[axis] is None else tied[axis] + scalar_tie
+        for axis, scalar_tie in enumerate(tied):
+            if scalar_tie is not None:
                 pick = sp.csr_matrix(([1.0], ([axis], [axis])), shape=(3, 3))
                 K = K + sp.kron(scalar_tie, pick, format="csr")
         held = np.array(sorted({3 * node + axis for node, axis in supports}), dtype=np.intp)
