@@ -56,7 +56,20 @@ def test_the_gains_use_only_the_conditions_the_elongation_law_holds_for():
     assert model == pytest.approx((38.0 - 29.0) / 2.0) and bench == 2.85 and names == ["I", "II"]
     html = displacement_section(v)
     assert "71.5 (flagged)" in html
-    assert "4.50 µm per kelvin" in html and "2.85 µm/K" in html
+    assert "<td>I, II</td><td>4.50</td><td>2.85</td>" in html
+
+
+def test_the_series_gains_show_errors_that_cancel_over_all_conditions():
+    # hand calculation: against speed (I, II, III at 20 °C) the model gains 11 µm/K where the bench
+    # gains 3; against ambient (IV, II) the model loses 0.5 µm/K where the bench gains 2.5
+    t = {"I": 30.0, "II": 32.0, "III": 34.0, "IV": 26.0}
+    measured = {"I": 30.0, "II": 36.0, "III": 42.0, "IV": 21.0}
+    simulated = {"I": 30.0, "II": 52.0, "III": 74.0, "IV": 55.0}
+    v = validation(measured, simulated, t)
+    assert gains(v, ["I", "II", "III"])[:2] == (pytest.approx(11.0), pytest.approx(3.0))
+    assert gains(v, ["IV", "II", "V"]) == (pytest.approx(-0.5), pytest.approx(2.5), ["IV", "II"])
+    html = displacement_section(v)
+    assert "against speed (ambient 20 °C)</th><td>I, II, III</td><td>11.00</td><td>3.00</td>" in html
 
 
 def test_the_section_names_the_loop_and_shows_the_stroke_figure():

@@ -22,29 +22,53 @@ from .html import Cell, number, paragraph, png_image, section, table
 EARLIER_HELD_OUT_UM = {"with a fitted read point (193 mm)": 1.7, "read at 400 mm, nothing fitted there": 21.0}
 
 
-def gains(validation: Validation) -> tuple[float | None, float | None, list[str]]:
+def gains(validation: Validation, conditions: list[str] | None = None) -> tuple[float | None, float | None, list[str]]:
     """Slopes [µm/K] of simulated and of measured D against the mean measured temperature T̄.
 
-    Over the conditions the measurements' elongation law holds for (all measured ones without
-    a consistency check), the same T̄ for both: the model's gain and the bench's.
+    Over ``conditions`` (default: those the measurements' elongation law holds for, or every
+    measured one), leaving out an elongation the consistency check flags; the same T̄ for both:
+    the model's gain and the bench's (with the default conditions, the bench's is the law's slope).
     """
     rows = data.comparisons_by_key(validation)
     law = validation.consistency.law if validation.consistency else None
-    names = law.conditions if law is not None else [c for c in data.conditions(validation)]
-    points = []
+    flagged = validation.consistency.excluded() if validation.consistency else set()
+    names = conditions if conditions is not None else (
+        law.conditions if law is not None else data.conditions(validation))
+    points, used = [], []
     for c in names:
         temps = [rows[(c, q)].measured for q in TEMPERATURE_QUANTITIES if (c, q) in rows]
-        if (c, ELONGATION_QUANTITY) in rows and len(temps) == len(TEMPERATURE_QUANTITIES):
+        if ((c, ELONGATION_QUANTITY) in rows and (c, ELONGATION_QUANTITY) not in flagged
+                and len(temps) == len(TEMPERATURE_QUANTITIES)):
             d = rows[(c, ELONGATION_QUANTITY)]
             points.append((float(np.mean(temps)), d.simulated, d.measured))
+            used.append(c)
     if len(points) < 2:
         return None, None, []
     t, simulated, measured = (np.array(v) for v in zip(*points))
     if np.ptp(t) < 1e-6:  # one mean temperature: no slope to tell
         return None, None, []
     model = float(np.polyfit(t, simulated, 1)[0])
-    bench = law.slope_um_per_k if law is not None else float(np.polyfit(t, measured, 1)[0])
-    return model, bench, list(names)
+    if conditions is None and law is not None:
+        return model, law.slope_um_per_k, used
+    return model, float(np.polyfit(t, measured, 1)[0]), used
+
+
+def _gain_table(validation: Validation) -> str:
+    rows = []
+    for label, names in (("the conditions the elongation law holds for", None),
+                         ("against speed (ambient 20 °C)", list(data.SPEED_SERIES)),
+                         ("against ambient (speeds of II)", list(data.AMBIENT_SERIES))):
+        model, bench, used = gains(validation, names)
+        if model is not None:
+            rows.append([label, ", ".join(used), number(model, 2), number(bench, 2)])
+    if not rows:
+        return ""
+    return table(["series", "conditions", "the model's gain [µm/K]", "the bench's gain [µm/K]"], rows) + paragraph(
+        "The gain is the slope of D against the mean measured temperature T1–T5 (both models' D against the same "
+        "measured temperatures). A gain above the bench's says the loop expands too much per kelvin of what the "
+        "sensors read: too long a warm length in the loop, or a screw warmer than its sensors say; a gain that "
+        "agrees over all conditions while the series disagree hides opposite errors against speed and against "
+        "ambient.")
 
 
 def _loop_text(validation: Validation) -> str:
@@ -100,13 +124,7 @@ def displacement_section(validation: Validation) -> str:
     if table_rows:
         body.append(table(["condition", "mean measured T1–T5 [°C]", "simulated D [µm]", "measured D [µm]",
                            "deviation [µm]", "the paper's simulated D [µm]"], table_rows))
-    model, bench, names = gains(validation)
-    if model is not None:
-        body.append(paragraph(
-            f"Gain over {', '.join(names)}: the model's D changes by {model:.2f} µm per kelvin of the mean measured "
-            f"temperature, the bench's by {bench:.2f} µm/K (the slope of the measurements' elongation law). A "
-            "gain above the bench's says the model's loop expands too much per kelvin of the sensors' "
-            "temperatures: too long a warm length in the loop, or a screw warmer than its sensors say."))
+    body.append(_gain_table(validation))
     text = _calibration_text(validation)
     if text:
         body.append(paragraph(text))
