@@ -190,6 +190,12 @@ def test_the_reduced_fe_model_runs_from_the_command_line_and_follows_the_fe_mode
         assert np.max(np.abs(reduced_run.sensors[name] - full_run.sensors[name])) <= 0.1, name
     assert np.max(np.abs(reduced_run.elongation - full_run.elongation)) <= 0.2e-6
     assert reduced_run.fields is not None and reduced_run.fields.temperatures.shape[1] == fe.n_nodes
+    # the same mechanics: the positioning error along the stroke and the displacement field
+    assert np.max(np.abs(reduced_run.positioning_error - full_run.positioning_error)) <= 0.2e-6
+    assert reduced_run.fields.displacements.shape == full_run.fields.displacements.shape == (
+        len(full_run.fields.snapshot_times), fe.n_nodes, 3)
+    scale = np.abs(full_run.fields.displacements).max()  # the belt's large α makes the largest differences
+    assert np.max(np.abs(reduced_run.fields.displacements - full_run.fields.displacements)) <= 0.02 * scale
     # the next run reads the projected model back and never builds the FE model
     assert not stats["projection_cached"]
 
@@ -202,11 +208,12 @@ def test_the_reduced_fe_model_runs_from_the_command_line_and_follows_the_fe_mode
     for name in reduced_run.sensors:
         np.testing.assert_allclose(again.sensors[name], reduced_run.sensors[name], rtol=0.0, atol=1e-10)
     np.testing.assert_array_equal(again.fields.temperatures, reduced_run.fields.temperatures)
+    np.testing.assert_array_equal(again.fields.displacements, reduced_run.fields.displacements)
     np.testing.assert_array_equal(again.fields.tets, reduced_run.fields.tets)
     rows, offset = fe.probe_rows(0)
     assert fe.probe_rows(17)[0] is rows  # the FE model's readings do not depend on the position
     T = 293.15 + np.random.default_rng(5).normal(size=fe.n_nodes)
     read, probed = rows @ T + offset, fe.probe(T, 17)
     assert np.allclose(read[:-1], probed[:-1], rtol=1e-14, atol=0.0)
-    assert abs(read[-1] - probed[-1]) <= 1e-15  # D [m]: α Σ w (T - T_ref) against α (w @ bins) T - α T_ref Σ w
+    assert abs(read[-1] - probed[-1]) <= 1e-15  # D [m]: the thermoelastic reading row, the same either way
     assert sp.issparse(fe.conductance(0))
