@@ -48,7 +48,7 @@ def runs(tmp_path_factory):
     env = {**os.environ, "FEEDTHERM_CACHE": str(cwd / "cache")}
     out = {}
     for model in ("fem", "reduced"):
-        result = run(cwd, "--condition", "I", "--model", model, "--mesh", "coarse", "--duration", "1200",
+        result = run(cwd, "--condition", "I", "--model", model, "--mesh", "coarse", "--duration", "600",
                      "--out", model, env=env)
         assert result.returncode == 0, result.stderr[-2000:]
         out[model] = cwd / model
