@@ -107,6 +107,10 @@ class Mechanics(Strict):
     #: Tie stiffness of a joint per unit area, as a multiple of the stiffer side's Young's
     #: modulus over the integrating side's element size (FE model; docs/fem-model.md).
     tie_penalty: float = Field(default=100.0, gt=1.0, le=1e6)
+    #: The FE model's displacement elements: "linear" tetrahedra (4 nodes, the thermal mesh's
+    #: own space) or "quadratic" (10 nodes: bending converges an order faster, for about seven
+    #: times the unknowns; docs/fem-model.md). The fast and reduced models' bars do not use it.
+    elements: Literal["linear", "quadratic"] = "linear"
 
     @model_validator(mode="after")
     def _supports_once(self) -> "Mechanics":

@@ -3,11 +3,12 @@
 What is read, as rows on the nodal temperatures (``rows @ T + offset``, zero at the
 reference temperature):
 
-- **D**, the displacement sensor ``mechanics.elongation``: the P1 displacement at the target
+- **D**, the displacement sensor ``mechanics.elongation``: the displacement at the target
   point (in the tetrahedron of its part holding it) minus the mount point's (none for a mount
   on the ground), along the sensor's direction;
 - **the screw's profile**: the axial displacement averaged over each axial slab of the screw
-  (the screw's sections, as its temperature profile), minus the positioning reference point's.
+  (the screw's sections, as its temperature profile; of the displacements at the mesh's
+  nodes, interpolated linearly, in either space), minus the positioning reference point's.
 
 The elastic system is built and factorised on first use (a run that never reads a
 displacement does not pay for it).
@@ -26,7 +27,8 @@ from ...system.geometry import drive_point
 from ...system.mechanics import GROUND, joint_holds
 from .. import pardiso
 from .elastic import ElasticPart, PointTie, ThermoElastic, Tie
-from .readout import point_matrix
+from .elastic_space import DisplacementSpace
+from .readout import locate
 
 __all__ = ["Deformation", "elastic_constants", "KEEP_SHARE"]
 
@@ -79,9 +81,10 @@ class Deformation:
             by_part = elastic_constants(fem.system)
             constants = [by_part[name] for name in fem.part_names]
             started = time.perf_counter()
-            self._elastic = ThermoElastic(fem.points, fem.tets, constants, np.asarray(fem.part_id),
-                                          self._ties(constants), self._supports())
-            self.stats = {"elastic_unknowns": int(self._elastic.unknowns),
+            self.space = DisplacementSpace(fem.points, fem.tets, fem.system.mechanics.elements)
+            self._elastic = ThermoElastic(self.space, constants, np.asarray(fem.part_id), self._ties(constants),
+                                          self._supports())
+            self.stats = {"elastic_elements": self.space.elements, "elastic_unknowns": int(self._elastic.unknowns),
                           "elastic_assembly_seconds": round(time.perf_counter() - started, 2)}
         return self._elastic
 
@@ -96,9 +99,11 @@ class Deformation:
                 continue
             quadrature = j.contact.quadrature(0.0)  # the moving group where its mesh is: mid-stroke
             stiffness = penalty * max(modulus[j.a], modulus[j.b]) / fem.mesh.sizes[j.a]
-            b_nodes, b_values, x = self._under_facets(j.b, quadrature)
-            ties.append(Tie(quadrature.a_nodes, quadrature.a_bary, b_nodes, b_values, quadrature.weights, axes,
-                            stiffness, name=f"joints[{j.index}]"))
+            x = np.einsum("qk,iqk->qi", quadrature.a_bary, fem.points[:, quadrature.a_nodes])  # (q, 3)
+            a_nodes, a_values = self.space.shape(*self._under_facets(j.a, quadrature.a_nodes, x))
+            b_nodes, b_values = self.space.shape(*self._under_facets(j.b, quadrature.b_nodes, x))
+            ties.append(Tie(a_nodes, a_values, b_nodes, b_values, quadrature.weights, axes, stiffness,
+                            name=f"joints[{j.index}]"))
         kin = fem.system.kinematics
         point = drive_point(fem.system)
         if point is not None:
@@ -107,22 +112,21 @@ class Deformation:
                                  self._point(kin.screw, point, "kinematics.screw"), [0], stiffness, name="the drive"))
         return ties
 
-    def _under_facets(self, part: str, cq) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """B's tetrahedron under each matched facet, and its basis values at A's quadrature point.
+    def _under_facets(self, part: str, facets: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The part's tetrahedron each facet (q, 3 node indices) bounds, and the barycentric
+        coordinates in it of the points ``x`` (q, 3) [m].
 
-        Returns the tetrahedra's nodes (q, 4), the four barycentric coordinates of each point
-        (q, 4; a point off the facet by a chord's height lies just outside, so they may be
-        slightly negative) and the points (q, 3) [m].
+        Returns the tetrahedra (q,; indices into the mesh's) and the coordinates (q, 4; a point
+        off the facet by a chord's height lies just outside, so they may be slightly negative).
         """
         fem = self.fem
-        x = np.einsum("qk,iqk->qi", cq.a_bary, fem.points[:, cq.a_nodes])  # (q, 3)
-        tets = fem.mesh.tets[:, fem.mesh.part_tets(part)]
-        owner = _facet_owner(tets, cq.b_nodes)
-        nodes = tets[:, owner].T  # (q, 4)
-        corners = fem.points[:, nodes]  # (3, q, 4)
+        in_part = fem.mesh.part_tets(part)
+        tets = fem.mesh.tets[:, in_part]
+        owner = _facet_owner(tets, facets)
+        corners = fem.points[:, tets[:, owner].T]  # (3, q, 4)
         J = (corners[:, :, 1:] - corners[:, :, :1]).transpose(1, 0, 2)  # (q, 3, 3): edges from vertex 0
         lam = np.linalg.solve(J, (x - corners[:, :, 0].T)[:, :, None])[:, :, 0]
-        return nodes, np.column_stack([1.0 - lam.sum(axis=1), lam]), x
+        return in_part[owner], np.column_stack([1.0 - lam.sum(axis=1), lam])
 
     def _supports(self) -> list[tuple[int, int]]:
         fem = self.fem
@@ -135,12 +139,14 @@ class Deformation:
         return held
 
     def _point(self, part: str, point, path: str) -> sp.csr_matrix:
+        """The row (1, size) of the displacement space's basis at a point of ``part``."""
         fem = self.fem
-        tets = fem.mesh.tets[:, fem.mesh.part_tets(part)]
+        in_part = fem.mesh.part_tets(part)
         try:
-            return point_matrix(fem.points, tets, [np.asarray(point, dtype=float)], fem.n_nodes)
+            best, bary = locate(fem.points, fem.mesh.tets[:, in_part], np.asarray(point, dtype=float))
         except ValueError as exc:
             raise ModelError(f"{path}: {exc} ({part})") from None
+        return self.space.rows(in_part[[best]], bary[None, :])
 
     @staticmethod
     def _along(row: sp.csr_matrix, direction) -> sp.csr_matrix:
@@ -148,7 +154,7 @@ class Deformation:
         return sp.kron(row, sp.csr_matrix(np.asarray(direction, dtype=float)[None, :]), format="csr")
 
     def readings(self) -> sp.csr_matrix:
-        """(1 + sections, 3N): D, then the screw's section-mean axial displacement less the reference's."""
+        """(1 + sections, 3 size): D, then the screw's section-mean axial displacement less the reference's."""
         fem, mech = self.fem, self.fem.system.mechanics
         sensor = mech.elongation
         d = self._along(self._point(sensor.target.part, sensor.target.point, "mechanics.elongation.target.point"),
@@ -158,7 +164,7 @@ class Deformation:
                                 sensor.direction)
         reference = mech.positioning.reference
         ref = self._point(reference.part, reference.point, "mechanics.positioning.reference.point")
-        bins = fem._screw_bins
+        bins = self.space.on_nodes(fem._screw_bins)
         ones = sp.csr_matrix(np.ones((bins.shape[0], 1)))
         axial = self._along(bins - ones @ ref, (1.0, 0.0, 0.0))
         return sp.vstack([d, axial]).tocsr()

@@ -1,8 +1,9 @@
 r"""Linear thermoelasticity on the thermal model's mesh: the displacement of a temperature field.
 
 Small strains, isotropic materials, quasi-static (inertia is nil on thermal time scales).
-With P1 vector elements :math:`\mathbf v` on the same tetrahedra and temperatures as the
-thermal model, the displacement :math:`\mathbf u` solves
+With vector elements :math:`\mathbf v` on the same tetrahedra and temperatures as the
+thermal model (linear, or quadratic where the description's ``mechanics.elements`` asks:
+:mod:`.elastic_space`), the displacement :math:`\mathbf u` solves
 
 .. math::
 
@@ -48,7 +49,8 @@ import scipy.sparse as sp
 from ...errors import ModelError
 from .. import pardiso
 from ..direct import factorize
-from .elastic_assembly import gradients, node_pairs, stiffness_matrix, thermal_load_matrix
+from .elastic_assembly import gradients, node_pairs, quadratic_matrices, stiffness_matrix, thermal_load_matrix
+from .elastic_space import DisplacementSpace
 
 __all__ = ["ElasticPart", "PointTie", "Tie", "ThermoElastic", "lame", "stress"]
 
@@ -120,8 +122,9 @@ class Tie:
     r"""A joint's mechanical tie: :math:`k_p \int (N_A - N_B)^T (N_A - N_B)\,dA` along the held axes.
 
     At each quadrature point of A's facets, ``a_nodes``/``a_values`` are A's nodes and basis
-    values there and ``b_nodes``/``b_values`` B's, both evaluated at the *same* point: B's
-    linear field in the tetrahedron under its facet, extended the chord's height to the point.
+    values there (of the tetrahedron the facet bounds) and ``b_nodes``/``b_values`` B's, both
+    evaluated at the *same* point: B's field in the tetrahedron under its facet, extended the
+    chord's height to the point.
     A field linear over both parts (a uniform expansion) then has no jump and the tie no
     force, whatever the two triangulations of a curved face (the patch test).
     """
@@ -144,7 +147,7 @@ class Tie:
 
 class PointTie:
     """Two parts held together at one point along the given axes: a spring of ``stiffness`` [N/m]
-    between the P1 displacements of the two parts at the point (``rows``: each part's (1, n) row)."""
+    between the displacements of the two parts at the point (``rows``: each part's (1, size) row of the space)."""
 
     def __init__(self, row_a: sp.spmatrix, row_b: sp.spmatrix, axes: list[int], stiffness: float, name: str = ""):
         self.jump = sp.csr_matrix(row_a - row_b)
@@ -159,32 +162,36 @@ class ThermoElastic:
 
     Parameters
     ----------
-    points : ndarray (3, N)
-        Vertices [m].
-    tets : ndarray (4, M)
-        Tetrahedra.
+    space : DisplacementSpace
+        The mesh and its displacement's nodes (linear or quadratic tetrahedra).
     constants : list of (E [Pa], ν [-], α [1/K]) per tetrahedron's part, as ``part_of_tet`` indexes
     part_of_tet : ndarray (M,)
     ties : list of Tie or PointTie
+        On the space's nodes.
     supports : list of (node, axis index)
-        Held components.
+        Held components of mesh nodes.
     """
 
-    def __init__(self, points: np.ndarray, tets: np.ndarray, constants: list[ElasticPart], part_of_tet: np.ndarray,
+    def __init__(self, space: DisplacementSpace, constants: list[ElasticPart], part_of_tet: np.ndarray,
                  ties: list[Tie], supports: list[tuple[int, int]]):
         started = time.perf_counter()
-        self.n_nodes = points.shape[1]
-        n = 3 * self.n_nodes
+        self.space = space
+        self.n_nodes = space.n_nodes
+        n = 3 * space.size
         lam_mu = np.array([lame(c.youngs_modulus, c.poisson_ratio) for c in constants])
         beta_part = np.array([c.youngs_modulus / (1.0 - 2.0 * c.poisson_ratio) * c.expansion for c in constants])
-        g, volume = gradients(points, tets)
-        pattern, pairs = node_pairs(tets, self.n_nodes)
-        K = stiffness_matrix(g, volume, lam_mu[part_of_tet, 0], lam_mu[part_of_tet, 1], pairs, pattern)
-        F = thermal_load_matrix(g, volume, beta_part[part_of_tet], pairs, pattern)
-        del g, pairs
+        lam, mu, beta = lam_mu[part_of_tet, 0], lam_mu[part_of_tet, 1], beta_part[part_of_tet]
+        if space.order == 1:
+            g, volume = gradients(space.points, space.tets)
+            pattern, pairs = node_pairs(space.tets, self.n_nodes)
+            K = stiffness_matrix(g, volume, lam, mu, pairs, pattern)
+            F = thermal_load_matrix(g, volume, beta, pairs, pattern)
+            del g, pairs
+        else:
+            K, F = quadratic_matrices(space.mesh, lam, mu, beta)
         tied = [None, None, None]  # per axis: the sum of the scalar tie matrices that hold it
         for tie in ties:
-            scalar_tie = tie.matrix(self.n_nodes)
+            scalar_tie = tie.matrix(space.size)
             for axis in tie.axes:
                 tied[axis] = scalar_tie if tied[axis] is None else tied[axis] + scalar_tie
         for axis, scalar_tie in enumerate(tied):
@@ -231,18 +238,19 @@ class ThermoElastic:
         return solution
 
     def displacement(self, temperature_rise: np.ndarray) -> np.ndarray:
-        """Nodal displacements (N, 3) [m] of nodal temperatures ``T − T_ref`` (N,) [K], or (k, N, 3) of (k, N)."""
+        """Displacements (N, 3) [m] of the mesh's nodes for nodal temperatures ``T − T_ref`` (N,) [K], or (k, N, 3) of (k, N)."""
         rise = np.atleast_2d(temperature_rise)
         rhs = np.asarray(self._F_free @ rise.T)
         free = self._solve(rhs if rhs.shape[1] > 1 else rhs[:, 0])
         out = np.zeros((3 * self.n_nodes, rise.shape[0]))
-        out[self.free] = free.reshape(self.free.size, -1)
+        mesh_nodes = self.free < out.shape[0]  # the mesh's nodes come first; a quadratic space's edges after
+        out[self.free[mesh_nodes]] = free.reshape(self.free.size, -1)[mesh_nodes]
         u = out.T.reshape(rise.shape[0], self.n_nodes, 3)
         return u if np.ndim(temperature_rise) == 2 else u[0]
 
     def reading_rows(self, readings: sp.spmatrix) -> np.ndarray:
-        """Rows ``R`` (q, N) with ``readings @ u = R @ (T − T_ref)`` for readings (q, 3N) of the
-        displacements (interleaved x, y, z per node): one solve per reading (the adjoint)."""
+        """Rows ``R`` (q, N) with ``readings @ u = R @ (T − T_ref)`` for readings (q, 3 size) of the
+        displacements (interleaved x, y, z per node of the space): one solve per reading (the adjoint)."""
         C = sp.csr_matrix(readings)[:, self.free].toarray().T  # (free, q)
         Y = self._solve(C if C.shape[1] > 1 else C[:, 0]).reshape(self.free.size, -1)
         return np.asarray((self._F_free.T @ Y).T)

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["barycentric", "point_matrix", "slab_matrix", "refined_centroids", "tet_volumes"]
+__all__ = ["barycentric", "locate", "point_matrix", "slab_matrix", "refined_centroids", "tet_volumes"]
 
 
 def tet_volumes(points: np.ndarray, tets: np.ndarray) -> np.ndarray:
@@ -38,16 +38,26 @@ def barycentric(points: np.ndarray, tets: np.ndarray, x: np.ndarray) -> np.ndarr
     return np.vstack([1.0 - lam.sum(axis=0), lam])
 
 
+def locate(points: np.ndarray, tets: np.ndarray, x: np.ndarray) -> tuple[int, np.ndarray]:
+    """The tetrahedron (index into ``tets`` (4, m)) that holds ``x`` (3,) [m] and its barycentric coordinates (4,).
+
+    A point just outside the faceted surface of a curved face takes the nearest
+    tetrahedron's coordinates clamped to it; a ValueError when it lies more than a quarter of
+    an element outside.
+    """
+    lam = barycentric(points, tets, np.asarray(x, dtype=float))
+    best = int(np.argmax(lam.min(axis=0)))
+    if lam[:, best].min() < -0.25:  # more than a quarter of an element outside
+        raise ValueError(f"the point {tuple(np.round(x, 6))} m lies outside the part's mesh")
+    w = np.clip(lam[:, best], 0.0, None)
+    return best, w / w.sum()
+
+
 def point_matrix(points: np.ndarray, tets: np.ndarray, xs: list[np.ndarray], n: int) -> sp.csr_matrix:
     """Rows of P1 basis values at points ``xs``, each located among ``tets`` (its part's)."""
     rows, cols, vals = [], [], []
     for i, x in enumerate(xs):
-        lam = barycentric(points, tets, np.asarray(x, dtype=float))
-        best = int(np.argmax(lam.min(axis=0)))
-        if lam[:, best].min() < -0.25:  # more than a quarter of an element outside
-            raise ValueError(f"the point {tuple(np.round(x, 6))} m lies outside the part's mesh")
-        w = np.clip(lam[:, best], 0.0, None)
-        w /= w.sum()
+        best, w = locate(points, tets, x)
         rows.extend([i] * 4)
         cols.extend(tets[:, best].tolist())
         vals.extend(w.tolist())
