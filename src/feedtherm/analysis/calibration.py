@@ -427,7 +427,12 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
                 break
         x = lower + u * span
         se, corr, identifiable, cov, s2, dof = _uncertainty(jac / span[None, :], result.fun, x, len(rows))
-        at_bound = ["lower" if ui <= 1e-6 else "upper" if ui >= 1 - 1e-6 else "" for ui in u]
+        # scipy's trust-region reflective fit keeps its iterates strictly inside the bounds, so a
+        # parameter the data push against one ends a little inside it: its active mask marks it
+        # (within XTOL of the scaled range, 0.1 %)
+        active = result.active_mask
+        at_bound = ["lower" if ui <= 1e-6 or a < 0 else "upper" if ui >= 1 - 1e-6 or a > 0 else ""
+                    for ui, a in zip(u, active)]
         held_out = [c for c in measured if c not in fit and c in loaded.system.conditions]
         every = _data(data, list(fit) + held_out, consistency, equilibrium)
         finals, intervals = _prediction_intervals(model, x, lower, upper, every, cov, s2, dof, loaded)

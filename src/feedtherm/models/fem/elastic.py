@@ -72,7 +72,9 @@ def stress(points: np.ndarray, tets: np.ndarray, displacement: np.ndarray, tempe
     with :math:`\varepsilon = \tfrac12(\nabla\mathbf u + \nabla\mathbf u^T)` constant in each
     tetrahedron (linear elements) and :math:`\Delta T` the rise at its centroid, the mean of its
     four nodes' (the one-point rule of the thermal load in :class:`ThermoElastic`), so that the
-    stresses are the ones the solve balances.
+    stresses are the ones the solve balances. Of a quadratic model's run (``mechanics.elements``)
+    the displacements are its mesh nodes', and the stress is that of their linear interpolant: a
+    mean over each element, not the quadratic field's varying stress.
 
     Parameters
     ----------
