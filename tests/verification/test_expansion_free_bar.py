@@ -75,3 +75,17 @@ def test_fe_free_expansion_with_the_ring_tied_across():
                                 "mechanics.supports": list(loaded.system.mechanics.supports[:3])})
     run = simulate(tied, condition="warm", model="fem", mesh="coarse")
     assert run.final["D"] == pytest.approx(D_EXACT, rel=1e-6)
+
+
+def test_quadratic_elements_expand_freely_with_the_ring_tied_across():
+    # the 10-node tetrahedra hold a linear field too, and their ties and drive read the quadratic
+    # field at the same points on both sides: still no jump, still exact
+    loaded = load_case("free_bar")
+    tied = with_values(loaded, {"mechanics.elements": "quadratic", "joints[0].release": ["x"],
+                                "mechanics.supports": list(loaded.system.mechanics.supports[:3])})
+    run = simulate(tied, condition="warm", model="fem", mesh="coarse")
+    assert run.info["mesh_statistics"]["elastic_elements"] == "quadratic"
+    assert run.final["D"] == pytest.approx(D_EXACT, rel=1e-6)
+    fields = run.fields
+    u = fields.displacements[-1]
+    assert rigid_residual(fields.points, u - ALPHA * DT * (fields.points - HELD)) < 1e-9 * D_EXACT
