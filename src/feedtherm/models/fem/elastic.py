@@ -177,7 +177,6 @@ class ThermoElastic:
     def __init__(self, space: DisplacementSpace, constants: list[ElasticPart], part_of_tet: np.ndarray,
                  ties: list[Tie], supports: list[tuple[int, int]]):
         started = time.perf_counter()
-        self.space = space
         self.n_nodes = space.n_nodes
         n = 3 * space.size
         lam_mu = np.array([lame(c.youngs_modulus, c.poisson_ratio) for c in constants])
