@@ -55,6 +55,22 @@ def cmd_heat(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_modes(args: argparse.Namespace) -> int:
+    from .analysis.thermal_modes import thermal_modes
+    from .outputs.modes_report import modes_json, print_modes
+
+    loaded = _load(args.system)
+    condition = _condition(loaded, args.condition)
+    if args.mode == "paper" and loaded.system.paper is None:
+        raise FeedthermError(f"--mode paper: {loaded.origin} has no [paper] table of printed values")
+    result = thermal_modes(loaded, condition, mode=args.mode, count=args.count)
+    if args.json:
+        print(modes_json(result))
+    else:
+        print_modes(result, loaded.system.meta.name)
+    return 0
+
+
 def cmd_check(args: argparse.Namespace) -> int:
     from .plan import plan_run
     from .system.checks import check_system
@@ -564,6 +580,15 @@ def build_parser() -> argparse.ArgumentParser:
     _mode_argument(heat)
     heat.add_argument("--json", action="store_true", help="print one JSON object")
     heat.set_defaults(func=cmd_heat)
+
+    modes = sub.add_parser("modes", help="the slowest thermal modes of a condition (fast model): time constants, "
+                                         "the parts that store their heat, and how each sensor sees them")
+    _system_argument(modes)
+    modes.add_argument("--condition", required=True, help="condition name, e.g. I")
+    _mode_argument(modes)
+    modes.add_argument("--count", type=_positive_int, default=6, help="how many modes (default 6)")
+    modes.add_argument("--json", action="store_true", help="print one JSON object")
+    modes.set_defaults(func=cmd_modes)
 
     check = sub.add_parser("check", help="validate a description and list its inconsistencies")
     _system_argument(check)

@@ -96,3 +96,18 @@ def test_unknown_condition_and_bad_mode_get_one_line():
     assert_one_line_error(run("heat", "--condition", "VI"), "--condition", "no condition 'VI'", "I, II, III, IV, V")
     assert_one_line_error(run("heat", "--condition", "I", "--mode", "exact"), "invalid choice")
     assert_one_line_error(run("heat"), "--condition")
+
+
+def test_modes_name_the_slow_mass_and_add_up():
+    data = json.loads(run("modes", "--condition", "I", "--count", "4", "--json").stdout)
+    taus = [m["time_constant_s"] for m in data["modes"]]
+    assert taus == sorted(taus, reverse=True)  # slowest first
+    for mode in data["modes"]:
+        assert sum(mode["part_shares"].values()) == pytest.approx(1.0)
+        assert mode["settling_95_s"] == pytest.approx(mode["time_constant_s"] * 2.9957, rel=1e-4)
+    assert set(data["modes"][0]["sensor_amplitude_K"]) == {"T1", "T2", "T3", "T4", "T5"}
+    assert data["capacity_J_per_K"]["base"] > data["capacity_J_per_K"]["screw"] > 0
+
+
+def test_modes_refuse_an_unknown_condition():
+    assert_one_line_error(run("modes", "--condition", "IX"), "--condition", "IX")
