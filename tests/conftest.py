@@ -15,7 +15,10 @@ PAPER_EQUATION_MODELS = {
     "nut_bearing": {"mean_diameter": "65 mm", "f0": 4.0, "lubricant_viscosity": "100 mm^2/s"},
     "screw_nut": {"preload": "500 N"},
 }
-_REPLACED = ("losses", "friction_model", "bore_diameter", "outer_diameter", "series", "bearings_in_set", "lubricant")
+# The paper's equations load the motors by a 500 N thread preload (1.75 N m at I, docs/paper-audit.md
+# §5), more than the declared servos' continuous torque: the variant's motors are the paper's unnamed ones.
+_REPLACED = ("losses", "friction_model", "bore_diameter", "outer_diameter", "series", "bearings_in_set", "lubricant",
+             "continuous_torque")
 
 
 def paper_with_equation_models() -> LoadedSystem:

@@ -13,6 +13,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from .boundary import MODES, BoundaryConditions, LocalTemperatures, boundary_conditions_at
+from .boundary.heat import motor_overloads
 from .boundary.operating import OperatingPoint
 from .constants import RPM_PER_RAD_S
 from .errors import FeedthermError
@@ -69,16 +70,35 @@ def plan_run(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
              mode: str = "physics", model: str = "fast", duration: float | None = None,
              single_drive: bool = False, sample_interval: float = 10.0, motion: str | None = None,
              mesh: str | None = None, solver: str | None = None, start: str = "initial",
-             options: ModelOptions | None = None) -> RunPlan:
-    """Check a run's arguments and build its segments (see :func:`feedtherm.simulate.simulate`)."""
+             options: ModelOptions | None = None, allow_overload: bool = False) -> RunPlan:
+    """Check a run's arguments and build its segments (see :func:`feedtherm.simulate.simulate`).
+
+    A motor whose shaft needs more than its declared ``continuous_torque`` at a segment is
+    refused (:func:`refuse_overloads`), unless ``allow_overload``: studies that vary the
+    preloads (calibration, uncertainty) run such points and report them instead.
+    """
     entry = _check_arguments(loaded, mode, model, duration, sample_interval, motion, mesh, solver, start)
     label, segments, end = _profile(loaded, condition, cycle, duration)
     opts = options or ModelOptions()
     opts = replace(opts, **{name: value for name, value in (("motion", motion), ("mesh", mesh), ("solver", solver))
                             if value is not None})
     planned = _segments(loaded, segments, end, mode, single_drive)
+    if not allow_overload:
+        refuse_overloads(planned, f"condition {condition}" if condition is not None else f"duty cycle {label}")
     _check_step_count(loaded, planned, opts)
     return RunPlan(loaded, label, mode, entry, opts, planned, single_drive, sample_interval, start)
+
+
+def refuse_overloads(segments: list[Segment], what: str) -> None:
+    """Raise if a motor needs more than its rated continuous torque in any segment of ``what`` (the
+    condition or duty cycle; physics mode: the paper mode's printed heats carry no torques)."""
+    for seg in segments:
+        if seg.bc.mode != "physics":
+            continue
+        overloads = motor_overloads(seg.bc.heats)
+        if overloads:
+            where = what if len(segments) == 1 else f"{what}, from {seg.t0:g} s"
+            raise FeedthermError(f"{where}: {overloads[0].describe()}")
 
 
 #: Most time steps a run may plan: a minute or so of the fast model, many hours of the FE model

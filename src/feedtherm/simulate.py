@@ -35,7 +35,7 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
              single_drive: bool = False, sample_interval: float = 10.0,
              progress: Callable[[float], None] | None = None, motion: str | None = None,
              mesh: str | None = None, start: str = "initial", options: ModelOptions | None = None,
-             solver: str | None = None) -> Solution:
+             solver: str | None = None, allow_overload: bool = False) -> Solution:
     """Simulate a condition or a duty cycle of ``loaded`` and return its Solution.
 
     Parameters
@@ -63,10 +63,13 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
         of the first operating point (to study the periodic steady state directly).
     solver : {"auto", "direct", "cg"}, optional
         Linear solver of the time steps (default: ``options.solver``, "auto").
+    allow_overload : bool
+        Run even where a motor needs more than its declared continuous torque (refused by default:
+        :func:`feedtherm.plan.refuse_overloads`); studies that vary the preloads report such points.
     """
     plan = plan_run(loaded, condition=condition, cycle=cycle, mode=mode, model=model, duration=duration,
                     single_drive=single_drive, sample_interval=sample_interval, motion=motion, mesh=mesh,
-                    solver=solver, start=start, options=options)
+                    solver=solver, start=start, options=options, allow_overload=allow_overload)
     return execute(plan, progress)
 
 

@@ -31,6 +31,7 @@ import numpy as np
 from scipy.optimize import least_squares, lsq_linear
 from scipy.stats import t as student_t
 
+from ..boundary import boundary_conditions
 from ..errors import FeedthermError
 from ..models.options import ModelOptions
 from ..simulate import simulate
@@ -118,6 +119,13 @@ class CalibrationResult:
     status: str = ""
     excluded: list[Prediction] = field(default_factory=list)  # flagged values left out of the fit
     extra: dict = field(default_factory=dict)
+    # condition -> motor -> torque over its declared continuous torque, at the fitted values (> 1:
+    # the motor could not run there, so the fitted preloads are implausible)
+    motor_duty: dict[str, dict[str, float]] = field(default_factory=dict)
+
+    def overloads(self) -> list[tuple[str, str, float]]:
+        """(condition, motor, torque ratio) where the fitted machine needs more than a motor's rating."""
+        return [(c, m, r) for c, motors in self.motor_duty.items() for m, r in motors.items() if r > 1.0]
 
 
 # ---------------------------------------------------------------------------- parameters
@@ -179,7 +187,7 @@ CALIBRATION_OPTIONS = ModelOptions(motion="averaged", averaged_step=CALIBRATION_
 def _final_values(loaded: LoadedSystem, condition: str, mode: str) -> dict[str, float]:
     """One condition's final values and its time to 95 % of the steady rise [min]."""
     run = simulate(loaded, condition=condition, mode=mode, motion="averaged", options=CALIBRATION_OPTIONS,
-                   sample_interval=CALIBRATION_STEP_S)
+                   sample_interval=CALIBRATION_STEP_S, allow_overload=True)  # the fit reports overloads
     values = {k: float(v) for k, v in run.summary_values("final").items()}
     initial = {name: float(series[0]) for name, series in run.sensors.items()}
     sensors = {n: v for n, v in run.cycle_sensors.items() if n in initial}
@@ -448,7 +456,22 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
             cost=float(result.cost), model_runs=model.runs, wall_time_s=time.perf_counter() - started,
             measurement_source=data.source, calibrated=calibrated, status=result.message,
             excluded=_predictions(finals, [r for r in fitted_rows if r.flag], intervals),
+            motor_duty=motor_duty(calibrated, mode),
         )
+
+
+def motor_duty(loaded: LoadedSystem, mode: str = "physics") -> dict[str, dict[str, float]]:
+    """Each condition's motors' torque over their declared continuous torque (those that declare one)."""
+    if mode != "physics":
+        return {}
+    out = {}
+    for condition in loaded.system.conditions:
+        heats = boundary_conditions(loaded.system, condition, mode).heats
+        ratios = {name: h.details["torque_to_continuous"] for name, h in heats.items()
+                  if "torque_to_continuous" in h.details}
+        if ratios:
+            out[condition] = ratios
+    return out
 
 
 #: Tolerances of the fit, on the parameters scaled to [0, 1] and on the relative cost reduction.

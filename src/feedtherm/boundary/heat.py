@@ -64,6 +64,32 @@ def named_failure(path: str):
         raise ModelError(f"{path}: cannot be evaluated here: {exc}") from None
 
 
+@dataclass(frozen=True)
+class MotorOverload:
+    """A motor whose shaft needs more than its rated continuous torque at an operating point."""
+
+    source: str
+    torque: float  # [N m], magnitude
+    continuous_torque: float  # [N m]
+
+    def describe(self) -> str:
+        return (f"sources.{self.source}: the shaft needs {self.torque:.3g} N·m, "
+                f"{100.0 * self.torque / self.continuous_torque:.0f} % of its continuous_torque "
+                f"{self.continuous_torque:.3g} N·m; the motor cannot run there, so the preloads and frictions "
+                "loading that shaft are implausible")
+
+
+def motor_overloads(heats: Mapping[str, SourceHeat]) -> list[MotorOverload]:
+    """The motors whose torque (from the mechanism: the sources on their shaft) exceeds their
+    declared ``continuous_torque``."""
+    out = []
+    for name, heat in heats.items():
+        ratio = heat.details.get("torque_to_continuous")
+        if ratio is not None and ratio > 1.0:
+            out.append(MotorOverload(name, abs(heat.details["torque_Nm"]), heat.details["continuous_torque_Nm"]))
+    return out
+
+
 def _sign(x: float) -> float:
     return math.copysign(1.0, x) if x != 0.0 else 0.0
 
@@ -270,6 +296,10 @@ def _motor(name, src: MotorSource, point, load_torque, temperature) -> SourceHea
     torque = load_torque + src.extra_torque * _sign(n)
     output = torque * n * 2.0 * math.pi / 60.0  # > 0 driving, < 0 braking (generating)
     details = {"torque_Nm": torque, "shaft_power_W": output}
+    if src.continuous_torque is not None:
+        details.update(continuous_torque_Nm=src.continuous_torque, torque_to_continuous=abs(torque) / src.continuous_torque)
+        if isinstance(src.losses, DatasheetMotorLosses):
+            details["continuous_current_A"] = src.continuous_torque / src.losses.torque_constant
     if src.shaft == "nut" and point.nut_motor_off:  # the brake holds the nut: no current
         return SourceHeat(name, 0.0, dict(src.into), n, {**details, "held_by_brake": True})
     if src.losses is not None:

@@ -134,6 +134,8 @@ def calibration_summary(result: CalibrationResult) -> dict:
         "held_out": [{"condition": r.condition, "quantity": r.quantity, "unit": r.unit, "predicted": r.predicted,
                       "measured": r.measured, "deviation": r.deviation, "interval95": r.interval, "flag": r.flag or None}
                      for r in result.held_out],
+        "motor_duty": {"torque_to_continuous": result.motor_duty,
+                       "overloads": [{"condition": c, "motor": m, "torque_to_continuous": r} for c, m, r in result.overloads()]},
         "cost": result.cost,
         "model_runs": result.model_runs,
         "wall_time_s": result.wall_time_s,
@@ -231,6 +233,9 @@ def print_calibration(result: CalibrationResult, out_dir: Path, cross=None, cons
         note = "; ".join(n for n in (why, f"at the {bound} bound: the data push past the declared range" if bound else "") if n)
         table.add_row(p.name, f"{x:.4g}", f"{se:.2g}", f"{original:.4g}", f"[{p.lower:g}, {p.upper:g}]", note)
     console.print(table)
+    for condition, motor, ratio in result.overloads():
+        console.print(f"implausible: at the fitted values {motor} needs {100 * ratio:.0f} % of its continuous torque "
+                      f"at condition {condition}; the motor could not run there")
     for title, rows in (("fit residuals", result.residuals), ("held-out predictions", result.held_out)):
         if rows:
             console.print(f"{title}: " + _largest(rows))

@@ -5,6 +5,7 @@ from __future__ import annotations
 import sys
 
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 from ..boundary import BoundaryConditions
@@ -35,6 +36,22 @@ def heat_json(bc: BoundaryConditions) -> str:
     })
 
 
+def _duty(ratio: float | None) -> str:
+    """A motor's torque as a share of its rated continuous torque; over 100 % in red."""
+    if ratio is None:
+        return "—"
+    text = f"{100.0 * ratio:.0f} %"
+    return f"[red]{text}[/]" if ratio > 1.0 else text
+
+
+def _current(details: dict) -> str:
+    """A motor's current [A r.m.s.] and, where declared, its continuous current."""
+    if "current_A" not in details:
+        return "—"
+    rated = details.get("continuous_current_A")
+    return f"{details['current_A']:.2f}" + ("" if rated is None else f" / {rated:.2f}")
+
+
 def _paper(value: float | None, fmt: str) -> str:
     return "—" if value is None else format(value, fmt)
 
@@ -50,24 +67,27 @@ def print_heat(bc: BoundaryConditions, system_name: str, console: Console | None
     )
     heats = Table(title="Heat per source", title_justify="left")
     heats.add_column("source")
-    heats.add_column("heat [W]", justify="right")
-    heats.add_column("paper [W]", justify="right")
-    heats.add_column("speed [rpm]", justify="right")
-    heats.add_column("torque [N·m]", justify="right")
+    heats.add_column(escape("heat [W]"), justify="right")
+    heats.add_column(escape("paper [W]"), justify="right")
+    heats.add_column(escape("speed [rpm]"), justify="right")
+    heats.add_column(escape("torque [N·m]"), justify="right")
+    heats.add_column("of continuous", justify="right")
+    heats.add_column(escape("current [A]"), justify="right")
     for name, h in bc.heats.items():
         torque = h.details.get("friction_torque_Nm", h.details.get("torque_Nm"))
         heats.add_row(
             name, f"{h.power:.3f}", _paper(bc.paper_heat.get(name), ".2f"), f"{h.speed_rpm:.0f}",
             "—" if torque is None else f"{torque:.4f}",
+            _duty(h.details.get("torque_to_continuous")), _current(h.details),
         )
-    heats.add_row("[bold]total[/]", f"[bold]{bc.total_heat:.3f}[/]", "", "", "")
+    heats.add_row("[bold]total[/]", f"[bold]{bc.total_heat:.3f}[/]", "", "", "", "", "")
     console.print(heats)
     surfaces = Table(title="Heat transfer per surface", title_justify="left")
     surfaces.add_column("surface")
-    surfaces.add_column("area [m²]", justify="right")
-    surfaces.add_column("CHTC [W/(m²·K)]", justify="right")
-    surfaces.add_column("paper [W/(m²·K)]", justify="right")
-    surfaces.add_column("radiation [W/(m²·K)]", justify="right")
+    surfaces.add_column(escape("area [m²]"), justify="right")
+    surfaces.add_column(escape("CHTC [W/(m²·K)]"), justify="right")
+    surfaces.add_column(escape("paper [W/(m²·K)]"), justify="right")
+    surfaces.add_column(escape("radiation [W/(m²·K)]"), justify="right")
     surfaces.add_column("correlation")
     for name, s in bc.surfaces.items():
         surfaces.add_row(

@@ -274,6 +274,10 @@ class MotorSource(_Source):
     efficiency: Annotated[float, Field(gt=0.0, le=1.0)] | None = None
     losses: MotorLosses | None = None
     extra_torque: NonNegTorque = 0.0  # drag not modelled by the other sources
+    # The data sheet's rated continuous (stall) torque M_0 [N m]: given, `check` and `run` refuse an
+    # operating point whose shaft needs more (the motor could not hold it, so the description's
+    # preloads and frictions are not a machine that can run there).
+    continuous_torque: PosTorque | None = None
 
     @model_validator(mode="after")
     def _one_loss_model(self) -> "MotorSource":
@@ -288,7 +292,7 @@ class MotorSource(_Source):
         # The loss model not chosen is left out, so a description written before `losses`
         # existed keeps its serialised form and its hash (the benches' frozen provenance).
         data = handler(self)
-        for key in ("efficiency", "losses"):
+        for key in ("efficiency", "losses", "continuous_torque"):
             if isinstance(data, dict) and data.get(key, 0) is None:
                 del data[key]
         return data
