@@ -83,6 +83,9 @@ def source_shares(system: FeedSystem) -> list[HeatInput]:
     out = []
     for name, source in system.sources.items():
         for part, share in source.into.items():
+            if source.through is not None:  # made in `through`, entering each part over its contact with it
+                out.append(HeatInput(name, part, share, source.through))
+                continue
             partner = next((p for p in source.into if p != part and frozenset((p, part)) in joined), None)
             out.append(HeatInput(name, part, share, partner))
     return out

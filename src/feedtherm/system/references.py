@@ -35,9 +35,19 @@ def check_references(system: "FeedSystem") -> None:
             _require("part", side, parts, f"joints[{i}].between")
         if a == b:
             raise ValueError(f"joints[{i}].between: a joint needs two different parts, got {a!r} twice")
+    joined = {frozenset(j.between) for j in system.joints}
     for name, source in sources.items():
         for target in source.into:
             _require("part", target, parts, f"sources.{name}.into")
+        if source.through is not None:
+            _require("part", source.through, parts, f"sources.{name}.through")
+            if source.through in source.into:
+                raise ValueError(f"sources.{name}.through: {source.through!r} is also in into; the part the heat "
+                                 "arises in only conducts it to the parts in into")
+            for target in source.into:
+                if frozenset((target, source.through)) not in joined:
+                    raise ValueError(f"sources.{name}.into: {target!r} is not joined to {source.through!r} (through), "
+                                     "so the heat cannot enter over their contact")
     for name, surface in surfaces.items():
         _require("part", surface.part, parts, f"surfaces.{name}.part")
     for name, sensor in system.sensors.items():

@@ -355,6 +355,8 @@ class FeedSystem(Strict):
             for name, source in data["sources"].items():
                 if isinstance(source, dict) and source.get("heat_factor") == 1.0 and self.sources[name].heat_factor == 1.0:
                     del source["heat_factor"]
+                if isinstance(source, dict) and "through" in source and source["through"] is None:
+                    del source["through"]  # likewise a source whose heat enters its own parts
         return data
 
     @field_validator("materials", "parts", "sources", "surfaces", "sensors", "conditions")

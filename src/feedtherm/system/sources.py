@@ -48,6 +48,11 @@ ShaftName = Literal["screw", "nut"]
 
 class _Source(Strict):
     into: dict[str, Fraction]  # part name -> share of the heat
+    # The part the heat arises in, when it is neither of the parts that receive it: each share then
+    # enters its part over that part's contact with ``through`` (a bearing's friction heat, made at
+    # the ball-raceway contacts, into the shaft through the inner ring and into the housing through
+    # the outer ring); ``through`` itself only conducts.  Every part in ``into`` must be joined to it.
+    through: str | None = None
     description: str = ""
     # Multiplies the heat the source's model gives (not the torques it puts on its shaft): set by
     # perturbation studies ("another machine of the same design", analysis/machine_variants.py).
