@@ -32,7 +32,7 @@ def synthetic_measurements(loaded, path, conditions, seed=7, options=None):
 
 def test_known_parameters_are_recovered_within_their_standard_errors(paper, tmp_path):
     names = ["screw_nut_preload", "chtc_moving"]
-    truth = {"screw_nut_preload": 300.0, "chtc_moving": 1.8}
+    truth = {"screw_nut_preload": 220.0, "chtc_moving": 1.8}  # a machine its motors can run (under 240 N)
     params = resolve_parameters(paper, names)
     from feedtherm.analysis.calibration import apply
 
@@ -105,7 +105,7 @@ def test_held_out_predictions_fall_in_their_intervals_and_flagged_values_are_not
     from feedtherm.analysis.measurements import Measurement, MeasurementSet
 
     names = ["screw_nut_preload"]
-    truth = apply_values(paper, names, [300.0])
+    truth = apply_values(paper, names, [220.0])  # a machine its motors can run (under 240 N)
     data = synthetic_measurements(truth, tmp_path / "m.csv", ["I", "II", "IV"])
     own = _Model(truth, [], "physics").finals([], ["I", "II"])
     spoiled = [Measurement(r.condition, r.quantity, r.unit, r.measured + (30.0 if (r.condition, r.quantity) == ("IV", "D_um") else 0.0))
@@ -116,7 +116,7 @@ def test_held_out_predictions_fall_in_their_intervals_and_flagged_values_are_not
     result = calibrate(paper, data, ["I", "IV"], names, consistency=flags)
     assert [(r.condition, r.quantity, r.flag) for r in result.excluded] == [("IV", "D_um", "spoiled on purpose")]
     assert abs(result.excluded[0].deviation + 30.0) < 2.0  # the fit did not bend towards the spoiled value
-    assert abs(result.fitted[0] - 300.0) < 3 * result.standard_errors[0]
+    assert abs(result.fitted[0] - 220.0) < 3 * result.standard_errors[0]
     fitted_eq = [r for r in result.residuals if r.quantity == EQUILIBRIUM_QUANTITY]
     assert [r.condition for r in fitted_eq] == ["I"] and abs(fitted_eq[0].deviation) < 1.0  # minutes
     held = result.held_out
