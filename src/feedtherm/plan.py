@@ -83,9 +83,9 @@ def plan_run(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
     opts = replace(opts, **{name: value for name, value in (("motion", motion), ("mesh", mesh), ("solver", solver))
                             if value is not None})
     planned = _segments(loaded, segments, end, mode, single_drive)
+    _check_step_count(loaded, planned, opts)
     if not allow_overload:
         refuse_overloads(planned, f"condition {condition}" if condition is not None else f"duty cycle {label}")
-    _check_step_count(loaded, planned, opts)
     return RunPlan(loaded, label, mode, entry, opts, planned, single_drive, sample_interval, start)
 
 
