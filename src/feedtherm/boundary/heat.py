@@ -232,6 +232,8 @@ def _bearing(name, src: BearingSource, point, shaft_torque, temperature) -> Sour
     nu = src.viscosity_at(temperature)
     if src.friction_model == "skf":
         return _bearing_skf(name, src, n, nu, shaft_torque)
+    if src.friction_model == "constant":
+        return _bearing_constant(name, src, n, shaft_torque)
     p0 = src.equivalent_static_load or max(src.axial_load, src.radial_load)
     if src.bearing_type == "angular_contact":
         f1 = bearings.f1_angular_contact_Palmgren(p0, src.static_load_rating)
@@ -245,6 +247,17 @@ def _bearing(name, src: BearingSource, point, shaft_torque, temperature) -> Sour
     return SourceHeat(name, bearings.heat_bearing(torque.total, n), dict(src.into), n, {
         "lubricant_viscosity_m2_per_s": nu, "f1": f1, "P1_N": p1, "load_torque_Nm": torque.load,
         "viscous_torque_Nm": torque.viscous, "friction_torque_Nm": torque.total,
+    })
+
+
+def _bearing_constant(name, src: BearingSource, n, shaft_torque) -> SourceHeat:
+    """Constant coefficient of friction: each of the set's bearings at P = F_a + F_r/k, the set's torque their sum."""
+    k = src.bearings_in_set
+    load = src.axial_load + src.radial_load / k
+    total = k * bearings.torque_bearing_constant_friction(src.friction_coefficient, load, src.bore_diameter)
+    shaft_torque[src.shaft] += total * _sign(n)
+    return SourceHeat(name, bearings.heat_bearing(total, n), dict(src.into), n, {
+        "bearings_in_set": k, "equivalent_load_N": load, "friction_torque_Nm": total,
     })
 
 

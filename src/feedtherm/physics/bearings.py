@@ -386,6 +386,60 @@ def heat_bearing(torque, n_rpm):
     return heat_friction(torque, n_rpm)
 
 
+def torque_bearing_constant_friction(mu, P, d):
+    r"""Friction torque of a rolling bearing from a constant coefficient of friction (catalogue estimate).
+
+    .. math:: M = \tfrac{1}{2}\,\mu\,P\,d
+
+    A torque that does not depend on the speed or the lubricant's viscosity: the preload drag
+    of a grease-packed bearing after run-in, as the catalogues state it for support bearings.
+
+    Parameters
+    ----------
+    mu : float or array_like
+        Constant coefficient of friction of the bearing type, [-] (SKF's table: deep groove
+        ball 0.0010, angular contact ball single row 0.0020, double row and four-point 0.0024,
+        thrust ball 0.0013).
+    P : float or array_like
+        Equivalent dynamic bearing load, [N].
+    d : float or array_like
+        Bore diameter, [m].
+
+    Returns
+    -------
+    float or ndarray
+        Friction torque, [N·m].
+
+    Notes
+    -----
+    Valid, the catalogue says, at a load of about P ≈ 0.1 C, good lubrication and normal
+    operating conditions; outside them the full model (:mod:`feedtherm.physics.bearings_skf`) is
+    the one to use.
+
+    References
+    ----------
+    .. [1] SKF, *Rolling bearings* (catalogue PUB BU/P1 17000, 2018), "Friction": estimating the
+       frictional moment with a constant coefficient of friction, M = 0.5 μ P d, and its table of
+       μ for open bearings; the same form in Koyo's technical catalogue ("Friction").
+
+    Examples
+    --------
+    A 25 mm bore support bearing at a 3150 N preload, μ = 0.0020:
+    0.5 · 0.0020 · 3150 N · 0.025 m = 0.07875 N·m.
+
+    >>> round(torque_bearing_constant_friction(0.0020, 3150.0, 0.025), 5)
+    0.07875
+    """
+    mu = _check(mu, "mu", "[-]", strict=True)
+    P = _check(P, "P", "[N]")
+    d = _check(d, "d", "[m]", strict=True)
+    if np.any(mu >= 0.1):
+        raise ValueError(f"mu = {np.max(mu):.4g} is not a rolling bearing's coefficient of friction (0.001-0.005)")
+    if np.any(d > _DM_MAX):
+        raise ValueError(f"d = {np.max(d):.4g} m is not a rolling-bearing bore; pass metres (25 mm = 0.025 m)")
+    return _out(0.5 * mu * P * d)
+
+
 # --------------------------------------------------------------------------- helpers
 
 

@@ -104,9 +104,12 @@ class BearingSource(_Source):
     """A rolling bearing (or a set of identical bearings) on a shaft.
 
     ``friction_model`` chooses the torque: ``"palmgren"`` (load and viscous torque, the paper's
-    Eqs. 15–22 corrected; needs ``mean_diameter`` and ``f0``) or ``"skf"`` (rolling with the
+    Eqs. 15–22 corrected; needs ``mean_diameter`` and ``f0``), ``"skf"`` (rolling with the
     inlet-shear and replenishment reductions, sliding, seals, drag; physics/bearings_skf.py;
-    needs ``bore_diameter``, ``outer_diameter`` and ``series``).  Under ``"skf"`` each of the
+    needs ``bore_diameter``, ``outer_diameter`` and ``series``) or ``"constant"`` (the catalogue's
+    constant coefficient of friction, M = ½ μ P d per bearing with P = F_a + F_r/k, independent of
+    the speed and of the lubricant: the preload drag of a grease-packed support pair after run-in;
+    needs ``bore_diameter`` and ``friction_coefficient``, takes no lubricant).  Under ``"skf"`` each of the
     ``bearings_in_set`` identical bearings carries ``radial_load / bearings_in_set`` and
     ``axial_load``, and has ``static_load_rating / bearings_in_set`` (the catalogue: compute
     each bearing of a set and add them).
@@ -119,7 +122,7 @@ class BearingSource(_Source):
     model: Literal["bearing"]
     shaft: ShaftName  # which shaft's speed the bearing runs at
     bearing_type: Literal["angular_contact", "deep_groove"]
-    friction_model: Literal["palmgren", "skf"] = "palmgren"
+    friction_model: Literal["palmgren", "skf", "constant"] = "palmgren"
     mean_diameter: PosLength | None = None  # default (bore_diameter + outer_diameter)/2
     static_load_rating: PosForce
     axial_load: NonNegForce
@@ -140,9 +143,16 @@ class BearingSource(_Source):
     seal_counterface_diameter: PosLength | None = None  # d_s: d1 or d2 of the product table, as Table 4 names
     seals_per_bearing: Literal[1, 2] = 2
     drag_torque: NonNegTorque = 0.0  # M_drag per bearing of an oil bath or oil jet (SKF Diagram 2)
+    # Constant-friction model: mu of the bearing type (the catalogue's table); each bearing of the
+    # set carries P = axial_load + radial_load / bearings_in_set and M = 0.5 mu P d
+    friction_coefficient: PosDimensionless | None = None
 
     @model_validator(mode="after")
     def _one_lubricant(self) -> "BearingSource":
+        if self.friction_model == "constant":  # the catalogue's coefficient holds for its lubrication
+            if self.lubricant_viscosity is not None or self.lubricant is not None:
+                raise ValueError("lubricant, lubricant_viscosity: not used by friction_model = 'constant'")
+            return self
         if (self.lubricant_viscosity is None) == (self.lubricant is None):
             raise ValueError(
                 "lubricant_viscosity or lubricant: give one (lubricant_viscosity = \"100 mm^2/s\", "
@@ -152,7 +162,21 @@ class BearingSource(_Source):
 
     @model_validator(mode="after")
     def _fields_of_the_friction_model(self) -> "BearingSource":
-        if self.friction_model == "palmgren":
+        if self.friction_model != "constant" and self.friction_coefficient is not None:
+            raise ValueError("friction_coefficient: used only by friction_model = 'constant'")
+        if self.friction_model == "constant":
+            missing = [key for key in ("bore_diameter", "friction_coefficient") if getattr(self, key) is None]
+            if missing:
+                raise ValueError(f"{', '.join(missing)}: needed by friction_model = 'constant'")
+            unused = [key for key in _SKF_ONLY_FIELDS if key not in ("bore_diameter", "outer_diameter", "bearings_in_set")
+                      and getattr(self, key) != type(self).model_fields[key].default]
+            unused += [key for key in ("f0", "f1_exponent_factor", "equivalent_static_load") if getattr(self, key) is not None]
+            if unused:
+                raise ValueError(f"{', '.join(unused)}: not used by friction_model = 'constant'")
+            if not 0.0 < self.friction_coefficient < 0.1:
+                raise ValueError(f"friction_coefficient: {self.friction_coefficient:g} is not a rolling bearing's "
+                                 "constant coefficient of friction (catalogues give 0.001-0.005)")
+        elif self.friction_model == "palmgren":
             missing = ["f0"] if self.f0 is None else []
             if self.mean_diameter is None and None in (self.bore_diameter, self.outer_diameter):
                 missing.append("mean_diameter")
@@ -200,7 +224,8 @@ class BearingSource(_Source):
         # keeps its serialised form and its hash (the benches' frozen provenance).
         data = handler(self)
         if isinstance(data, dict):
-            for key in ("lubricant_viscosity", "lubricant", "friction_model", "mean_diameter", "f0", *_SKF_ONLY_FIELDS):
+            for key in ("lubricant_viscosity", "lubricant", "friction_model", "mean_diameter", "f0", "friction_coefficient",
+                        *_SKF_ONLY_FIELDS):
                 if key in data and getattr(self, key) == type(self).model_fields[key].default:
                     del data[key]
         return data

@@ -347,3 +347,28 @@ def test_f0_typical_values():
     assert 0.7 <= F0_TYPICAL["deep_groove"]["grease"] <= 2.0
     for lub, value in F0_TYPICAL["angular_contact_single"].items():
         assert F0_TYPICAL["angular_contact_pair"][lub] == pytest.approx(2 * value)
+
+
+# --------------------------------------------------------------------------- constant coefficient of friction
+
+
+def test_constant_friction_torque_by_hand():
+    from feedtherm.physics.bearings import torque_bearing_constant_friction
+
+    # SKF catalogue estimate M = 0.5 mu P d: a 25 mm bore angular contact bearing (mu = 0.0020,
+    # the table's single-row value) at P = 3175 N: 0.5 * 0.0020 * 3175 * 0.025 = 0.079375 N m.
+    assert torque_bearing_constant_friction(0.0020, 3175.0, 0.025) == pytest.approx(0.079375, rel=1e-12)
+    # a 6205 (d = 25 mm, deep groove mu = 0.0010) at 1000 N: 0.5 * 0.001 * 1000 * 0.025 = 0.0125 N m
+    assert torque_bearing_constant_friction(0.0010, 1000.0, 0.025) == pytest.approx(0.0125, rel=1e-12)
+    # proportional to the load, independent of nothing else
+    loads = np.array([0.0, 1000.0, 2000.0])
+    assert np.allclose(torque_bearing_constant_friction(0.002, loads, 0.025), [0.0, 0.025, 0.05])
+
+
+@pytest.mark.parametrize("args, match", [((0.0, 1000.0, 0.025), "mu"), ((0.002, -1.0, 0.025), "P"),
+                                          ((0.002, 1000.0, 25.0), "bore"), ((0.5, 1000.0, 0.025), "coefficient")])
+def test_constant_friction_refuses_what_is_not_a_bearing(args, match):
+    from feedtherm.physics.bearings import torque_bearing_constant_friction
+
+    with pytest.raises(ValueError, match=match):
+        torque_bearing_constant_friction(*args)
