@@ -30,6 +30,8 @@ def paper_with_equation_models() -> LoadedSystem:
         source = data["sources"][name]
         for key in _REPLACED:
             source.pop(key, None)
+        if source["model"] == "bearing":
+            source.pop("friction_coefficient", None)  # a constant-friction bearing's; the thread keeps its own
         source.update(values)
     data["temperatures"]["coupling"] = "frozen"
     data["calibration"]["parameters"].pop("motor_copper")

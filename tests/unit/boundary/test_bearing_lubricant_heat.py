@@ -14,8 +14,8 @@ from feedtherm.system.sources import Lubricant
 from feedtherm.system.variants import with_values
 
 
-def front_bearing_with(loaded, **lubricant):
-    return with_values(loaded, {f"sources.front_bearing.{key}": value for key, value in lubricant.items()}).system
+def rear_bearing_with(loaded, **lubricant):
+    return with_values(loaded, {f"sources.rear_bearing.{key}": value for key, value in lubricant.items()}).system
 
 
 def test_grade_viscosity_is_walther_at_ambient_plus_convection_delta_t(paper):
@@ -27,23 +27,23 @@ def test_grade_viscosity_is_walther_at_ambient_plus_convection_delta_t(paper):
     # log 303.15 = 2.4816576, A − B·2.4816576 = 9.252591 − 8.900353 = 0.352238,
     # 10^0.352238 = 2.250287, 10^2.250287 = 177.9454, nu = 177.9454 − 0.7 = 177.2454 mm²/s.
     grade = Lubricant(grade="ISO VG 100", viscosity_100C="11 mm^2/s")
-    system = front_bearing_with(paper, lubricant_viscosity=None, lubricant=grade)
+    system = rear_bearing_with(paper, lubricant_viscosity=None, lubricant=grade)
     point = operating_point(system, system.conditions["I"])
-    heat = source_heats(system, point)["front_bearing"]
+    heat = source_heats(system, point)["rear_bearing"]
     assert heat.details["lubricant_viscosity_m2_per_s"] == pytest.approx(177.2454e-6, rel=1e-6)
 
     # The same bearing with that viscosity declared as a fixed value makes the same heat.
-    fixed = front_bearing_with(paper, lubricant_viscosity=177.2454e-6)
-    same = source_heats(fixed, point)["front_bearing"]
+    fixed = rear_bearing_with(paper, lubricant_viscosity=177.2454e-6)
+    same = source_heats(fixed, point)["rear_bearing"]
     assert heat.power == pytest.approx(same.power, rel=1e-5)
 
 
 def test_grade_viscosity_follows_the_ambient(paper):
     # Condition V is at 25 degC: 308.15 K; the oil is thinner there than at condition I (303.15 K).
     grade = Lubricant(grade="ISO VG 100", viscosity_100C="11 mm^2/s")
-    system = front_bearing_with(paper, lubricant_viscosity=None, lubricant=grade)
+    system = rear_bearing_with(paper, lubricant_viscosity=None, lubricant=grade)
     nu = {
-        c: source_heats(system, operating_point(system, system.conditions[c]))["front_bearing"].details["lubricant_viscosity_m2_per_s"]
+        c: source_heats(system, operating_point(system, system.conditions[c]))["rear_bearing"].details["lubricant_viscosity_m2_per_s"]
         for c in ("I", "V")
     }
     assert nu["V"] < nu["I"]

@@ -89,7 +89,10 @@ def test_default_model_is_palmgren_with_its_detail_keys(paper_equations):
 
 
 def test_the_paper_bench_takes_its_bearings_by_the_skf_model(paper):
-    for name in ("front_bearing", "rear_bearing", "nut_bearing"):
+    for name in ("rear_bearing", "nut_bearing"):
         heat = heats(paper.system, "II")[name]
         assert paper.system.sources[name].friction_model == "skf"
         assert {"rolling_torque_Nm", "sliding_torque_Nm", "phi_ish", "phi_rs"} <= set(heat.details)
+    # the front support pair by its catalogue preload drag (issue 32)
+    assert paper.system.sources["front_bearing"].friction_model == "constant"
+    assert {"equivalent_load_N", "friction_torque_Nm"} <= set(heats(paper.system, "II")["front_bearing"].details)

@@ -9,14 +9,14 @@ from feedtherm.errors import DescriptionError
 from feedtherm.system.load import load_system
 
 PAPER = bench("paper").description.read_text(encoding="utf-8")
-DECLARED = 'lubricant = { grade = "ISO VG 100", viscosity_100C = "11 mm^2/s" }\ninto = { front_bearing = 1.0 }'
+DECLARED = 'lubricant = { grade = "ISO VG 100", viscosity_100C = "11 mm^2/s" }\ninto = { rear_bearing = 1.0 }'
 
 
 def write_variant(tmp_path, lubricant_lines: str) -> str:
-    """The paper bench with the front bearing's declared lubricant replaced by ``lubricant_lines``."""
-    assert PAPER.count(DECLARED) == 1, "test fixture out of date: the paper bench's front bearing changed"
+    """The paper bench with the rear bearing's declared lubricant replaced by ``lubricant_lines``."""
+    assert PAPER.count(DECLARED) == 1, "test fixture out of date: the paper bench's rear bearing changed"
     path = tmp_path / "lubricant_variant.toml"
-    path.write_text(PAPER.replace(DECLARED, f"{lubricant_lines}\ninto = {{ front_bearing = 1.0 }}", 1), encoding="utf-8")
+    path.write_text(PAPER.replace(DECLARED, f"{lubricant_lines}\ninto = {{ rear_bearing = 1.0 }}", 1), encoding="utf-8")
     return str(path)
 
 
@@ -30,7 +30,7 @@ def load_error(tmp_path, lubricant_lines: str) -> str:
 
 def test_grade_with_viscosity_100c_loads_with_units(tmp_path):
     # Hand-made example, not from a data sheet: a VG 100 oil stated as 11 mm²/s at 100 °C.
-    source = load_system(write_variant(tmp_path, 'lubricant = { grade = "VG 100", viscosity_100C = "11 cSt" }')).system.sources["front_bearing"]
+    source = load_system(write_variant(tmp_path, 'lubricant = { grade = "VG 100", viscosity_100C = "11 cSt" }')).system.sources["rear_bearing"]
     assert source.lubricant_viscosity is None
     assert source.lubricant.viscosity_100C == pytest.approx(11e-6, rel=1e-12)
     # ISO 3448 midpoint of VG 100 at 40 °C, the stated value at 100 °C, and Walther between:
@@ -42,7 +42,7 @@ def test_grade_with_viscosity_100c_loads_with_units(tmp_path):
 
 def test_a_fixed_viscosity_does_not_depend_on_temperature(tmp_path):
     # The bench's bearings declare an ISO VG grade; a variant declares the fixed viscosity.
-    source = load_system(write_variant(tmp_path, 'lubricant_viscosity = "100 mm^2/s"')).system.sources["front_bearing"]
+    source = load_system(write_variant(tmp_path, 'lubricant_viscosity = "100 mm^2/s"')).system.sources["rear_bearing"]
     assert source.lubricant is None
     assert source.viscosity_at(250.0) == source.viscosity_at(400.0) == pytest.approx(100e-6, rel=1e-12)
 
@@ -50,14 +50,14 @@ def test_a_fixed_viscosity_does_not_depend_on_temperature(tmp_path):
 @pytest.mark.parametrize(
     ("lines", "field", "reason"),
     [
-        ('lubricant = { grade = "ISO VG 90", viscosity_100C = "11 mm^2/s" }', "sources.front_bearing.lubricant.grade", "not an ISO 3448 grade"),
-        ('lubricant = { grade = "ISO VG 100" }', "sources.front_bearing.lubricant.viscosity_100C", "missing (required)"),
-        ('lubricant = { grade = "ISO VG 100", viscosity_100C = "-11 mm^2/s" }', "sources.front_bearing.lubricant.viscosity_100C", "must be positive"),
-        ('lubricant = { grade = "ISO VG 100", viscosity_100C = "120 mm^2/s" }', "sources.front_bearing.lubricant", "smaller"),
-        ('lubricant = { grade = "ISO VG 100", viscosity_100C = "11 mm^2/s", colour = "red" }', "sources.front_bearing.lubricant", "colour"),
+        ('lubricant = { grade = "ISO VG 90", viscosity_100C = "11 mm^2/s" }', "sources.rear_bearing.lubricant.grade", "not an ISO 3448 grade"),
+        ('lubricant = { grade = "ISO VG 100" }', "sources.rear_bearing.lubricant.viscosity_100C", "missing (required)"),
+        ('lubricant = { grade = "ISO VG 100", viscosity_100C = "-11 mm^2/s" }', "sources.rear_bearing.lubricant.viscosity_100C", "must be positive"),
+        ('lubricant = { grade = "ISO VG 100", viscosity_100C = "120 mm^2/s" }', "sources.rear_bearing.lubricant", "smaller"),
+        ('lubricant = { grade = "ISO VG 100", viscosity_100C = "11 mm^2/s", colour = "red" }', "sources.rear_bearing.lubricant", "colour"),
         ('lubricant_viscosity = "100 mm^2/s"\nlubricant = { grade = "ISO VG 100", viscosity_100C = "11 mm^2/s" }',
-         "sources.front_bearing", "give one"),
-        ("", "sources.front_bearing", "lubricant_viscosity or lubricant"),
+         "sources.rear_bearing", "give one"),
+        ("", "sources.rear_bearing", "lubricant_viscosity or lubricant"),
     ],
 )
 def test_bad_lubricant_is_named(tmp_path, lines, field, reason):
