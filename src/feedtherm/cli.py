@@ -268,6 +268,13 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     if rows:
         print(summary_line(out_dir, len(rows), time.perf_counter() - started,
                            resumed=len(known) if args.resume else None))
+        overloaded = [row for row in rows if (row.get("motor_duty") or 0.0) > 1.0]
+        if overloaded:
+            worst = max(overloaded, key=lambda row: row["motor_duty"])
+            print(f"warning: {len(overloaded)} of {len(rows)} points need more than a motor's continuous torque "
+                  f"(motor_duty > 1 in sweep.csv; the most, {100 * worst['motor_duty']:.0f} %, at screw "
+                  f"{worst['screw_rpm']:g} rpm, nut {worst['nut_rpm']:g} rpm): computed as declared, but no machine "
+                  "with these motors runs there")
     for failure in failures:
         print(f"feedtherm: error: {failure}", file=sys.stderr)
     # 1, not 2: the input was valid and the points that ran are written (2 means nothing was).

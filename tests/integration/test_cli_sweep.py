@@ -13,7 +13,7 @@ from feedtherm.outputs import sweep_files
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 LEAD_M = 0.010  # the paper bench's Tr32x10 screw
 HEADER = ("screw_rpm,nut_rpm,ambient_C,table_speed_m_per_min,final_T1,final_T2,final_T3,final_T4,final_T5,final_D_um,"
-          "steady_T1,steady_T2,steady_T3,steady_T4,steady_T5,steady_D_um,equilibrium_time_s,energy_balance_error")
+          "steady_T1,steady_T2,steady_T3,steady_T4,steady_T5,steady_D_um,equilibrium_time_s,energy_balance_error,motor_duty")
 
 
 def run(cwd, *args):
@@ -78,6 +78,25 @@ def test_the_csv_has_one_row_per_point_in_grid_order(sweep):
             ambient = float(row["ambient_C"])
             assert ambient < float(row[f"final_{name}"]) < float(row[f"steady_{name}"])
     assert [float(r["table_speed_m_per_min"]) for r in rows] == pytest.approx([0.36, 0.36, 7.56, 7.56])
+    # the screw motor's torque over its 1.17 N m rating: at condition I's speeds what `feedtherm heat` gives
+    from feedtherm.boundary import boundary_conditions
+    from feedtherm.system.load import load_system
+
+    torque = boundary_conditions(load_system("paper").system, "I").heats["screw_motor"].details["torque_Nm"]
+    assert float(rows[0]["motor_duty"]) == pytest.approx(abs(torque) / 1.17, abs=1e-3)
+    assert all(0.5 < float(r["motor_duty"]) < 1.0 for r in rows)
+
+
+def test_points_the_motors_cannot_run_are_computed_and_named(tmp_path):
+    """Single drive at 11 m/min: the thread's grease drag takes the screw motor past its rating."""
+    result = run(tmp_path, "--screw-rpm", "1116", "--nut-rpm", "0,1080", "--ambient", "20", "--duration", "600",
+                 "--motion", "averaged", "--out", "out")
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert len(lines) == 2 and lines[1].startswith("warning: 1 of 2 points need more than a motor's continuous torque")
+    assert "at screw 1116 rpm, nut 0 rpm" in lines[1]
+    rows = read_rows(tmp_path / "out" / "sweep.csv")
+    assert float(rows[0]["motor_duty"]) > 1.0 > float(rows[1]["motor_duty"])
 
 
 def test_d_grows_with_the_speed_and_the_laser_follows_the_ambient(sweep):
@@ -184,6 +203,7 @@ def made_up_rows(screws, nuts, ambients):
                     row[f"{which}_D_um"] = 11.5 * (a - 20) + scale * abs(s - n) / 5
                 row["equilibrium_time_s"] = 3600.0 if s < 500 else None
                 row["energy_balance_error"] = 1.5e-12
+                row["motor_duty"] = 0.6 + abs(s - n) / 1000 if s < 500 else None
                 rows.append(row)
     return rows
 
@@ -197,9 +217,9 @@ def test_csv_cells_of_made_up_rows(tmp_path):
     assert [p.name for p in written] == ["sweep.csv", "sweep_screw_rpm.png"]  # one varied variable: no heat map
     lines = (tmp_path / "out" / "sweep.csv").read_text().splitlines()
     assert lines[0] == ("screw_rpm,nut_rpm,ambient_C,table_speed_m_per_min,final_T1,final_T2,final_D_um,"
-                        "steady_T1,steady_T2,steady_D_um,equilibrium_time_s,energy_balance_error")
-    assert lines[1] == "396,360,20,0.36,20.2160,20.4320,4.3200,20.3600,20.7200,7.2000,3600,1.500e-12"
-    assert lines[2].endswith(",,1.500e-12")  # no equilibrium: an empty cell
+                        "steady_T1,steady_T2,steady_D_um,equilibrium_time_s,energy_balance_error,motor_duty")
+    assert lines[1] == "396,360,20,0.36,20.2160,20.4320,4.3200,20.3600,20.7200,7.2000,3600,1.500e-12,0.636"
+    assert lines[2].endswith(",,1.500e-12,")  # no equilibrium, no motor rating: empty cells
 
 
 def test_a_single_point_writes_only_the_csv(tmp_path):

@@ -124,7 +124,7 @@ def test_the_columns_follow_the_sensors_in_order():
     assert columns(["T1", "T2"]) == [
         "screw_rpm", "nut_rpm", "ambient_C", "table_speed_m_per_min",
         "final_T1", "final_T2", "final_D_um", "steady_T1", "steady_T2", "steady_D_um",
-        "equilibrium_time_s", "energy_balance_error"]
+        "equilibrium_time_s", "energy_balance_error", "motor_duty"]
 
 
 def test_grid_axes_in_column_order():

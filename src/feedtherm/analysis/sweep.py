@@ -23,6 +23,7 @@ from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation
 
+from ..boundary import boundary_conditions
 from ..errors import FeedthermError
 from ..constants import AMBIENT_SENSOR, KELVIN_OFFSET
 from ..system.load import LoadedSystem
@@ -190,7 +191,7 @@ def columns(sensors: list[str]) -> list[str]:
     return [*OPTIONS, "table_speed_m_per_min",
             *(f"final_{name}" for name in sensors), "final_D_um",
             *(f"steady_{name}" for name in sensors), "steady_D_um",
-            "equilibrium_time_s", "energy_balance_error"]
+            "equilibrium_time_s", "energy_balance_error", "motor_duty"]
 
 
 def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", duration: float | None = None,
@@ -225,8 +226,10 @@ def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", d
     list of dict
         Keyed by :func:`columns`, in the order of :meth:`SweepGrid.points`: speeds [rpm],
         ambient [°C], table speed [m/min] (signed, ``(n_screw − n_nut) · lead``), final and
-        steady temperatures [°C] and D [µm], equilibrium time [s] (None if not reached) and
-        the relative energy-balance error.
+        steady temperatures [°C] and D [µm], equilibrium time [s] (None if not reached), the
+        relative energy-balance error and the motor duty: the largest torque over continuous
+        torque of the motors that declare one (None if none does; above 1 the point is a machine
+        its motors cannot run, computed as declared all the same).
 
     Raises
     ------
@@ -240,6 +243,7 @@ def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", d
     known = dict(known or {})
     # Every condition is built (and so validated) before the first run.
     variants = [with_condition(loaded, CONDITION_NAME, screw, nut, ambient, duration) for screw, nut, ambient in points]
+    duties = [largest_motor_duty(variant, mode) for variant in variants]
     todo = [index for index in range(len(points)) if index not in known]
     runs = [SweepRun(variants[index], {"condition": CONDITION_NAME, "mode": mode, "duration": duration,
                                        "motion": motion}, label=point_label(*points[index]))
@@ -247,7 +251,7 @@ def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", d
 
     def done(position: int, solution) -> None:
         if on_row is not None and not isinstance(solution, TaskFailure):
-            on_row(todo[position], _row(points[todo[position]], solution, sensors, lead))
+            on_row(todo[position], _row(points[todo[position]], solution, sensors, lead, duties[todo[position]]))
 
     results = dict(known)
     failures = []
@@ -256,7 +260,7 @@ def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", d
         if isinstance(solution, TaskFailure):
             failures.append(solution)
         else:
-            results[index] = _row(points[index], solution, sensors, lead)
+            results[index] = _row(points[index], solution, sensors, lead, duties[index])
     rows = [results[index] for index in range(len(points)) if index in results]
     if failures:
         raise SweepFailed(rows, failures, len(points))
@@ -269,7 +273,18 @@ def _remaining_share(progress: Callable[[float], None], known: int, total: int) 
     return lambda fraction: progress((known + fraction * (total - known)) / total)
 
 
-def _row(point: tuple[float, float, float], solution, sensors: list[str], lead: float) -> dict:
+def largest_motor_duty(loaded: LoadedSystem, mode: str) -> float | None:
+    """The largest torque over continuous torque of the motors of the sweep's condition (None: no
+    motor declares a continuous torque, or paper mode, whose printed heats carry no torques)."""
+    if mode != "physics":
+        return None
+    heats = boundary_conditions(loaded.system, CONDITION_NAME, mode).heats
+    ratios = [h.details["torque_to_continuous"] for h in heats.values() if "torque_to_continuous" in h.details]
+    return max(ratios) if ratios else None
+
+
+def _row(point: tuple[float, float, float], solution, sensors: list[str], lead: float,
+         duty: float | None = None) -> dict:
     """One point's row (see :func:`run_sweep`) from its solution."""
     screw, nut, ambient = point
     final, steady = solution.summary_values("final"), solution.summary_values("steady")
@@ -280,6 +295,7 @@ def _row(point: tuple[float, float, float], solution, sensors: list[str], lead: 
     row["steady_D_um"] = float(steady["D_um"])
     row["equilibrium_time_s"] = None if solution.equilibrium_time is None else float(solution.equilibrium_time)
     row["energy_balance_error"] = float(solution.energy.relative_error)
+    row["motor_duty"] = duty
     return row
 
 

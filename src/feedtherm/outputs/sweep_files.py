@@ -82,7 +82,7 @@ def write_sweep_csv(rows: list[dict], sensors: list[str], path: Path) -> None:
         writer = csv.writer(handle, lineterminator="\n")
         writer.writerow(header)
         for row in rows:
-            writer.writerow([_cell(name, row[name]) for name in header])
+            writer.writerow([_cell(name, row.get(name)) for name in header])
 
 
 def _cell(column: str, value) -> str:
@@ -92,6 +92,8 @@ def _cell(column: str, value) -> str:
         return _INPUT_FORMAT.format(value)
     if column == "energy_balance_error":
         return _ERROR_FORMAT.format(value)
+    if column == "motor_duty":
+        return f"{value:.3f}"
     return _VALUE_FORMAT.format(value)
 
 
