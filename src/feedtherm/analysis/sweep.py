@@ -371,5 +371,5 @@ def _simulate(run: SweepRun, progress: Callable[[float], None] | None = None):
     from ..simulate import simulate  # the model is loaded only when a batch really runs
 
     # A grid or a random cycle may reach speeds where a motor needs more than its continuous torque;
-    # a batch runs every point as declared (the duty of each point is in `feedtherm heat`).
+    # a batch runs every point as declared (sweep.csv's motor_duty names such points).
     return simulate(run.loaded, progress=progress, allow_overload=True, **run.arguments)
