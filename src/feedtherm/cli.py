@@ -45,8 +45,7 @@ def cmd_heat(args: argparse.Namespace) -> int:
 
     loaded = _load(args.system)
     condition = _condition(loaded, args.condition)
-    if args.mode == "paper" and loaded.system.paper is None:
-        raise FeedthermError(f"--mode paper: {loaded.origin} has no [paper] table of printed values")
+    _require_paper_table(loaded, args.mode)
     bc = boundary_conditions(loaded.system, condition, args.mode)
     if args.json:
         print(heat_json(bc))
@@ -61,8 +60,7 @@ def cmd_modes(args: argparse.Namespace) -> int:
 
     loaded = _load(args.system)
     condition = _condition(loaded, args.condition)
-    if args.mode == "paper" and loaded.system.paper is None:
-        raise FeedthermError(f"--mode paper: {loaded.origin} has no [paper] table of printed values")
+    _require_paper_table(loaded, args.mode)
     result = thermal_modes(loaded, condition, mode=args.mode, count=args.count)
     if args.json:
         print(modes_json(result))

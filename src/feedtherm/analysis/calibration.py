@@ -32,6 +32,7 @@ from scipy.optimize import least_squares, lsq_linear
 from scipy.stats import t as student_t
 
 from ..boundary import boundary_conditions
+from ..boundary.heat import motor_duties
 from ..errors import FeedthermError
 from ..models.options import ModelOptions
 from ..simulate import simulate
@@ -464,14 +465,9 @@ def motor_duty(loaded: LoadedSystem, mode: str = "physics") -> dict[str, dict[st
     """Each condition's motors' torque over their declared continuous torque (those that declare one)."""
     if mode != "physics":
         return {}
-    out = {}
-    for condition in loaded.system.conditions:
-        heats = boundary_conditions(loaded.system, condition, mode).heats
-        ratios = {name: h.details["torque_to_continuous"] for name, h in heats.items()
-                  if "torque_to_continuous" in h.details}
-        if ratios:
-            out[condition] = ratios
-    return out
+    duties = {condition: motor_duties(boundary_conditions(loaded.system, condition, mode).heats)
+              for condition in loaded.system.conditions}
+    return {condition: ratios for condition, ratios in duties.items() if ratios}
 
 
 #: Tolerances of the fit, on the parameters scaled to [0, 1] and on the relative cost reduction.

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation
 
 from ..boundary import boundary_conditions
+from ..boundary.heat import motor_duties
 from ..errors import FeedthermError
 from ..constants import AMBIENT_SENSOR, KELVIN_OFFSET
 from ..system.load import LoadedSystem
@@ -243,8 +244,8 @@ def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", d
     known = dict(known or {})
     # Every condition is built (and so validated) before the first run.
     variants = [with_condition(loaded, CONDITION_NAME, screw, nut, ambient, duration) for screw, nut, ambient in points]
-    duties = [largest_motor_duty(variant, mode) for variant in variants]
     todo = [index for index in range(len(points)) if index not in known]
+    duties = {index: largest_motor_duty(variants[index], mode) for index in todo}  # known rows carry theirs
     runs = [SweepRun(variants[index], {"condition": CONDITION_NAME, "mode": mode, "duration": duration,
                                        "motion": motion}, label=point_label(*points[index]))
             for index in todo]
@@ -278,9 +279,8 @@ def largest_motor_duty(loaded: LoadedSystem, mode: str) -> float | None:
     motor declares a continuous torque, or paper mode, whose printed heats carry no torques)."""
     if mode != "physics":
         return None
-    heats = boundary_conditions(loaded.system, CONDITION_NAME, mode).heats
-    ratios = [h.details["torque_to_continuous"] for h in heats.values() if "torque_to_continuous" in h.details]
-    return max(ratios) if ratios else None
+    ratios = motor_duties(boundary_conditions(loaded.system, CONDITION_NAME, mode).heats)
+    return max(ratios.values()) if ratios else None
 
 
 def _row(point: tuple[float, float, float], solution, sensors: list[str], lead: float,

@@ -79,15 +79,17 @@ class MotorOverload:
                 "loading that shaft are implausible")
 
 
+def motor_duties(heats: Mapping[str, SourceHeat]) -> dict[str, float]:
+    """Each motor's torque (from the mechanism: the sources on its shaft) over its declared
+    ``continuous_torque``; motors that declare none are left out."""
+    return {name: heat.details["torque_to_continuous"] for name, heat in heats.items()
+            if "torque_to_continuous" in heat.details}
+
+
 def motor_overloads(heats: Mapping[str, SourceHeat]) -> list[MotorOverload]:
-    """The motors whose torque (from the mechanism: the sources on their shaft) exceeds their
-    declared ``continuous_torque``."""
-    out = []
-    for name, heat in heats.items():
-        ratio = heat.details.get("torque_to_continuous")
-        if ratio is not None and ratio > 1.0:
-            out.append(MotorOverload(name, abs(heat.details["torque_Nm"]), heat.details["continuous_torque_Nm"]))
-    return out
+    """The motors whose duty (:func:`motor_duties`) exceeds 1."""
+    return [MotorOverload(name, abs(heats[name].details["torque_Nm"]), heats[name].details["continuous_torque_Nm"])
+            for name, ratio in motor_duties(heats).items() if ratio > 1.0]
 
 
 def _sign(x: float) -> float:
