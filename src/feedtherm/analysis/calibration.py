@@ -9,6 +9,9 @@ too (the transient information; weight ``equilibrium_sigma``).  Each model evalu
 transient run of the fast model with the cycle-averaged motion (60 s steps, see
 ``CALIBRATION_OPTIONS``).
 
+Where a motor declares a continuous torque, the fit is held within it at every declared
+condition (their speeds, not their measurements) by a penalty residual (:data:`DUTY_LIMIT`); the cost and the standard errors are the data's.
+
 Measured values that the consistency check (:mod:`feedtherm.analysis.consistency`) flags are
 left out of the fit and kept in the tables with their reason.
 
@@ -407,6 +410,9 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
         upper = np.array([p.upper for p in parameters])
         span = upper - lower
 
+        # every condition the machine ran, fitted or not: its motors carried them all
+        duty = _DutyPenalty(loaded, parameters, list(loaded.system.conditions), mode)
+
         def values(finals) -> np.ndarray:
             return (np.array([finals[r.condition][r.quantity] for r in rows]) - target) / sigma
 
@@ -415,15 +421,22 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
                 progress(min(0.9, model.runs / (len(fit) * (len(parameters) + 1) * 8)))
 
         def residuals(u):  # u: parameters scaled to [0, 1] within their bounds
-            out = values(model.finals(lower + u * span, fit))
+            x = lower + u * span
+            out = np.concatenate([values(model.finals(x, fit)), duty(x)])
             report_progress()
             return out
 
         def jacobian(u):  # the same forward differences as the prediction intervals', in u
-            base, steps, moved = model.sensitivities(lower + u * span, lower, upper, fit)
+            x = lower + u * span
+            base, steps, moved = model.sensitivities(x, lower, upper, fit)
             report_progress()
-            f0 = values(base)
-            return np.column_stack([(values(m) - f0) / (h / s) for m, h, s in zip(moved, steps, span)])
+            f0 = np.concatenate([values(base), duty(x)])
+            columns = []
+            for j, (m, h, s) in enumerate(zip(moved, steps, span)):
+                shifted = x.copy()
+                shifted[j] += h
+                columns.append((np.concatenate([values(m), duty(shifted)]) - f0) / (h / s))
+            return np.column_stack(columns)
 
         x_start = np.array([p.start for p in parameters]) if start is None else np.clip(start, lower, upper)
         u = (x_start - lower) / span
@@ -435,7 +448,8 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
             if _converged(jac, result.fun, u):
                 break
         x = lower + u * span
-        se, corr, identifiable, cov, s2, dof = _uncertainty(jac / span[None, :], result.fun, x, len(rows))
+        n = len(rows)  # the data's residuals; the motors' duty penalties follow them
+        se, corr, identifiable, cov, s2, dof = _uncertainty(jac[:n] / span[None, :], result.fun[:n], x, n)
         # scipy's trust-region reflective fit keeps its iterates strictly inside the bounds, so a
         # parameter the data push against one ends a little inside it: its active mask marks it
         # (within XTOL of the scaled range, 0.1 %)
@@ -454,11 +468,42 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
             at_bound=at_bound, fit_conditions=list(fit),
             residuals=_predictions(finals, [r for r in fitted_rows if not r.flag], intervals),
             held_out=_predictions(finals, [r for r in every if r.condition not in fit], intervals),
-            cost=float(result.cost), model_runs=model.runs, wall_time_s=time.perf_counter() - started,
+            cost=0.5 * float(result.fun[:n] @ result.fun[:n]), model_runs=model.runs, wall_time_s=time.perf_counter() - started,
             measurement_source=data.source, calibrated=calibrated, status=result.message,
             excluded=_predictions(finals, [r for r in fitted_rows if r.flag], intervals),
             motor_duty=motor_duty(calibrated, mode),
         )
+
+
+#: The fit keeps every motor within its rated continuous torque at every declared condition: a
+#: motor's duty above ``DUTY_LIMIT`` adds the residual (duty - DUTY_LIMIT) / ``DUTY_SIGMA`` (an
+#: exterior penalty, Nocedal & Wright 2006, §17.1).  A 1 % overload adds (0.015 / 0.0005)² = 900
+#: to the sum of squares, as much as 36 data missed by five sigma each; the penalty starts 0.5 %
+#: below the rating so that the point where it balances the data stays within the rating.
+DUTY_LIMIT, DUTY_SIGMA = 0.995, 0.0005
+
+
+class _DutyPenalty:
+    """The motors' duty penalties at a parameter point (see :data:`DUTY_LIMIT`): one residual per
+    condition and motor with a declared continuous torque; none in paper mode, whose heats are
+    the paper's table, not a mechanism.  The conditions' speeds are all it needs of them, so a
+    held-out condition constrains the fit without its measurements entering it."""
+
+    def __init__(self, loaded: LoadedSystem, parameters: list[FitParameter], conditions: list[str], mode: str):
+        self.loaded, self.parameters, self.mode = loaded, parameters, mode
+        self.conditions = conditions if mode == "physics" else []
+        self.motors = sorted(motor_duties(boundary_conditions(loaded.system, conditions[0], mode).heats)) \
+            if self.conditions else []
+
+    def __call__(self, x) -> np.ndarray:
+        if not self.motors:
+            return np.zeros(0)
+        system = apply(self.loaded, self.parameters, x).system
+        out = []
+        for condition in self.conditions:
+            duties = motor_duties(boundary_conditions(system, condition, self.mode).heats)
+            out.extend(max(0.0, duties[m] - DUTY_LIMIT) / DUTY_SIGMA for m in self.motors)
+        return np.array(out)
 
 
 def motor_duty(loaded: LoadedSystem, mode: str = "physics") -> dict[str, dict[str, float]]:

@@ -8,7 +8,8 @@ uncertainty whose range excludes its value (system/uncertainties.py).
 :func:`~feedtherm.system.load.load_system` refuses such a description with the first error's
 line, so that no command starts on it.  A *warning* is content worth a look that the models
 can still run: a stated feed speed that the motor speeds contradict, a value no provenance
-entry accounts for, a joint between parts that do not touch.
+entry accounts for, a joint between parts that do not touch, a contact sensor on a part that
+turns.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from .geometry import bounds, contains, gap, screw_axis, surface_area
 from .holding import free_motions
 from .quantities import same_dimension, to_base_si
 from .schema import FeedSystem
+from .surfaces import RotatingConvection
 from .uncertainties import uncertainty_problems
 from .variants import si_unit_at
 
@@ -48,6 +50,7 @@ def check_system(system: FeedSystem) -> list[Finding]:
     return [
         *check_errors(system),
         *_ambient_sensor(system),
+        *_wired_sensors(system),
         *_feed_speeds(system),
         *_joints_touch(system),
         *_elastic_constants(system),
@@ -158,6 +161,31 @@ def _ambient_sensor(system: FeedSystem) -> list[Finding]:
         return []
     return [Finding(f"sensors.{AMBIENT_SENSOR}",
                     f"{AMBIENT_SENSOR} is the ambient temperature; a declared {AMBIENT_SENSOR} is ignored")]
+
+
+def turning_parts(system: FeedSystem) -> set[str]:
+    """The parts that turn in some declared condition or duty cycle: the screw, the dual drive's
+    nut, and every part with a surface cooled as a body rotating with one of them (a belt)."""
+    runs = [*system.conditions.values(),
+            *(segment for cycle in system.duty_cycles.values() for segment in cycle.segments)]
+    shaft_turns = {"screw": any(run.screw_speed != 0.0 for run in runs),
+                   "nut": system.kinematics.drive == "dual" and any(run.nut_speed != 0.0 for run in runs)}
+    turning = {getattr(system.kinematics, shaft) for shaft, turns in shaft_turns.items() if turns}
+    turning.update(surface.part for surface in system.surfaces.values()
+                   if isinstance(surface.convection, RotatingConvection) and shaft_turns[surface.convection.shaft])
+    return turning
+
+
+def _wired_sensors(system: FeedSystem) -> list[Finding]:
+    """A contact sensor's wires cannot follow a part that turns at hundreds of rpm: such a reading
+    needs an infrared sensor (or slip rings the description does not know of)."""
+    turning = turning_parts(system)
+    return [Finding(f"sensors.{name}.method",
+                    f"a contact sensor on {sensor.part!r}, which turns while the drive runs: its wires could not "
+                    "follow it; read a turning part with method = \"infrared\", or put the sensor on a part that "
+                    "does not turn")
+            for name, sensor in system.sensors.items()
+            if sensor.method == "contact" and sensor.part in turning]
 
 
 def _joints_touch(system: FeedSystem) -> list[Finding]:
