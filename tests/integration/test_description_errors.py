@@ -63,8 +63,8 @@ CASES = {
     "lateral faces on a box part": (
         [('faces = ["+z"]', 'faces = ["lateral"]')], ["surfaces.worktable.faces", "'lateral' does not exist on a box"]),
     "a sensor at x = 5000 mm": (
-        [('position = ["251 mm", "0 mm", "40 mm"]', 'position = ["5000 mm", "0 mm", "40 mm"]')],
-        ["sensors.T3.position", "outside part 'nut'"]),
+        [('position = ["245 mm", "0 mm", "45 mm"]', 'position = ["5000 mm", "0 mm", "45 mm"]')],
+        ["sensors.T3.position", "outside part 'nut_housing'"]),
     "a joint listed twice": (
         [(JOINT_0, JOINT_0.replace("[[joints]]", '[[joints]]\nbetween = ["front_housing", "front_bearing"]\n'
                                    'tcr = "1.25e-3 m^2*K/W"\narea = "1e-3 m^2"\n\n[[joints]]', 1))],
