@@ -25,7 +25,7 @@ validate: $(STAMP)
 
 # The prediction bands (docs/uncertainty.md): the declared priors, updated with the measured
 # finals of I, II, IV, and the predictive bands; then the report with them (and with the
-# calibration of `make validate` where it has run).  About 7 minutes on 2 cores.
+# calibration of `make validate` where it has run).  25 minutes on 2 cores (2026-11-26).
 UNC_DIR := out/paper_uncertainty
 WORKERS ?= 2
 
