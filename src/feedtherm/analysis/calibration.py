@@ -10,7 +10,8 @@ transient run of the fast model with the cycle-averaged motion (60 s steps, see
 ``CALIBRATION_OPTIONS``).
 
 Where a motor declares a continuous torque, the fit is held within it at every declared
-condition (their speeds, not their measurements) by a penalty residual (:data:`DUTY_LIMIT`); the cost and the standard errors are the data's.
+condition (their speeds, not their measurements) by a penalty residual (:data:`DUTY_LIMIT`);
+the cost and the standard errors are the data's.
 
 Measured values that the consistency check (:mod:`feedtherm.analysis.consistency`) flags are
 left out of the fit and kept in the tables with their reason.
@@ -468,7 +469,8 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
             at_bound=at_bound, fit_conditions=list(fit),
             residuals=_predictions(finals, [r for r in fitted_rows if not r.flag], intervals),
             held_out=_predictions(finals, [r for r in every if r.condition not in fit], intervals),
-            cost=0.5 * float(result.fun[:n] @ result.fun[:n]), model_runs=model.runs, wall_time_s=time.perf_counter() - started,
+            cost=0.5 * float(result.fun[:n] @ result.fun[:n]), model_runs=model.runs,
+            wall_time_s=time.perf_counter() - started,
             measurement_source=data.source, calibrated=calibrated, status=result.message,
             excluded=_predictions(finals, [r for r in fitted_rows if r.flag], intervals),
             motor_duty=motor_duty(calibrated, mode),

@@ -40,8 +40,9 @@ def test_a_fit_that_wants_an_overloaded_motor_stops_at_its_rating(paper, tmp_pat
     truth = apply(paper, params, [340.0])
     final = simulate(truth, condition="I", motion="averaged", allow_overload=True).summary_values("final")
     path = tmp_path / "overloaded.csv"
-    path.write_text("condition,quantity,unit,measured\n" + "".join(f"I,{q},C,{final[q]:.4f}\n" for q in ("T1", "T2", "T3", "T4", "T5")))
-    result = calibrate(paper, read_measurements(str(path), sensors=["T1", "T2", "T3", "T4", "T5"]), ["I"],
+    sensors = ("T1", "T2", "T3", "T4", "T5")
+    path.write_text("condition,quantity,unit,measured\n" + "".join(f"I,{q},C,{final[q]:.4f}\n" for q in sensors))
+    result = calibrate(paper, read_measurements(str(path), sensors=list(sensors)), ["I"],
                        ["screw_nut_preload"], equilibrium=False)
     # every condition the machine runs counts, measured or not: III, the fastest, binds
     assert set(result.motor_duty) == {"I", "II", "III", "IV", "V"}
