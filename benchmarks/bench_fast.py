@@ -15,6 +15,7 @@ import platform
 import resource
 import time
 
+from feedtherm.plan import with_mode
 from feedtherm.simulate import simulate
 from feedtherm.system.load import load_system
 
@@ -37,8 +38,9 @@ def main() -> None:
     loaded = load_system("paper")
     simulate(loaded, condition="I", duration=60.0)  # warm caches (imports, CoolProp)
 
-    one, run = timed(lambda: simulate(loaded, condition="I", mode=args.mode), args.repeat)
-    all_five, runs = timed(lambda: [simulate(loaded, condition=c, mode=args.mode) for c in loaded.system.conditions],
+    loaded = with_mode(loaded, args.mode)
+    one, run = timed(lambda: simulate(loaded, condition="I"), args.repeat)
+    all_five, runs = timed(lambda: [simulate(loaded, condition=c) for c in loaded.system.conditions],
                            args.repeat)
     figures = {
         "machine": f"{platform.processor() or platform.machine()}, {platform.python_implementation()} {platform.python_version()}",

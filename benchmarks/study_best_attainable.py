@@ -68,7 +68,7 @@ def main() -> None:
     measured = np.array([r.measured for r in rows])
     started = time.perf_counter()
 
-    with _Model(loaded, parameters, "physics", args.workers) as model:
+    with _Model(loaded, parameters, args.workers) as model:
         def normalised(finals) -> np.ndarray:
             return (np.array([finals[r.condition][r.quantity] for r in rows]) - measured) / scale
 

@@ -32,6 +32,13 @@ def _load(spec: str):
     return load_system(spec)
 
 
+def _load_in_mode(args: argparse.Namespace):
+    """The description of ``args.system`` set to run in ``args.mode`` (:func:`feedtherm.plan.with_mode`)."""
+    from .plan import with_mode
+
+    return with_mode(_load(args.system), args.mode)
+
+
 def _condition(loaded, name: str) -> str:
     conditions = loaded.system.conditions
     if name not in conditions:
@@ -43,14 +50,17 @@ def cmd_heat(args: argparse.Namespace) -> int:
     from .boundary import boundary_conditions
     from .outputs.heat_report import heat_json, print_heat
 
-    loaded = _load(args.system)
+    from .plan import boundary_of
+    from .system.overlay import available_overlay
+
+    loaded = _load_in_mode(args)
     condition = _condition(loaded, args.condition)
-    _require_paper_table(loaded, args.mode)
-    bc = boundary_conditions(loaded.system, condition, args.mode)
+    bc = boundary_of(loaded, condition)
+    printed = available_overlay(loaded)
     if args.json:
-        print(heat_json(bc))
+        print(heat_json(bc, printed))
     else:
-        print_heat(bc, loaded.system.meta.name)
+        print_heat(bc, loaded.system.meta.name, printed=printed)
     return 0
 
 
@@ -58,10 +68,9 @@ def cmd_modes(args: argparse.Namespace) -> int:
     from .analysis.thermal_modes import thermal_modes
     from .outputs.modes_report import modes_json, print_modes
 
-    loaded = _load(args.system)
+    loaded = _load_in_mode(args)
     condition = _condition(loaded, args.condition)
-    _require_paper_table(loaded, args.mode)
-    result = thermal_modes(loaded, condition, mode=args.mode, count=args.count)
+    result = thermal_modes(loaded, condition, count=args.count)
     if args.json:
         print(modes_json(result))
     else:
@@ -113,11 +122,11 @@ def cmd_run(args: argparse.Namespace) -> int:
     from .outputs.run_files import default_out_dir, summary_line, write_run
     from .plan import plan_run
 
-    loaded = _load(args.system)
-    plan = plan_run(loaded, condition=args.condition, cycle=args.cycle, mode=args.mode, model=args.model,
+    loaded = _load_in_mode(args)
+    plan = plan_run(loaded, condition=args.condition, cycle=args.cycle, model=args.model,
                     duration=args.duration, single_drive=args.single_drive, sample_interval=args.sample_interval,
                     motion=args.motion, mesh=args.mesh, solver=args.solver)
-    out_dir = Path(args.out) if args.out else default_out_dir(args.system, plan.label, args.mode)
+    out_dir = Path(args.out) if args.out else default_out_dir(args.system, plan.label, plan.mode)
     check_output_dir(out_dir)
     # Imported only now: every input error above is reported without loading the model.
     from .simulate import execute
@@ -135,10 +144,10 @@ def cmd_calculix(args: argparse.Namespace) -> int:
     from .outputs.run_files import default_out_dir
     from .plan import plan_run
 
-    loaded = _load(args.system)
+    loaded = _load_in_mode(args)
     condition = _condition(loaded, args.condition)
-    plan = plan_run(loaded, condition=condition, mode=args.mode, model="fem", mesh=args.mesh)
-    out_dir = Path(args.out) if args.out else default_out_dir(args.system, f"{condition}_calculix", args.mode)
+    plan = plan_run(loaded, condition=condition, model="fem", mesh=args.mesh)
+    out_dir = Path(args.out) if args.out else default_out_dir(args.system, f"{condition}_calculix", plan.mode)
     check_output_dir(out_dir)
     duration = args.duration if args.duration is not None else plan.segments[-1].t1 - plan.segments[0].t0
     if args.step > duration:
@@ -171,11 +180,6 @@ def cmd_models(args: argparse.Namespace) -> int:
     for entry in available_models().values():
         print(f"{entry.name:<10} {entry.summary}" + ("  [--mesh]" if entry.uses_mesh else ""))
     return 0
-
-
-def _require_paper_table(loaded, mode: str) -> None:
-    if mode == "paper" and loaded.system.paper is None:
-        raise FeedthermError(f"--mode paper: {loaded.origin} has no [paper] table of printed values")
 
 
 def _positive_number(text: str, what: str = "number") -> float:
@@ -222,18 +226,19 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     from .outputs.files import check_output_dir
     from .outputs.run_files import default_out_dir
     from .outputs.sweep_partial import PARTIAL_DIR, PartialSweep
+    from .plan import with_mode
     from .system.schema import DEFAULT_DURATION_S
 
     started = time.perf_counter()
     execution = resolve_execution(args.workers, args.scheduler)
     loaded = _load(args.system)
     grid = parse_grid(args.screw_rpm, args.nut_rpm, args.ambient, drive=loaded.system.kinematics.drive)
-    _require_paper_table(loaded, args.mode)
+    loaded = with_mode(loaded, args.mode)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "sweep", args.mode)
     check_output_dir(out_dir)
     # Every finished point is kept in out_dir/.sweep-partial at once, so that an interrupted
     # sweep loses at most the runs under way; --resume reads them back.
-    settings = sweep_settings(loaded, mode=args.mode, duration=args.duration, motion=args.motion)
+    settings = sweep_settings(loaded, duration=args.duration, motion=args.motion)
     keys = [point_key(settings, point) for point in grid.points()]
     sensors = sensor_labels(loaded)
     partial = PartialSweep(out_dir, settings, columns(list(sensors)))
@@ -247,7 +252,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     try:
         with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
             try:
-                rows = run_sweep(loaded, grid, mode=args.mode, duration=args.duration, motion=args.motion,
+                rows = run_sweep(loaded, grid, duration=args.duration, motion=args.motion,
                                  progress=progress, execution=execution, known=known,
                                  on_row=lambda index, row: partial.save(keys[index], row))
             except SweepFailed as failed:  # the points that ran are written; each failed one is a line
@@ -327,8 +332,7 @@ def cmd_validate(args: argparse.Namespace) -> int:
 
     from .models.registry import model_entry
 
-    loaded = _load(args.system)
-    _require_paper_table(loaded, args.mode)
+    loaded = _load_in_mode(args)
     model_entry(args.model)  # an unknown model fails before any run
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "validation", args.mode)
     check_output_dir(out_dir)
@@ -346,7 +350,7 @@ def cmd_validate(args: argparse.Namespace) -> int:
 
     uncertainty = read_uncertainty_summary(Path(args.uncertainty)) if args.uncertainty else None
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
-        validation = validate(loaded, mode=args.mode, model=args.model, mesh=args.mesh, measured=args.measured,
+        validation = validate(loaded, model=args.model, mesh=args.mesh, measured=args.measured,
                               progress=progress, calibration=calibration, compensation=compensation,
                               uncertainty=uncertainty)
     write_validation(validation, out_dir)
@@ -366,8 +370,7 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
         # the whole calibration, gains 1.2-1.5x on 2 cores (benchmarks/README.md); --workers 1 is serial.
         cores = os.cpu_count() or 1
         execution = Execution(workers=cores) if cores > 1 else execution
-    loaded = _load(args.system)
-    _require_paper_table(loaded, args.mode)
+    loaded = _load_in_mode(args)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "calibration", args.mode)
     check_output_dir(out_dir)
     from .analysis.calibration import RunCache, calibrate, cross_validate, resolve_parameters
@@ -383,7 +386,7 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     # One cluster (or one connection to the scheduler) for the fit and every leave-one-out fold:
     # a calibration is hundreds of short runs in small batches.
     with kept_open(execution) as running:
-        options = {"mode": args.mode, "consistency": consistency, "equilibrium": not args.no_equilibrium,
+        options = {"consistency": consistency, "equilibrium": not args.no_equilibrium,
                    "execution": running, "cache": RunCache()}
         with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
             result = calibrate(loaded, data, fit, names, progress=progress, **options)
@@ -401,8 +404,7 @@ def cmd_infer(args: argparse.Namespace) -> int:
     from .outputs.files import check_output_dir
     from .outputs.run_files import default_out_dir
 
-    loaded = _load(args.system)
-    _require_paper_table(loaded, args.mode)
+    loaded = _load_in_mode(args)
     model_entry(args.model)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "inference", args.mode)
     check_output_dir(out_dir)
@@ -414,7 +416,7 @@ def cmd_infer(args: argparse.Namespace) -> int:
     conditions = [c.strip() for c in args.conditions.split(",") if c.strip()] if args.conditions else data.conditions()
     noise = Noise(args.sigma_temperature, args.sigma_elongation * 1e-6)
     results = infer_conditions(loaded, data, conditions, groups=args.groups, noise=noise,
-                               prior_width=args.prior_width, mode=args.mode, model=args.model)
+                               prior_width=args.prior_width, model=args.model)
     context = {"system": loaded.origin, "mode": args.mode, "model": args.model, "measurements": data.source,
                "sigma_temperature_K": args.sigma_temperature, "sigma_elongation_um": args.sigma_elongation,
                "prior_width": args.prior_width}
@@ -444,12 +446,11 @@ def cmd_compensate(args: argparse.Namespace) -> int:
 
     started = time.perf_counter()
     execution = resolve_execution(args.workers, args.scheduler)
-    loaded = _load(args.system)
-    _require_paper_table(loaded, args.mode)
+    loaded = _load_in_mode(args)
     model_entry(args.model)
     request = parse_sensors(args.sensors, candidate_sensors(loaded.system))
     ranges = CycleRanges() if args.duration is None else CycleRanges(duration=args.duration)
-    settings = StudySettings(cycles=args.cycles, seed=args.seed, ranges=ranges, model=args.model, mode=args.mode,
+    settings = StudySettings(cycles=args.cycles, seed=args.seed, ranges=ranges, model=args.model,
                              mesh=args.mesh if args.model != "fast" else None)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "compensation", args.mode)
     check_output_dir(out_dir)
@@ -486,11 +487,12 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
     from .outputs.run_files import default_out_dir
 
     execution = resolve_execution(args.workers, args.scheduler)
-    loaded = _load(args.system)
-    _require_paper_table(loaded, args.mode)
+    loaded = _load_in_mode(args)
     from .analysis.uncertainty.declared import resolve_uncertainties
 
     resolve_uncertainties(loaded)  # a system without declared uncertainties fails before anything else
+    if args.condition is None:
+        args.condition = next(iter(loaded.system.conditions))
     if not args.no_sobol:
         _condition(loaded, args.condition)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "uncertainty", args.mode)
@@ -519,13 +521,13 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
     if update_with:
         from .analysis.uncertainty.update import bayesian_update
 
-        posterior = bayesian_update(loaded, data, update_with, consistency=consistency, mode=args.mode,
+        posterior = bayesian_update(loaded, data, update_with, consistency=consistency,
                                     execution=execution)
     from .outputs.uncertainty_files import print_uncertainty, write_uncertainty
 
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
         study = run_uncertainty(loaded, samples=args.samples, sobol_base=None if args.no_sobol else args.sobol_base,
-                                seed=args.seed, sobol_condition=args.condition, mode=args.mode, data=data,
+                                seed=args.seed, sobol_condition=args.condition, data=data,
                                 consistency=consistency, posterior=posterior, execution=execution, progress=progress)
     write_uncertainty(study, out_dir)
     print_uncertainty(study, out_dir)
@@ -551,8 +553,9 @@ def _system_argument(parser: argparse.ArgumentParser) -> None:
 
 
 def _mode_argument(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--mode", choices=["physics", "paper"], default="physics",
-                        help="physics: every value from the correlations; paper: Tables 1-2 scaled (default physics)")
+    parser.add_argument("--mode", default="physics", metavar="MODE",
+                        help="physics (default): every value from the correlations; or the name of the printed "
+                             "values the bench lays over them (its overlay.toml: paper for the paper bench)")
 
 
 def _measured_argument(parser: argparse.ArgumentParser) -> None:
@@ -581,7 +584,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     heat = sub.add_parser("heat", help="heat per source and CHTC per surface at a condition")
     _system_argument(heat)
-    heat.add_argument("--condition", required=True, help="condition name, e.g. I")
+    heat.add_argument("--condition", required=True, help="a condition of the description")
     _mode_argument(heat)
     heat.add_argument("--json", action="store_true", help="print one JSON object")
     heat.set_defaults(func=cmd_heat)
@@ -589,7 +592,7 @@ def build_parser() -> argparse.ArgumentParser:
     modes = sub.add_parser("modes", help="the slowest thermal modes of a condition (fast model): time constants, "
                                          "the parts that store their heat, and how each sensor sees them")
     _system_argument(modes)
-    modes.add_argument("--condition", required=True, help="condition name, e.g. I")
+    modes.add_argument("--condition", required=True, help="a condition of the description")
     _mode_argument(modes)
     modes.add_argument("--count", type=_positive_int, default=6, help="how many modes (default 6)")
     modes.add_argument("--json", action="store_true", help="print one JSON object")
@@ -602,7 +605,7 @@ def build_parser() -> argparse.ArgumentParser:
     run = sub.add_parser("run", help="simulate a condition or a duty cycle and write CSV, JSON and PNG files")
     _system_argument(run)
     operation = run.add_mutually_exclusive_group(required=True)
-    operation.add_argument("--condition", help="condition name, e.g. I")
+    operation.add_argument("--condition", help="a condition of the description")
     operation.add_argument("--cycle", help="a duty cycle declared in the description, or a CSV file "
                                            "(time_s,screw_rpm,nut_rpm,ambient_C)")
     run.add_argument("--model", default="fast",
@@ -674,7 +677,7 @@ def build_parser() -> argparse.ArgumentParser:
     calculix = sub.add_parser("calculix", help="write the FE model at a condition, the moving group held at one "
                                                "position, as a CalculiX input deck")
     _system_argument(calculix)
-    calculix.add_argument("--condition", required=True, help="condition name, e.g. I (its first operating point)")
+    calculix.add_argument("--condition", required=True, help="a condition of the description (its first operating point)")
     calculix.add_argument("--mesh", choices=MESHES, default="coarse", help="FE mesh density (default coarse)")
     _mode_argument(calculix)
     calculix.add_argument("--position", type=_grid_position, metavar="K",
@@ -757,7 +760,7 @@ def build_parser() -> argparse.ArgumentParser:
                              help="base of Saltelli's scheme for the Sobol' indices, a power of 2: N (d + 2) runs "
                                   "for d parameters (default 64)")
     uncertainty.add_argument("--no-sobol", action="store_true", help="bands only, no Sobol' indices")
-    uncertainty.add_argument("--condition", default="I", help="the condition of the Sobol' indices (default I)")
+    uncertainty.add_argument("--condition", help="the condition of the Sobol' indices (default: the description's first)")
     uncertainty.add_argument("--seed", type=_integer, default=0, metavar="S",
                              help="seed of the scrambled Sobol' points (default 0)")
     uncertainty.add_argument("--calibration", metavar="DIR",

@@ -12,9 +12,9 @@ import math
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from .boundary import MODES, BoundaryConditions, LocalTemperatures, boundary_conditions_at
+from .boundary import PHYSICS, BoundaryConditions, LocalTemperatures, boundary_conditions_at
 from .boundary.heat import motor_overloads
-from .boundary.operating import OperatingPoint
+from .boundary.operating import OperatingPoint, operating_point
 from .constants import RPM_PER_RAD_S
 from .errors import FeedthermError
 from .models.coupling import Coupling
@@ -23,6 +23,7 @@ from .models.options import ModelOptions
 from .models.registry import ModelEntry, model_entry
 from .system.duty_cycle import read_duty_cycle_csv
 from .system.load import LoadedSystem
+from .system.overlay import Overlay, available_overlay, mode_of, with_overlay
 from .system.schema import DEFAULT_DURATION_S, DutySegment, FeedSystem
 
 MESHES = ("coarse", "medium", "fine")
@@ -37,7 +38,6 @@ class RunPlan:
 
     loaded: LoadedSystem
     label: str  # the condition, the duty cycle's name or the CSV file's stem
-    mode: str
     model: ModelEntry
     options: ModelOptions
     segments: list[Segment]
@@ -50,24 +50,59 @@ class RunPlan:
         return self.segments[-1].t1
 
     @property
+    def mode(self) -> str:
+        """The overlay the run takes, by name, or ``"physics"``."""
+        return mode_of(self.loaded)
+
+    @property
     def coupling(self) -> Coupling | None:
         """How the boundary conditions follow the temperatures; None when they are frozen."""
-        return coupling_of(self.loaded.system, self.mode, self.options)
+        return coupling_of(self.loaded.system, self.loaded.overlay, self.options)
 
 
-def coupling_of(system: FeedSystem, mode: str, options: ModelOptions) -> Coupling | None:
+def with_mode(loaded: LoadedSystem, mode: str) -> LoadedSystem:
+    """``loaded`` set to run in ``mode``: ``"physics"`` (every value from the correlations), or the
+    name of the overlay of printed values its bench supplies (:mod:`feedtherm.system.overlay`).
+
+    This is where a mode becomes an overlay, once: every run, study and report then reads it from
+    the LoadedSystem.
+    """
+    if mode == PHYSICS:
+        return with_overlay(loaded, None)
+    overlay = available_overlay(loaded)
+    if overlay is None:
+        raise FeedthermError(f"--mode {mode}: {loaded.origin} has no overlay of printed values (a bench's "
+                             f"overlay.toml, or meta.overlay); the only mode is {PHYSICS}")
+    if overlay.name != mode:
+        raise FeedthermError(f"--mode: must be {PHYSICS} or {overlay.name} (the overlay of {loaded.origin}), "
+                             f"got {mode!r}")
+    return with_overlay(loaded, overlay)
+
+
+def boundary_of(loaded: LoadedSystem, condition: str) -> BoundaryConditions:
+    """The boundary conditions of a declared condition, with the overlay ``loaded`` runs in."""
+    system = loaded.system
+    return boundary_at(loaded, operating_point(system, system.conditions[condition]), label=condition)
+
+
+def boundary_at(loaded: LoadedSystem, point: OperatingPoint, *, label: str = "") -> BoundaryConditions:
+    """The boundary conditions at any operating point, with the overlay ``loaded`` runs in."""
+    return boundary_conditions_at(loaded.system, point, loaded.overlay, label=label)
+
+
+def coupling_of(system: FeedSystem, overlay: Overlay | None, options: ModelOptions) -> Coupling | None:
     """The description's coupling: None for ``temperatures.coupling = "frozen"``."""
     if system.temperatures.coupling == "frozen":
         return None
 
     def evaluate(base: BoundaryConditions, temperatures: LocalTemperatures) -> BoundaryConditions:
-        return boundary_conditions_at(system, base.point, mode, label=base.condition, temperatures=temperatures)
+        return boundary_conditions_at(system, base.point, overlay, label=base.condition, temperatures=temperatures)
 
     return Coupling(evaluate, options.coupling_tolerance)
 
 
 def plan_run(loaded: LoadedSystem, *, condition: str | None = None, cycle: str | None = None,
-             mode: str = "physics", model: str = "fast", duration: float | None = None,
+             model: str = "fast", duration: float | None = None,
              single_drive: bool = False, sample_interval: float = 10.0, motion: str | None = None,
              mesh: str | None = None, solver: str | None = None, start: str = "initial",
              options: ModelOptions | None = None, allow_overload: bool = False) -> RunPlan:
@@ -75,25 +110,26 @@ def plan_run(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
 
     A motor whose shaft needs more than its declared ``continuous_torque`` at a segment is
     refused (:func:`refuse_overloads`), unless ``allow_overload``: studies that vary the
-    preloads (calibration, uncertainty) run such points and report them instead.
+    preloads (calibration, uncertainty) run such points and report them instead.  The boundary
+    conditions take the overlay ``loaded`` carries (:func:`with_mode`).
     """
-    entry = _check_arguments(loaded, mode, model, duration, sample_interval, motion, mesh, solver, start)
+    entry = _check_arguments(model, duration, sample_interval, motion, mesh, solver, start)
     label, segments, end = _profile(loaded, condition, cycle, duration)
     opts = options or ModelOptions()
     opts = replace(opts, **{name: value for name, value in (("motion", motion), ("mesh", mesh), ("solver", solver))
                             if value is not None})
-    planned = _segments(loaded, segments, end, mode, single_drive)
+    planned = _segments(loaded, segments, end, single_drive)
     _check_step_count(loaded, planned, opts)
     if not allow_overload:
         refuse_overloads(planned, f"condition {condition}" if condition is not None else f"duty cycle {label}")
-    return RunPlan(loaded, label, mode, entry, opts, planned, single_drive, sample_interval, start)
+    return RunPlan(loaded, label, entry, opts, planned, single_drive, sample_interval, start)
 
 
 def refuse_overloads(segments: list[Segment], what: str) -> None:
     """Raise if a motor needs more than its rated continuous torque in any segment of ``what`` (the
-    condition or duty cycle; physics mode: the paper mode's printed heats carry no torques)."""
+    condition or duty cycle; the physics alone: an overlay's printed heats carry no torques)."""
     for seg in segments:
-        if seg.bc.mode != "physics":
+        if seg.bc.overlay is not None:
             continue
         overloads = motor_overloads(seg.bc.heats)
         if overloads:
@@ -136,13 +172,8 @@ def _check_step_count(loaded: LoadedSystem, segments: list[Segment], options: Mo
                              "per stroke): shorten --duration, or use --motion averaged")
 
 
-def _check_arguments(loaded, mode, model, duration, sample_interval, motion, mesh, solver, start) -> ModelEntry:
-    system = loaded.system
-    if mode not in MODES:
-        raise FeedthermError(f"--mode: must be one of {', '.join(MODES)}, got {mode!r}")
+def _check_arguments(model, duration, sample_interval, motion, mesh, solver, start) -> ModelEntry:
     entry = model_entry(model)
-    if mode == "paper" and system.paper is None:
-        raise FeedthermError(f"--mode paper: {loaded.origin} has no [paper] table of printed values")
     if duration is not None and not duration > 0:
         raise FeedthermError(f"--duration: must be positive, got {duration!r} s")
     if motion not in (None, *MOTIONS):
@@ -184,8 +215,7 @@ def _profile(loaded: LoadedSystem, condition: str | None, cycle: str | None,
     return Path(cycle).stem, read_duty_cycle_csv(cycle, end).segments, end
 
 
-def _segments(loaded: LoadedSystem, duty: list[DutySegment], end: float, mode: str,
-              single_drive: bool) -> list[Segment]:
+def _segments(loaded: LoadedSystem, duty: list[DutySegment], end: float, single_drive: bool) -> list[Segment]:
     system = loaded.system
     cache: dict[OperatingPoint, object] = {}
     out = []
@@ -196,6 +226,6 @@ def _segments(loaded: LoadedSystem, duty: list[DutySegment], end: float, mode: s
         if single_drive:
             point = replace(point, screw_rpm=point.relative_rpm, nut_rpm=0.0, nut_motor_off=True)
         if point not in cache:
-            cache[point] = boundary_conditions_at(system, point, mode)
+            cache[point] = boundary_at(loaded, point)
         out.append(Segment(seg.start, t1, cache[point]))
     return out

@@ -22,6 +22,7 @@ from .models.interface import ThermalModel
 from .models.options import ModelOptions
 from .models.registry import build_model
 from .plan import RunPlan, plan_run
+from .system.overlay import mode_of
 from .solution import Solution
 from .solution.health import check_health
 from .solution.pack import pack_solution, sample_times
@@ -31,19 +32,21 @@ from .system.schema import FeedSystem
 
 
 def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str | None = None,
-             mode: str = "physics", model: str = "fast", duration: float | None = None,
+             model: str = "fast", duration: float | None = None,
              single_drive: bool = False, sample_interval: float = 10.0,
              progress: Callable[[float], None] | None = None, motion: str | None = None,
              mesh: str | None = None, start: str = "initial", options: ModelOptions | None = None,
              solver: str | None = None, allow_overload: bool = False) -> Solution:
     """Simulate a condition or a duty cycle of ``loaded`` and return its Solution.
 
+    The boundary conditions take the overlay ``loaded`` carries, if any
+    (:func:`feedtherm.plan.with_mode`).
+
     Parameters
     ----------
     condition, cycle : str
         Exactly one: a condition name, or a duty cycle (a name in the description or a CSV
         path, ``time_s,screw_rpm,nut_rpm,ambient_C``).
-    mode : {"physics", "paper"}
     model : str
         A model of the registry (:func:`feedtherm.models.registry.available_models`):
         ``"fast"`` or ``"fem"`` built in.
@@ -67,7 +70,7 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
         Run even where a motor needs more than its declared continuous torque (refused by default:
         :func:`feedtherm.plan.refuse_overloads`); studies that vary the preloads report such points.
     """
-    plan = plan_run(loaded, condition=condition, cycle=cycle, mode=mode, model=model, duration=duration,
+    plan = plan_run(loaded, condition=condition, cycle=cycle, model=model, duration=duration,
                     single_drive=single_drive, sample_interval=sample_interval, motion=motion, mesh=mesh,
                     solver=solver, start=start, options=options, allow_overload=allow_overload)
     return execute(plan, progress)
@@ -106,7 +109,7 @@ def execute(plan: RunPlan, progress: Callable[[float], None] | None = None,
         "coupling": system.temperatures.coupling,
         "screw_part": system.kinematics.screw,  # which part of the field series the screw image shows
         "measuring_loop": loop_summary(system.mechanics),
-        "provenance": provenance(plan.loaded, plan.mode),
+        "provenance": provenance(plan.loaded),
     }
     solution = pack_solution(system, integrator, segments, trace, T0, times, info)
     solution.info["wall_time_s"] = time.perf_counter() - started
@@ -147,12 +150,12 @@ class SteadySolve:
         return values
 
 
-def steady_solve(loaded: LoadedSystem, condition: str, *, mode: str = "physics", single_drive: bool = False,
+def steady_solve(loaded: LoadedSystem, condition: str, *, single_drive: bool = False,
                  model: str = "fast", mesh: str | None = None, options: ModelOptions | None = None) -> SteadySolve:
     """Plan ``condition``, build the model and solve its steady state (no transient)."""
     if condition not in loaded.system.conditions:
         raise FeedthermError(f"no condition {condition!r} in {loaded.origin}")
-    plan = plan_run(loaded, condition=condition, mode=mode, model=model, single_drive=single_drive, mesh=mesh,
+    plan = plan_run(loaded, condition=condition, model=model, single_drive=single_drive, mesh=mesh,
                     options=options)
     segment = plan.segments[0]
     disc = plan.model.build(loaded.system, plan.options)
@@ -160,23 +163,23 @@ def steady_solve(loaded: LoadedSystem, condition: str, *, mode: str = "physics",
     return SteadySolve(disc, integrator, segment, integrator.steady(0, segment.bc, None if segment.speed > 0 else 0))
 
 
-def steady_state(loaded: LoadedSystem, condition: str, *, mode: str = "physics", single_drive: bool = False,
+def steady_state(loaded: LoadedSystem, condition: str, *, single_drive: bool = False,
                  model: str = "fast", options: ModelOptions | None = None) -> dict[str, float]:
     """Cycle-averaged steady state of a condition (no transient): sensors [K] and ``D`` [m].
 
     Cheap with the fast model (one sparse solve), for sensitivity studies and calibration.
     """
-    return steady_solve(loaded, condition, mode=mode, single_drive=single_drive, model=model,
+    return steady_solve(loaded, condition, single_drive=single_drive, model=model,
                         options=options).values()
 
 
-def provenance(loaded: LoadedSystem, mode: str) -> dict:
-    """What a run relied on: version, description hash, mode and the assumptions in use."""
+def provenance(loaded: LoadedSystem) -> dict:
+    """What a run relied on: version, description hash, mode (its overlay) and the assumptions in use."""
     return {
         "feedtherm_version": __version__,
         "description": loaded.origin,
         "description_sha256": loaded.sha256,
-        "mode": mode,
+        "mode": mode_of(loaded),
         "assumptions": [
             {"paths": p.paths, "source": p.source, "reason": p.reason}
             for p in loaded.system.provenance if p.origin == "assumption"

@@ -18,6 +18,7 @@ from feedtherm.boundary import boundary_conditions
 from feedtherm.cli import main
 from feedtherm.system.checks import check_system
 from feedtherm.system.load import load_system
+from feedtherm.system.overlay import available_overlay
 from feedtherm.system.sources import TorqueSource
 
 NAME = "ballscrew_example"
@@ -41,7 +42,7 @@ def test_loads_by_its_bundled_name(system):
     assert loaded.origin == f"bundled:{NAME}"
     assert system.meta.name == NAME
     assert system.kinematics.drive == "single"
-    assert system.paper is None
+    assert available_overlay(loaded) is None  # no printed values: physics mode only
     assert set(system.conditions) == set(CONDITIONS)
 
 
@@ -57,7 +58,7 @@ def test_check_command_reports_no_inconsistencies(capsys):
 def test_paper_mode_is_refused_in_one_line(capsys):
     assert main(["heat", NAME, "--condition", "v5", "--mode", "paper"]) == 2
     err = capsys.readouterr().err.strip()
-    assert "\n" not in err and "no [paper] table" in err
+    assert "\n" not in err and "--mode paper" in err and "no overlay of printed values" in err
 
 
 def test_single_drive_conditions_have_a_still_nut(system):
@@ -67,7 +68,7 @@ def test_single_drive_conditions_have_a_still_nut(system):
 
 @pytest.mark.parametrize("condition", CONDITIONS)
 def test_physics_heats_positive_and_finite(system, condition):
-    bc = boundary_conditions(system, condition, "physics")
+    bc = boundary_conditions(system, condition)
     assert set(bc.heats) == set(system.sources)
     for name, heat in bc.heats.items():
         assert math.isfinite(heat.power) and heat.power > 0.0, name
@@ -78,7 +79,7 @@ def test_physics_heats_positive_and_finite(system, condition):
 
 @pytest.mark.parametrize("condition", CONDITIONS)
 def test_table_speed_is_screw_speed_times_lead(system, condition):
-    bc = boundary_conditions(system, condition, "physics")
+    bc = boundary_conditions(system, condition)
     n = RPM[condition]
     assert bc.point.screw_rpm == pytest.approx(n)
     assert bc.point.nut_rpm == 0.0
@@ -109,7 +110,7 @@ def test_ball_nut_heat_by_hand(system, condition):
     #   v10: 0.291 * 104.7198 = 30.473 W (also v10_warm: ambient does not enter)
     #   v20: 0.291 * 209.4395 = 60.947 W
     expected = {"v5": 15.237, "v10": 30.473, "v20": 60.947, "v10_warm": 30.473}[condition]
-    heat = boundary_conditions(system, condition, "physics").heats["ball_nut"]
+    heat = boundary_conditions(system, condition).heats["ball_nut"]
     assert 0.291 * omega(RPM[condition]) == pytest.approx(expected, abs=1e-3)
     assert heat.power == pytest.approx(expected, abs=1e-3)
     assert heat.into == {"nut": 0.5, "screw": 0.5}
@@ -133,7 +134,7 @@ def test_front_bearing_heat_by_palmgren_at_1000_rpm(system):
     assert m_v == pytest.approx(0.0323987, rel=1e-5)
     hand = (m_l + m_v) * omega(1000.0)
     assert hand == pytest.approx(7.9937, rel=1e-4)
-    heat = boundary_conditions(system, "v10", "physics").heats["front_bearing"]
+    heat = boundary_conditions(system, "v10").heats["front_bearing"]
     assert heat.power == pytest.approx(hand, rel=1e-9)
     assert heat.details["friction_torque_Nm"] == pytest.approx(0.0763343, rel=1e-5)
 
@@ -143,7 +144,7 @@ def test_motor_delivers_every_screw_torque(system, condition):
     # Single drive: the one motor turns the screw against both bearings, the ball-nut drag
     # and the ideal torque that pushes the table, F Ph / (2 pi) with F the guideway friction
     # (0.004 * 45 kg * 9.80665 + 4 * 5 N = 21.77 N -> 0.0346 N·m); loss = T ω (1/η - 1), η = 0.80.
-    bc = boundary_conditions(system, condition, "physics")
+    bc = boundary_conditions(system, condition)
     load = sum(bc.heats[name].details["friction_torque_Nm"] for name in ("front_bearing", "rear_bearing", "ball_nut"))
     push = (0.004 * 45 * 9.80665 + 4 * 5.0) * 0.010 / (2 * 3.141592653589793)
     assert bc.heats["guideways"].details["friction_force_N"] == pytest.approx(0.004 * 45 * 9.80665 + 4 * 5.0)
@@ -153,8 +154,8 @@ def test_motor_delivers_every_screw_torque(system, condition):
 
 
 def test_warm_shop_changes_air_not_heat(system):
-    cold = boundary_conditions(system, "v10", "physics")
-    warm = boundary_conditions(system, "v10_warm", "physics")
+    cold = boundary_conditions(system, "v10")
+    warm = boundary_conditions(system, "v10_warm")
     for name in system.sources:
         assert warm.heats[name].power == pytest.approx(cold.heats[name].power)
     assert warm.point.ambient - cold.point.ambient == pytest.approx(4.0)

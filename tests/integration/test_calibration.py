@@ -107,7 +107,7 @@ def test_held_out_predictions_fall_in_their_intervals_and_flagged_values_are_not
     names = ["screw_nut_preload"]
     truth = apply_values(paper, names, [220.0])  # a machine its motors can run (under 240 N)
     data = synthetic_measurements(truth, tmp_path / "m.csv", ["I", "II", "IV"])
-    own = _Model(truth, [], "physics").finals([], ["I", "II"])
+    own = _Model(truth, []).finals([], ["I", "II"])
     spoiled = [Measurement(r.condition, r.quantity, r.unit, r.measured + (30.0 if (r.condition, r.quantity) == ("IV", "D_um") else 0.0))
                for r in data.rows]
     stated = {c: own[c][EQUILIBRIUM_QUANTITY] for c in ("I", "II")}
@@ -178,7 +178,7 @@ def test_parallel_conditions_give_the_serial_values(paper):
     from feedtherm.analysis.calibration import _Model
 
     params = resolve_parameters(paper, ["screw_nut_preload"])
-    with _Model(paper, params, "physics", workers=1) as serial, _Model(paper, params, "physics", workers=2) as parallel:
+    with _Model(paper, params, workers=1) as serial, _Model(paper, params, workers=2) as parallel:
         a = serial.finals([700.0], ["I", "III"])
         b = parallel.finals([700.0], ["I", "III"])
         assert serial.runs == parallel.runs == 2
@@ -228,7 +228,7 @@ def test_calibration_runs_with_60_s_steps_agree_with_the_default_steps(paper, co
     from feedtherm.analysis.calibration import EQUILIBRIUM_QUANTITY, _final_values
     from feedtherm.solution.equilibrium import rise_time
 
-    coarse = _final_values(paper, condition, "physics")
+    coarse = _final_values(paper, condition)
     run = simulate(paper, condition=condition, motion="averaged")
     fine = run.summary_values("final")
     initial = {n: float(s[0]) for n, s in run.sensors.items()}

@@ -31,7 +31,8 @@ def test_heat_paper_mode_reproduces_table_1():
     data = json.loads(result.stdout)
     assert data["condition"] == "I" and data["mode"] == "paper"
     assert data["heat_W"]["front_bearing"] == pytest.approx(4.95)
-    for source, value in data["paper_table1_heat_W"].items():
+    assert data["printed"]["overlay"] == "paper" and data["printed"]["condition"] == "I"
+    for source, value in data["printed"]["heat_W"].items():
         assert data["heat_W"][source] == pytest.approx(value)
     assert set(data["heat_W"]) == {"guideways", "screw_motor", "nut_motor", "front_bearing", "nut_bearing",
                                    "rear_bearing", "screw_nut"}
@@ -94,7 +95,8 @@ def test_missing_file_gets_one_line(tmp_path):
 
 def test_unknown_condition_and_bad_mode_get_one_line():
     assert_one_line_error(run("heat", "--condition", "VI"), "--condition", "no condition 'VI'", "I, II, III, IV, V")
-    assert_one_line_error(run("heat", "--condition", "I", "--mode", "exact"), "invalid choice")
+    assert_one_line_error(run("heat", "--condition", "I", "--mode", "exact"), "--mode: must be physics or paper",
+                          "got 'exact'")
     assert_one_line_error(run("heat"), "--condition")
 
 

@@ -162,7 +162,7 @@ def args_with(**changes):
         (args_with(screw_rpm="100:3000:10", ambient="18,20"), ["the grid has 582 points", "at most 500"]),
         (args_with(screw_rpm="0:600:1"), ["--screw-rpm: range '0:600:1' gives 601 values", "at most 500"]),
         (["ballscrew_example", *args_with(nut_rpm="0,100")], ["--nut-rpm: a single drive", "give --nut-rpm 0"]),
-        (["ballscrew_example", *args_with(nut_rpm="0"), "--mode", "paper"], ["--mode paper", "no [paper] table"]),
+        (["ballscrew_example", *args_with(nut_rpm="0"), "--mode", "paper"], ["--mode paper", "no overlay of printed values"]),
         (args_with(duration="0"), ["--duration", "positive", "'0'"]),
         (args_with(motion="fast"), ["--motion", "invalid choice: 'fast'"]),
         (["--screw-rpm", "396", "--nut-rpm", "360"], ["the following arguments are required: --ambient"]),

@@ -8,6 +8,7 @@ import pytest
 from dataclasses import replace
 
 from feedtherm.errors import ModelError
+from feedtherm.plan import with_mode
 from feedtherm.models.fast.discretization import FastDiscretization
 from feedtherm.models.registry import ModelEntry, register_model, unregister_model
 from feedtherm.simulate import simulate
@@ -141,7 +142,7 @@ def test_single_drive_mode_turns_the_nut_motor_off(paper):
 
 
 def test_paper_mode_runs_and_is_cooler_at_the_nut(paper, run_i):
-    run = simulate(paper, condition="I", mode="paper")
+    run = simulate(with_mode(paper, "paper"), condition="I")
     assert abs(run.energy.relative_error) < 1e-4
     assert run.info["mode"] == "paper"
 

@@ -45,7 +45,7 @@ def fem(loaded, cache):
 
 @pytest.fixture(scope="module")
 def bcs(loaded):
-    return {c: boundary_conditions(loaded.system, c, "physics") for c in ("I", "V")}
+    return {c: boundary_conditions(loaded.system, c) for c in ("I", "V")}
 
 
 @pytest.fixture(scope="module")

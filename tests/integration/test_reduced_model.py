@@ -137,7 +137,7 @@ def test_projected_operators_are_the_full_ones_multiplied_out(full, reduced, pap
     V = reduced.V
     G = full.conductance(k)
     assert np.allclose(reduced.conductance(k), V.T @ (G @ V), rtol=1e-10, atol=1e-10 * np.abs(G).max())
-    bc = boundary_conditions(paper.system, "I", "physics")
+    bc = boundary_conditions(paper.system, "I")
     full_ambient, ambient = full.ambient_coupling(bc, k), reduced.ambient_coupling(bc, k)
     links = full_ambient.matrix
     assert np.allclose(ambient.matrix, V.T @ (links[:, None] * V), rtol=1e-10, atol=1e-12)

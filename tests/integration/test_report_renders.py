@@ -52,7 +52,7 @@ def validation() -> Validation:
     provenance = dict(runs["I"].info["provenance"])
     assumptions = provenance.pop("assumptions")
     return Validation(
-        system_name="paper_bench", mode="physics", model="fast", comparisons=comparisons, solutions=runs,
+        system_name="paper_bench", model="fast", comparisons=comparisons, solutions=runs,
         single_drive=single, heat_budget=budget,
         measured_equilibrium_min={"I": 120.0, "II": 100.0, "III": 90.0, "IV": 70.0, "V": 110.0},
         sensitivities=sensitivities, sensitivity_condition="I",

@@ -38,7 +38,7 @@ def test_a_tiny_study_has_bands_around_the_declared_run(paper, serial):
         assert values.shape == (3, 181)
         assert (values[0] <= values[1]).all() and (values[1] <= values[2]).all()
     # the nominal run is the run at the declared values, as calibration makes it
-    declared = _final_values(paper, "I", "physics")
+    declared = _final_values(paper, "I")
     for f in prior.finals:
         assert f.nominal == pytest.approx(declared[f.quantity], abs=1e-9)
     assert prior.coverage == (0, 0)  # no measurements passed

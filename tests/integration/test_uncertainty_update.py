@@ -64,7 +64,7 @@ def test_the_update_is_the_studys_second_set(paper, serial, study):
     # its nominal run is the run at the posterior mode
     from feedtherm.analysis.uncertainty.runs import SampleRun, run_sample
 
-    at_map = run_sample(SampleRun(serial.nominal, ("I",), "physics", "map")).finals["I"]
+    at_map = run_sample(SampleRun(serial.nominal, ("I",), "map")).finals["I"]
     for f in after.finals:
         assert f.nominal == pytest.approx(at_map[f.quantity], abs=1e-9)
 

@@ -12,6 +12,7 @@ import pytest
 
 from feedtherm.analysis.validation import validate
 from feedtherm.benches import bench
+from feedtherm.plan import with_mode
 from feedtherm.system.load import load_system
 
 
@@ -39,7 +40,7 @@ def test_validate_command_writes_30_rows_and_a_report(tmp_path):
 
 
 def test_paper_mode_validation_uses_the_same_measurements():
-    v = validate(load_system("paper"), mode="paper")
+    v = validate(with_mode(load_system("paper"), "paper"))
     assert len(v.comparisons) == 30 and v.mode == "paper"
     assert {c.condition for c in v.comparisons} == {"I", "II", "III", "IV", "V"}
     assert all(abs(s.energy.relative_error) < 1e-4 for s in v.solutions.values())

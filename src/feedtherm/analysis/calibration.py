@@ -42,6 +42,7 @@ from ..models.options import ModelOptions
 from ..simulate import simulate
 from ..solution.equilibrium import rise_time
 from ..system.load import LoadedSystem
+from ..system.overlay import mode_of
 from ..system.quantities import to_base_si
 from ..system.references import closest
 from ..system.variants import expand_path, get_path, with_values
@@ -189,9 +190,9 @@ CALIBRATION_OPTIONS = ModelOptions(motion="averaged", averaged_step=CALIBRATION_
                                    max_step=CALIBRATION_STEP_S)
 
 
-def _final_values(loaded: LoadedSystem, condition: str, mode: str) -> dict[str, float]:
+def _final_values(loaded: LoadedSystem, condition: str) -> dict[str, float]:
     """One condition's final values and its time to 95 % of the steady rise [min]."""
-    run = simulate(loaded, condition=condition, mode=mode, motion="averaged", options=CALIBRATION_OPTIONS,
+    run = simulate(loaded, condition=condition, motion="averaged", options=CALIBRATION_OPTIONS,
                    sample_interval=CALIBRATION_STEP_S, allow_overload=True)  # the fit reports overloads
     values = {k: float(v) for k, v in run.summary_values("final").items()}
     initial = {name: float(series[0]) for name, series in run.sensors.items()}
@@ -204,9 +205,8 @@ def _final_values(loaded: LoadedSystem, condition: str, mode: str) -> dict[str, 
 class _CalibrationRun:
     """One run of a calibration request: a description with the parameters applied, a condition."""
 
-    loaded: LoadedSystem
+    loaded: LoadedSystem  # with the overlay the fit runs in
     condition: str
-    mode: str
 
     def describe(self) -> str:
         return f"condition {self.condition} of {self.loaded.origin}"
@@ -214,7 +214,7 @@ class _CalibrationRun:
 
 def _calibration_run(run: _CalibrationRun) -> dict[str, float]:
     """One run, wherever it executes (a worker imports this by name)."""
-    return _final_values(run.loaded, run.condition, run.mode)
+    return _final_values(run.loaded, run.condition)
 
 
 def _value(result):
@@ -230,7 +230,7 @@ class RunCache:
     A calibration evaluates the same points more than once: the prediction intervals start
     from the optimum the fit has just evaluated, and every leave-one-out fold starts from the
     first fit's optimum, where its values and sensitivities are known.  Pass one cache to
-    :func:`calibrate` and :func:`cross_validate` of one system and mode to run each point once.
+    :func:`calibrate` and :func:`cross_validate` of one system (and overlay) to run each point once.
     The runs are deterministic, so a cached value is the value the run would give.
     """
 
@@ -263,9 +263,9 @@ class _Model:
     the same point.
     """
 
-    def __init__(self, loaded: LoadedSystem, parameters: list[FitParameter], mode: str, workers: int = 1,
+    def __init__(self, loaded: LoadedSystem, parameters: list[FitParameter], workers: int = 1,
                  cache: RunCache | None = None, execution: Execution | None = None):
-        self.loaded, self.parameters, self.mode = loaded, parameters, mode
+        self.loaded, self.parameters = loaded, parameters
         self.runs = 0
         if execution is None:
             execution = Execution(workers=workers) if workers > 1 else Execution()
@@ -285,7 +285,7 @@ class _Model:
         # 12 significant digits: a point that went through the fit's [0, 1] scaling and back
         # differs from itself in the last bit
         names = tuple(p.name for p in self.parameters)
-        return (self.mode, condition, names, tuple(float(f"{float(v):.12g}") for v in x))
+        return (mode_of(self.loaded), condition, names, tuple(float(f"{float(v):.12g}") for v in x))
 
     def finals(self, x, conditions: list[str]) -> dict[str, dict[str, float]]:
         return self.finals_many([x], conditions)[0]
@@ -298,7 +298,7 @@ class _Model:
         if missing:
             variants = {i: apply(self.loaded, self.parameters, points[i]) for i in {i for i, _ in missing}}
             self.runs += len(missing)
-            runs = [_CalibrationRun(variants[i], c, self.mode) for i, c in missing]
+            runs = [_CalibrationRun(variants[i], c) for i, c in missing]
             if self.execution.serial or len(runs) == 1:
                 values = [_calibration_run(run) for run in runs]
             else:
@@ -376,7 +376,7 @@ def _sigma(loaded: LoadedSystem, unit: str) -> float:
 
 
 def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names: list[str], *,
-              mode: str = "physics", progress: Callable[[float], None] | None = None,
+              progress: Callable[[float], None] | None = None,
               consistency: ConsistencyReport | None = None, equilibrium: bool = True,
               start: np.ndarray | None = None, workers: int = 1, cache: RunCache | None = None,
               execution: Execution | None = None) -> CalibrationResult:
@@ -390,6 +390,7 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
     cluster once for many calibrations); ``workers`` > 1 without it: a local cluster of that many
     processes for this calibration.  The numbers are the same either way.
     ``cache``: runs already made (shared with a later :func:`cross_validate`).
+    The runs take the overlay ``loaded`` carries (:func:`feedtherm.plan.with_mode`).
     """
     started = time.perf_counter()
     measured = data.conditions()
@@ -404,7 +405,7 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
     rows = [r for r in fitted_data if not r.flag]
     if len(rows) < len(parameters):
         raise FeedthermError(f"--fit: {len(rows)} measured values cannot determine {len(parameters)} parameters")
-    with _Model(loaded, parameters, mode, workers, cache, execution) as model:
+    with _Model(loaded, parameters, workers, cache, execution) as model:
         sigma = np.array([_sigma(loaded, r.unit) for r in rows])
         target = np.array([r.measured for r in rows])
         lower = np.array([p.lower for p in parameters])
@@ -412,7 +413,7 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
         span = upper - lower
 
         # every condition the machine ran, fitted or not: its motors carried them all
-        duty = _DutyPenalty(loaded, parameters, list(loaded.system.conditions), mode)
+        duty = _DutyPenalty(loaded, parameters, list(loaded.system.conditions))
 
         def values(finals) -> np.ndarray:
             return (np.array([finals[r.condition][r.quantity] for r in rows]) - target) / sigma
@@ -473,7 +474,7 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
             wall_time_s=time.perf_counter() - started,
             measurement_source=data.source, calibrated=calibrated, status=result.message,
             excluded=_predictions(finals, [r for r in fitted_rows if r.flag], intervals),
-            motor_duty=motor_duty(calibrated, mode),
+            motor_duty=motor_duty(calibrated),
         )
 
 
@@ -487,14 +488,14 @@ DUTY_LIMIT, DUTY_SIGMA = 0.995, 0.0005
 
 class _DutyPenalty:
     """The motors' duty penalties at a parameter point (see :data:`DUTY_LIMIT`): one residual per
-    condition and motor with a declared continuous torque; none in paper mode, whose heats are
-    the paper's table, not a mechanism.  The conditions' speeds are all it needs of them, so a
+    condition and motor with a declared continuous torque; none under an overlay, whose heats are
+    printed values, not a mechanism.  The conditions' speeds are all it needs of them, so a
     held-out condition constrains the fit without its measurements entering it."""
 
-    def __init__(self, loaded: LoadedSystem, parameters: list[FitParameter], conditions: list[str], mode: str):
-        self.loaded, self.parameters, self.mode = loaded, parameters, mode
-        self.conditions = conditions if mode == "physics" else []
-        self.motors = sorted(motor_duties(boundary_conditions(loaded.system, conditions[0], mode).heats)) \
+    def __init__(self, loaded: LoadedSystem, parameters: list[FitParameter], conditions: list[str]):
+        self.loaded, self.parameters = loaded, parameters
+        self.conditions = conditions if loaded.overlay is None else []
+        self.motors = sorted(motor_duties(boundary_conditions(loaded.system, conditions[0]).heats)) \
             if self.conditions else []
 
     def __call__(self, x) -> np.ndarray:
@@ -503,16 +504,17 @@ class _DutyPenalty:
         system = apply(self.loaded, self.parameters, x).system
         out = []
         for condition in self.conditions:
-            duties = motor_duties(boundary_conditions(system, condition, self.mode).heats)
+            duties = motor_duties(boundary_conditions(system, condition).heats)
             out.extend(max(0.0, duties[m] - DUTY_LIMIT) / DUTY_SIGMA for m in self.motors)
         return np.array(out)
 
 
-def motor_duty(loaded: LoadedSystem, mode: str = "physics") -> dict[str, dict[str, float]]:
-    """Each condition's motors' torque over their declared continuous torque (those that declare one)."""
-    if mode != "physics":
+def motor_duty(loaded: LoadedSystem) -> dict[str, dict[str, float]]:
+    """Each condition's motors' torque over their declared continuous torque (those that declare
+    one); none under an overlay, whose printed heats carry no torques."""
+    if loaded.overlay is not None:
         return {}
-    duties = {condition: motor_duties(boundary_conditions(loaded.system, condition, mode).heats)
+    duties = {condition: motor_duties(boundary_conditions(loaded.system, condition).heats)
               for condition in loaded.system.conditions}
     return {condition: ratios for condition, ratios in duties.items() if ratios}
 
@@ -620,7 +622,7 @@ def _uncertainty(jac: np.ndarray, fun: np.ndarray, x: np.ndarray, m: int):
     return se, corr, reasons, cov, s2, dof
 
 
-def cross_validate(loaded: LoadedSystem, data: MeasurementSet, names: list[str], *, mode: str = "physics",
+def cross_validate(loaded: LoadedSystem, data: MeasurementSet, names: list[str], *,
                    progress: Callable[[float], None] | None = None, consistency: ConsistencyReport | None = None,
                    equilibrium: bool = True, start: np.ndarray | None = None,
                    workers: int = 1, cache: RunCache | None = None,
@@ -639,7 +641,7 @@ def cross_validate(loaded: LoadedSystem, data: MeasurementSet, names: list[str],
     with kept_open(execution) as running:  # one cluster for every fold
         for i, left_out in enumerate(conditions):
             fit = [c for c in conditions if c != left_out]
-            out.append((left_out, calibrate(loaded, data, fit, names, mode=mode, consistency=consistency,
+            out.append((left_out, calibrate(loaded, data, fit, names, consistency=consistency,
                                             equilibrium=equilibrium, start=start, cache=cache, execution=running)))
             if progress is not None:
                 progress((i + 1) / len(conditions))

@@ -136,7 +136,7 @@ def parse_groups(text: str | None, sources: list[str]) -> dict[str, tuple[str, .
     return groups
 
 
-def transfer(loaded: LoadedSystem, condition: str, groups: dict[str, tuple[str, ...]], *, mode: str = "physics",
+def transfer(loaded: LoadedSystem, condition: str, groups: dict[str, tuple[str, ...]], *,
              model: str = "fast") -> Transfer:
     """The steady response of ``condition``'s observations to 1 W of each group (cycle-averaged motion).
 
@@ -145,7 +145,7 @@ def transfer(loaded: LoadedSystem, condition: str, groups: dict[str, tuple[str, 
     coefficients are those of the model's own steady state (evaluated there under
     ``temperatures.coupling = "nonlinear"``, frozen otherwise).
     """
-    steady = steady_solve(loaded, condition, mode=mode, model=model)
+    steady = steady_solve(loaded, condition, model=model)
     disc, integrator, k = steady.model, steady.integrator, steady.k
     bc = integrator.steady_boundary_conditions(0, steady.segment.bc, steady.state)
     k_probe = steady.probe_position
@@ -220,7 +220,7 @@ def measured_observations(data: MeasurementSet, condition: str) -> dict[str, flo
 
 
 def infer_conditions(loaded: LoadedSystem, data: MeasurementSet, conditions: list[str], *, groups: str | None = None,
-                     noise: Noise, prior_width: float = 1.0, mode: str = "physics",
+                     noise: Noise, prior_width: float = 1.0,
                      model: str = "fast") -> list[Inference]:
     """:func:`infer` at each of ``conditions`` from ``data``."""
     measured = data.conditions()
@@ -229,5 +229,5 @@ def infer_conditions(loaded: LoadedSystem, data: MeasurementSet, conditions: lis
             raise FeedthermError(f"--conditions: no measurements of condition {condition!r} in {data.source}; "
                                  f"measured: {', '.join(measured)}")
     grouping = parse_groups(groups, list(loaded.system.sources))
-    return [infer(transfer(loaded, c, grouping, mode=mode, model=model), measured_observations(data, c), noise, prior_width)
+    return [infer(transfer(loaded, c, grouping, model=model), measured_observations(data, c), noise, prior_width)
             for c in conditions]

@@ -66,16 +66,16 @@ def source_of(loaded: LoadedSystem, path: str) -> str:
     return text
 
 
-def sensitivities(loaded: LoadedSystem, condition: str, *, mode: str = "physics", factor: float = 1.1,
+def sensitivities(loaded: LoadedSystem, condition: str, *, factor: float = 1.1,
                   progress: Callable[[float], None] | None = None) -> list[Sensitivity]:
     """Effect of each perturbable value, scaled by ``factor``, on the steady T1... [K] and D [µm]."""
-    base = steady_state(loaded, condition, mode=mode)
+    base = steady_state(loaded, condition)
     paths = perturbable_paths(loaded)
     out = []
     for i, path in enumerate(paths):
         value = get_path(loaded.system, path)
         variant = with_values(loaded, {path: value * factor}, origin_suffix=f"{path} x {factor:g}")
-        perturbed = steady_state(variant, condition, mode=mode)
+        perturbed = steady_state(variant, condition)
         effect = {name: perturbed[name] - base[name] for name in base if name not in (ELONGATION_PROBE, AMBIENT_SENSOR)}
         effect[ELONGATION_QUANTITY] = (perturbed["D"] - base["D"]) * 1e6
         out.append(Sensitivity(path, source_of(loaded, path), factor, effect, name=readable_name(loaded, path)))

@@ -28,6 +28,7 @@ from ..boundary.heat import motor_duties
 from ..errors import FeedthermError
 from ..constants import AMBIENT_SENSOR, KELVIN_OFFSET
 from ..system.load import LoadedSystem
+from ..system.overlay import mode_of
 from ..system.variants import with_condition
 from .execution import Execution, TaskFailure, run_ordered
 
@@ -195,7 +196,7 @@ def columns(sensors: list[str]) -> list[str]:
             "equilibrium_time_s", "energy_balance_error", "motor_duty"]
 
 
-def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", duration: float | None = None,
+def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, duration: float | None = None,
               motion: str = "averaged", progress: Callable[[float], None] | None = None,
               execution: Execution = Execution(), known: Mapping[int, dict] | None = None,
               on_row: Callable[[int, dict], None] | None = None) -> list[dict]:
@@ -204,9 +205,9 @@ def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", d
     Parameters
     ----------
     loaded : LoadedSystem
+        With the overlay its runs take (:func:`feedtherm.plan.with_mode`).
     grid : SweepGrid
         From :func:`parse_grid`.
-    mode : {"physics", "paper"}
     duration : float, optional
         Length of every run [s]; default: a condition's default duration.
     motion : {"resolved", "averaged"}
@@ -245,8 +246,8 @@ def run_sweep(loaded: LoadedSystem, grid: SweepGrid, *, mode: str = "physics", d
     # Every condition is built (and so validated) before the first run.
     variants = [with_condition(loaded, CONDITION_NAME, screw, nut, ambient, duration) for screw, nut, ambient in points]
     todo = [index for index in range(len(points)) if index not in known]
-    duties = {index: largest_motor_duty(variants[index], mode) for index in todo}  # known rows carry theirs
-    runs = [SweepRun(variants[index], {"condition": CONDITION_NAME, "mode": mode, "duration": duration,
+    duties = {index: largest_motor_duty(variants[index]) for index in todo}  # known rows carry theirs
+    runs = [SweepRun(variants[index], {"condition": CONDITION_NAME, "duration": duration,
                                        "motion": motion}, label=point_label(*points[index]))
             for index in todo]
 
@@ -274,12 +275,12 @@ def _remaining_share(progress: Callable[[float], None], known: int, total: int) 
     return lambda fraction: progress((known + fraction * (total - known)) / total)
 
 
-def largest_motor_duty(loaded: LoadedSystem, mode: str) -> float | None:
+def largest_motor_duty(loaded: LoadedSystem) -> float | None:
     """The largest torque over continuous torque of the motors of the sweep's condition (None: no
-    motor declares a continuous torque, or paper mode, whose printed heats carry no torques)."""
-    if mode != "physics":
+    motor declares a continuous torque, or an overlay, whose printed heats carry no torques)."""
+    if loaded.overlay is not None:
         return None
-    ratios = motor_duties(boundary_conditions(loaded.system, CONDITION_NAME, mode).heats)
+    ratios = motor_duties(boundary_conditions(loaded.system, CONDITION_NAME).heats)
     return max(ratios.values()) if ratios else None
 
 
@@ -299,13 +300,13 @@ def _row(point: tuple[float, float, float], solution, sensors: list[str], lead: 
     return row
 
 
-def sweep_settings(loaded: LoadedSystem, *, mode: str, duration: float | None, motion: str) -> dict:
+def sweep_settings(loaded: LoadedSystem, *, duration: float | None, motion: str) -> dict:
     """What every point of a sweep shares: the description (by its digest), mode, duration, motion
     and the feedtherm version that computes it (plain JSON types)."""
     from .. import __version__
 
     return {"feedtherm": __version__, "description": loaded.origin, "description_sha256": loaded.sha256,
-            "mode": mode, "duration_s": duration, "motion": motion}
+            "mode": mode_of(loaded), "duration_s": duration, "motion": motion}
 
 
 def point_key(settings: dict, point: tuple[float, float, float]) -> str:

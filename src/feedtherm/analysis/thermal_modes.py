@@ -96,10 +96,10 @@ def mode_table(capacity: np.ndarray, matrix, start_deviation: np.ndarray, readou
     return modes
 
 
-def thermal_modes(loaded: LoadedSystem, condition: str, *, mode: str = "physics", model: str = "fast",
+def thermal_modes(loaded: LoadedSystem, condition: str, *, model: str = "fast",
                   count: int = 6) -> ThermalModes:
     """The ``count`` slowest thermal modes of ``condition`` around its steady state (module notes)."""
-    solve = steady_solve(loaded, condition, mode=mode, model=model)
+    solve = steady_solve(loaded, condition, model=model)
     disc, integrator = solve.model, solve.integrator
     if np.ndim(disc.capacity) != 1 or disc.n_nodes > MAX_NODES:
         raise FeedthermError(f"--model {model}: the eigen-analysis needs a lumped capacity and at most "

@@ -14,6 +14,7 @@ from ..errors import FeedthermError
 from ..simulate import provenance, simulate
 from ..system.checks import check_system
 from ..system.load import LoadedSystem
+from ..system.overlay import available_overlay
 from .consistency import check_description_measurements
 from .inverse import Noise, infer_conditions
 from .measurements import MeasurementSet, measurement_spec, read_measurements
@@ -36,11 +37,12 @@ def measurements_of(loaded: LoadedSystem, measured: str | None) -> MeasurementSe
     return data
 
 
-def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast", mesh: str | None = None,
+def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = None,
              measured: str | None = None, progress: Callable[[float], None] | None = None,
              calibration: dict | None = None, compensation: dict | None = None,
              uncertainty: dict | None = None) -> Validation:
-    """Run every measured condition of ``loaded`` and compare it with its measurements.
+    """Run every measured condition of ``loaded`` (with the overlay it carries) and compare it with
+    its measurements.
 
     Also checks the measurements' own consistency, infers the heat of every source from each
     condition's measurements (the fast model's transfer matrix), and carries ``calibration``
@@ -66,29 +68,29 @@ def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast"
 
     solutions, single, budget, comparisons = {}, {}, {}, []
     for condition in conditions:
-        run = simulate(loaded, condition=condition, mode=mode, model=model, mesh=mesh)
+        run = simulate(loaded, condition=condition, model=model, mesh=mesh)
         solutions[condition] = run
         tick()
         if dual:
-            single[condition] = simulate(loaded, condition=condition, mode=mode, model=model, mesh=mesh, single_drive=True)
+            single[condition] = simulate(loaded, condition=condition, model=model, mesh=mesh, single_drive=True)
             tick()
-        budget[condition] = {name: h.power for name, h in boundary_conditions(system, condition, mode).heats.items()}
+        budget[condition] = {name: h.power for name, h in boundary_conditions(system, condition, loaded.overlay).heats.items()}
         final = run.summary_values("final")
         for row in data.for_condition(condition):
             comparisons.append(Comparison(condition, row.quantity, row.unit, float(final[row.quantity]), row.measured,
                                           row.reference_simulated))
-    reference = system.paper.reference_condition if system.paper else conditions[0]
-    ranking = sensitivities(loaded, reference, mode=mode)
+    printed = available_overlay(loaded)
+    reference = printed.reference_condition if printed else conditions[0]
+    ranking = sensitivities(loaded, reference)
     tick()
     weights = system.calibration
     consistency = check_description_measurements(system, data)
     inferred = infer_conditions(loaded, data, [c for c in conditions if c in system.conditions],
                                 noise=Noise(weights.temperature_sigma if weights else 0.5,
-                                            weights.elongation_sigma if weights else 2e-6), mode=mode)
+                                            weights.elongation_sigma if weights else 2e-6))
     tick()
     return Validation(
         system_name=system.meta.name,
-        mode=mode,
         model=model,
         comparisons=comparisons,
         solutions=solutions,
@@ -98,9 +100,9 @@ def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast"
         sensitivities=ranking,
         sensitivity_condition=reference,
         inconsistencies=inconsistencies(loaded),
-        assumptions=provenance(loaded, mode)["assumptions"],
+        assumptions=provenance(loaded)["assumptions"],
         calibrated=calibrated_values(loaded),
-        provenance=provenance(loaded, mode),
+        provenance=provenance(loaded),
         measurement_source=data.source,
         wall_time_s=time.perf_counter() - started,
         consistency=consistency,
@@ -112,19 +114,20 @@ def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast"
 
 
 def inconsistencies(loaded: LoadedSystem) -> list[str]:
-    """`feedtherm check`'s findings, and printed values the physics contradicts by over 2x."""
+    """`feedtherm check`'s findings, and printed values (the overlay's) the physics contradicts by over 2x."""
     system = loaded.system
     found = [str(f) for f in check_system(system)]
-    if system.paper is None:
+    printed = available_overlay(loaded)
+    if printed is None:
         return found
-    condition = system.paper.reference_condition
-    bc = boundary_conditions(system, condition, "physics")
-    for row in system.paper.heat:
+    condition = printed.reference_condition
+    bc = boundary_conditions(system, condition)
+    for row in printed.heat:
         physics = bc.heats[row.source].power
         if not _within(physics, row.value):
             found.append(f"{row.ref} {row.table_label}: printed {row.value:.3g} W at condition {condition}; "
                          f"the physics gives {physics:.3g} W with the declared inputs")
-    for row in system.paper.chtc:
+    for row in printed.chtc:
         for surface in row.surfaces[:1]:
             physics = bc.surfaces[surface].convection
             if not _within(physics, row.value):

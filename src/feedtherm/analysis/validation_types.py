@@ -52,7 +52,6 @@ class Validation:
     """Everything `feedtherm validate` computed."""
 
     system_name: str
-    mode: str
     model: str
     comparisons: list[Comparison]
     solutions: dict[str, Solution]  # condition -> run
@@ -74,6 +73,11 @@ class Validation:
     compensation: dict | None = None
     # a `feedtherm uncertainty` folder: {"summary": uncertainty.json, "figures": {png name: bytes}}
     uncertainty: dict | None = None
+
+    @property
+    def mode(self) -> str:
+        """The overlay the runs took, by name, or ``"physics"`` (from the provenance)."""
+        return self.provenance.get("mode", "physics")
 
     def largest(self, kind: str) -> Comparison:
         """The comparison with the largest |deviation| among temperatures or elongations."""

@@ -1,14 +1,11 @@
 """Boundary conditions at an operating point: heat per source, CHTC per surface, TCR per joint.
 
-This is where the paper's Tables 1-3 come from (``feedtherm heat`` prints them).  Two modes:
-
-``physics``
-    every heat and every CHTC from the correlations and the description; radiation on.
-``paper``
-    Table 1 heats and Table 2 CHTCs at the paper's reference condition, mapped onto the
-    description's sources and surfaces by its ``[paper]`` table and scaled to other
-    conditions by the physics ratio (see :mod:`.paper`); uncovered values from the
-    physics; radiation off.
+``feedtherm heat`` prints them.  Every heat and every CHTC comes from the correlations and the
+description, radiation on; unless an overlay is given (:class:`~feedtherm.system.overlay.Overlay`,
+values a source prints at one reference condition): then its heats and CHTCs replace the
+physics at that condition and are scaled to other conditions by the physics ratio (see
+:mod:`.overlay`), uncovered values come from the physics, and radiation is off.  Only
+:mod:`feedtherm.plan` decides which overlay a run takes.
 
 By default CHTCs and lubricant viscosities are frozen for a run at the declared
 surface-to-air temperature difference (the paper's assumption 3).  Given the surfaces' and
@@ -22,19 +19,16 @@ from __future__ import annotations
 import warnings
 from contextlib import contextmanager
 from dataclasses import dataclass, replace
-from typing import Literal
 
 from ..physics.contact import conductance_contact
 from ..physics.validity import CorrelationRangeWarning
+from ..system.overlay import PHYSICS, Overlay
 from ..system.schema import FeedSystem
 from .heat import SourceHeat, named_failure, source_heats
 from .operating import OperatingPoint, operating_point
-from .paper import scaled
+from .overlay import scaled
 from .surfaces import SurfaceTransfer, surface_transfer
 from .temperatures import LocalTemperatures
-
-Mode = Literal["physics", "paper"]
-MODES: tuple[str, ...] = ("physics", "paper")
 
 
 @dataclass(frozen=True)
@@ -53,45 +47,47 @@ class JointConductance:
 @dataclass(frozen=True)
 class BoundaryConditions:
     condition: str
-    mode: str
+    overlay: str | None  # the overlay's name, None for the physics alone
     point: OperatingPoint
     heats: dict[str, SourceHeat]
     surfaces: dict[str, SurfaceTransfer]
     joints: list[JointConductance]
-    paper_heat: dict[str, float]  # source -> printed value at the reference condition [W]
-    paper_chtc: dict[str, float]  # surface -> printed value at the reference condition
     warnings: list[str]
     temperatures: LocalTemperatures | None = None  # where they were evaluated (None: frozen)
+
+    @property
+    def mode(self) -> str:
+        """The overlay's name, or ``"physics"``: what outputs call these boundary conditions."""
+        return self.overlay or PHYSICS
 
     @property
     def total_heat(self) -> float:
         return sum(h.power for h in self.heats.values())
 
 
-def boundary_conditions(system: FeedSystem, condition: str, mode: Mode = "physics") -> BoundaryConditions:
-    """Boundary conditions of ``condition`` (a name in the description) in ``mode``."""
-    return boundary_conditions_at(system, operating_point(system, system.conditions[condition]), mode, label=condition)
+def boundary_conditions(system: FeedSystem, condition: str, overlay: Overlay | None = None) -> BoundaryConditions:
+    """Boundary conditions of ``condition`` (a name in the description), with ``overlay`` if given."""
+    return boundary_conditions_at(system, operating_point(system, system.conditions[condition]), overlay,
+                                  label=condition)
 
 
 def boundary_conditions_at(
-    system: FeedSystem, point: OperatingPoint, mode: Mode = "physics", *, label: str = "",
+    system: FeedSystem, point: OperatingPoint, overlay: Overlay | None = None, *, label: str = "",
     temperatures: LocalTemperatures | None = None,
 ) -> BoundaryConditions:
     """Boundary conditions at any operating point (a duty-cycle segment, a standstill, ...).
 
+    ``overlay``: printed values to lay over the physics (None: the physics alone).
     ``temperatures``: the surfaces' and sources' own temperatures; None takes them all at the
     frozen temperature (:func:`frozen_surface_temperature`).
     """
-    if mode not in MODES:
-        raise ValueError(f"mode must be one of {', '.join(MODES)}, got {mode!r}")
     caught: list[str] = []
-    heats, surfaces = _physics(system, point, with_radiation=(mode == "physics"), caught=caught,
+    heats, surfaces = _physics(system, point, with_radiation=overlay is None, caught=caught,
                                temperatures=temperatures)
-    paper_heat, paper_chtc = _printed(system)
-    if mode == "paper":
-        heats, surfaces = _paper(system, point, heats, surfaces)
+    if overlay is not None:
+        heats, surfaces = _overlaid(system, overlay, heats, surfaces)
     joints = [JointConductance(tuple(j.between), j.tcr, j.area, j.sliding) for j in system.joints]
-    return BoundaryConditions(label, mode, point, heats, surfaces, joints, paper_heat, paper_chtc, caught,
+    return BoundaryConditions(label, overlay.name if overlay else None, point, heats, surfaces, joints, caught,
                               temperatures)
 
 
@@ -131,20 +127,10 @@ def _collect(label: str, sink: list[str]):
             warnings.warn_explicit(record.message, record.category, record.filename, record.lineno)
 
 
-def _printed(system: FeedSystem) -> tuple[dict[str, float], dict[str, float]]:
-    if system.paper is None:
-        return {}, {}
-    heat = {row.source: row.value for row in system.paper.heat}
-    chtc = {surface: row.value for row in system.paper.chtc for surface in row.surfaces}
-    return heat, chtc
-
-
-def _paper(system: FeedSystem, point: OperatingPoint, heats, surfaces):
-    if system.paper is None:
-        raise ValueError(f"{system.meta.name}: paper mode needs a [paper] table in the description")
-    reference = operating_point(system, system.conditions[system.paper.reference_condition])
+def _overlaid(system: FeedSystem, overlay: Overlay, heats, surfaces):
+    reference = operating_point(system, system.conditions[overlay.reference_condition])
     ref_heats, ref_surfaces = _physics(system, reference, with_radiation=False)
-    printed_heat, printed_chtc = _printed(system)
+    printed_heat, printed_chtc = overlay.printed_heats(), overlay.printed_chtcs()
     heats = {
         # the physics ratio cancels a heat_factor, so it multiplies the printed value
         name: replace(h, power=scaled(printed_heat[name], h.power, ref_heats[name].power)
@@ -158,7 +144,7 @@ def _paper(system: FeedSystem, point: OperatingPoint, heats, surfaces):
             # the physics ratio cancels a calibrated chtc_factor, so it multiplies the printed value
             convection=scaled(printed_chtc[name], s.convection, ref_surfaces[name].convection)
             * system.surfaces[name].chtc_factor,
-            correlation=f"paper value x ratio of: {s.correlation}",
+            correlation=f"{overlay.name} value x ratio of: {s.correlation}",
         ) if name in printed_chtc else s
         for name, s in surfaces.items()
     }
@@ -169,7 +155,7 @@ __all__ = [
     "BoundaryConditions",
     "JointConductance",
     "LocalTemperatures",
-    "MODES",
+    "PHYSICS",
     "OperatingPoint",
     "SourceHeat",
     "SurfaceTransfer",

@@ -65,6 +65,10 @@ def calibrated_toml(original: LoadedSystem, result: CalibrationResult) -> str:
     meta["description"] = f"{meta.get('description', '')} Calibrated on conditions {conditions}.".strip()
     if "measurements" in meta and not str(meta["measurements"]).startswith("bundled:") and not original.origin.startswith("bundled:"):
         meta["measurements"] = str(Path(original.origin).parent / str(meta["measurements"]))
+    overlay = overlay_spec(original)  # the calibrated machine can run in the original's modes
+    if overlay is not None:
+        meta["overlay"] = overlay if overlay.startswith("bundled:") or Path(overlay).is_absolute() \
+            else str(Path(original.origin).parent / overlay)
     return tomlkit.dumps(doc)
 
 

@@ -10,11 +10,13 @@ from rich.table import Table
 
 from ..boundary import BoundaryConditions
 from ..constants import KELVIN_OFFSET
+from ..system.overlay import Overlay
 from .files import json_text
 
 
-def heat_json(bc: BoundaryConditions) -> str:
-    """One JSON object: heats [W] and CHTCs [W/(m^2 K)], with the paper's values beside.
+def heat_json(bc: BoundaryConditions, printed: Overlay | None = None) -> str:
+    """One JSON object: heats [W] and CHTCs [W/(m^2 K)], with the values ``printed`` (the bench's
+    overlay, if it has one) beside, at its reference condition.
 
     A value the correlations could not compute (NaN, infinite) is ``null``: JSON has no NaN.
     """
@@ -24,8 +26,9 @@ def heat_json(bc: BoundaryConditions) -> str:
         "heat_W": {name: h.power for name, h in bc.heats.items()},
         "chtc_W_per_m2K": {name: s.convection for name, s in bc.surfaces.items()},
         "radiation_W_per_m2K": {name: s.radiation for name, s in bc.surfaces.items()},
-        "paper_table1_heat_W": bc.paper_heat,
-        "paper_table2_chtc_W_per_m2K": bc.paper_chtc,
+        "printed": None if printed is None else {
+            "overlay": printed.name, "title": printed.title, "condition": printed.reference_condition,
+            "heat_W": printed.printed_heats(), "chtc_W_per_m2K": printed.printed_chtcs()},
         "screw_rpm": bc.point.screw_rpm,
         "nut_rpm": bc.point.nut_rpm,
         "table_speed_m_per_min": bc.point.table_speed * 60.0,
@@ -52,14 +55,18 @@ def _current(details: dict) -> str:
     return f"{details['current_A']:.2f}" + ("" if rated is None else f" / {rated:.2f}")
 
 
-def _paper(value: float | None, fmt: str) -> str:
+def _printed(value: float | None, fmt: str) -> str:
     return "—" if value is None else format(value, fmt)
 
 
-def print_heat(bc: BoundaryConditions, system_name: str, console: Console | None = None) -> None:
+def print_heat(bc: BoundaryConditions, system_name: str, console: Console | None = None,
+               printed: Overlay | None = None) -> None:
+    """The heats, CHTCs and joints as console tables, with the values ``printed`` beside (an overlay)."""
     console = console or Console(width=None if sys.stdout.isatty() else 132)
     p = bc.point
-    ref = "Table 1/2 at the paper's reference condition"
+    heat = printed.printed_heats() if printed else {}
+    chtc = printed.printed_chtcs() if printed else {}
+    column = printed.name if printed else "printed"
     console.print(
         f"[bold]{system_name}[/], condition [bold]{bc.condition}[/], mode [bold]{bc.mode}[/]: "
         f"screw {p.screw_rpm:.0f} rpm, nut {p.nut_rpm:.0f} rpm, relative {p.relative_rpm:.0f} rpm, "
@@ -68,7 +75,7 @@ def print_heat(bc: BoundaryConditions, system_name: str, console: Console | None
     heats = Table(title="Heat per source", title_justify="left")
     heats.add_column("source")
     heats.add_column(escape("heat [W]"), justify="right")
-    heats.add_column(escape("paper [W]"), justify="right")
+    heats.add_column(escape(f"{column} [W]"), justify="right")
     heats.add_column(escape("speed [rpm]"), justify="right")
     heats.add_column(escape("torque [N·m]"), justify="right")
     heats.add_column("of continuous", justify="right")
@@ -76,7 +83,7 @@ def print_heat(bc: BoundaryConditions, system_name: str, console: Console | None
     for name, h in bc.heats.items():
         torque = h.details.get("friction_torque_Nm", h.details.get("torque_Nm"))
         heats.add_row(
-            name, f"{h.power:.3f}", _paper(bc.paper_heat.get(name), ".2f"), f"{h.speed_rpm:.0f}",
+            name, f"{h.power:.3f}", _printed(heat.get(name), ".2f"), f"{h.speed_rpm:.0f}",
             "—" if torque is None else f"{torque:.4f}",
             _duty(h.details.get("torque_to_continuous")), _current(h.details),
         )
@@ -86,12 +93,12 @@ def print_heat(bc: BoundaryConditions, system_name: str, console: Console | None
     surfaces.add_column("surface")
     surfaces.add_column(escape("area [m²]"), justify="right")
     surfaces.add_column(escape("CHTC [W/(m²·K)]"), justify="right")
-    surfaces.add_column(escape("paper [W/(m²·K)]"), justify="right")
+    surfaces.add_column(escape(f"{column} [W/(m²·K)]"), justify="right")
     surfaces.add_column(escape("radiation [W/(m²·K)]"), justify="right")
     surfaces.add_column("correlation")
     for name, s in bc.surfaces.items():
         surfaces.add_row(
-            name, f"{s.area:.4f}", f"{s.convection:.2f}", _paper(bc.paper_chtc.get(name), ".2f"),
+            name, f"{s.area:.4f}", f"{s.convection:.2f}", _printed(chtc.get(name), ".2f"),
             f"{s.radiation:.2f}", s.correlation,
         )
     console.print(surfaces)
@@ -101,7 +108,7 @@ def print_heat(bc: BoundaryConditions, system_name: str, console: Console | None
     for j in bc.joints:
         joints.add_row(" – ".join(j.parts), f"{j.tcr:.3g}", f"{j.area:.4g}", f"{j.conductance:.3g}", "yes" if j.sliding else "")
     console.print(joints)
-    if bc.paper_heat or bc.paper_chtc:
-        console.print(f"paper: {ref}.")
+    if printed is not None:
+        console.print(f"{printed.name}: {printed.title or 'printed values'}, at condition {printed.reference_condition}.")
     for message in bc.warnings:
         console.print(f"[yellow]correlation range:[/] {message}")

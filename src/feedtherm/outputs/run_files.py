@@ -257,9 +257,9 @@ def summary_line(solution: Solution, out_dir: Path) -> str:
 # --------------------------------------------------------------------------- where
 
 
-def default_out_dir(system: str, run: str, mode: str) -> Path:
-    """``out/<system>_<run>_<mode>`` with ``system`` a bundled name or a file's stem."""
-    return Path("out") / "_".join(_safe_name(part) for part in (Path(system).stem, run, mode))
+def default_out_dir(system: str, run: str, mode_name: str) -> Path:
+    """``out/<system>_<run>_<mode_name>`` with ``system`` a bundled name or a file's stem."""
+    return Path("out") / "_".join(_safe_name(part) for part in (Path(system).stem, run, mode_name))
 
 
 def _safe_name(text: str) -> str:

@@ -292,6 +292,6 @@ def summary_line(out_dir: Path, points: int, wall_time_s: float, resumed: int | 
     return line
 
 
-def sweep_title(system: str, mode: str, motion: str, duration_s: float) -> str:
+def sweep_title(system: str, mode_name: str, motion: str, duration_s: float) -> str:
     """``paper — physics mode, averaged motion, 1800 s (0.5 h) per point``: what every plot shows."""
-    return f"{system} — {mode} mode, {motion} motion, {duration_s:g} s ({duration_s / 3600:.3g} h) per point"
+    return f"{system} — {mode_name} mode, {motion} motion, {duration_s:g} s ({duration_s / 3600:.3g} h) per point"

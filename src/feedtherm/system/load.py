@@ -13,13 +13,16 @@ import json
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
-from typing import get_args
+from typing import TYPE_CHECKING, get_args
 
 from pydantic import BaseModel, ValidationError
 
 from ..benches import ORIGIN_PREFIX, bench, bench_names, suggestion
 from ..errors import DescriptionError
 from .schema import FeedSystem
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .overlay import Overlay
 
 
 @dataclass(frozen=True)
@@ -29,6 +32,7 @@ class LoadedSystem:
     system: FeedSystem
     origin: str  # file path or "bundled:<bench name>"
     sha256: str  # of the resolved description (canonical JSON of the validated data)
+    overlay: "Overlay | None" = None  # printed values its runs lay over the physics (system/overlay.py)
 
 
 def read_text(spec: str) -> tuple[str, str]:

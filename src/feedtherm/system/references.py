@@ -65,14 +65,6 @@ def check_references(system: "FeedSystem") -> None:
     if kin.drive == "single":
         _check_single_drive(system)
     _check_mechanics(system)
-    if system.paper is not None:
-        paper = system.paper
-        _require("condition", paper.reference_condition, system.conditions, "paper.reference_condition")
-        for i, row in enumerate(paper.heat):
-            _require("heat source", row.source, sources, f"paper.heat[{i}].source")
-        for i, row in enumerate(paper.chtc):
-            for target in row.surfaces:
-                _require("surface", target, surfaces, f"paper.chtc[{i}].surfaces")
 
 
 def _check_mechanics(system: "FeedSystem") -> None:

@@ -235,31 +235,6 @@ class DutyCycle(Strict):
         return self
 
 
-# --------------------------------------------------------------------------- paper mode
-
-
-class PaperHeat(Strict):
-    source: str
-    value: Power
-    table_label: str
-    ref: str
-
-
-class PaperChtc(Strict):
-    surfaces: list[str]
-    value: PosHeatTransferCoefficient
-    table_label: str
-    ref: str
-
-
-class PaperMode(Strict):
-    """Values the source paper prints at one condition, mapped onto sources and surfaces."""
-
-    reference_condition: str
-    heat: list[PaperHeat]
-    chtc: list[PaperChtc]
-
-
 # --------------------------------------------------------------------------- calibration
 
 
@@ -317,6 +292,7 @@ class Meta(Strict):
     reference: str = ""
     description: str = ""
     measurements: str = ""  # "bundled:<name>" or a CSV path relative to this file
+    overlay: str = ""  # printed values to lay over the physics: "bundled:<name>" or a path (system/overlay.py)
 
 
 # --------------------------------------------------------------------------- the system
@@ -336,7 +312,6 @@ class FeedSystem(Strict):
     room: Room = Room()
     conditions: dict[str, Condition]
     duty_cycles: dict[str, DutyCycle] = {}
-    paper: PaperMode | None = None
     calibration: Calibration | None = None
     uncertainty: Uncertainty | None = None
     provenance: list[Provenance] = []

@@ -11,6 +11,7 @@ import hashlib
 import json
 import re
 import typing
+from dataclasses import replace
 from typing import Any
 
 from pydantic import BaseModel, ValidationError
@@ -112,7 +113,8 @@ def with_values(loaded: LoadedSystem, changes: dict[str, Any], origin_suffix: st
             raise DescriptionError(f"{path}: no such value in {loaded.origin}") from None
         system = _set(system, split_path(path), value)
     canonical = json.dumps(system.model_dump(mode="json"), sort_keys=True, separators=(",", ":"))
-    return LoadedSystem(system, f"{loaded.origin} ({origin_suffix})", hashlib.sha256(canonical.encode()).hexdigest())
+    return replace(loaded, system=system, origin=f"{loaded.origin} ({origin_suffix})",
+                   sha256=hashlib.sha256(canonical.encode()).hexdigest())
 
 
 def with_condition(loaded: LoadedSystem, name: str, screw_rpm: float, nut_rpm: float, ambient_c: float,

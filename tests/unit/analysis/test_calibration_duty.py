@@ -8,28 +8,30 @@ from feedtherm.analysis.calibration import (DUTY_LIMIT, DUTY_SIGMA, _DutyPenalty
 from feedtherm.analysis.measurements import read_measurements
 from feedtherm.boundary import boundary_conditions
 from feedtherm.boundary.heat import motor_duties
+from feedtherm.plan import with_mode
 from feedtherm.simulate import simulate
 
 
 def test_the_penalty_is_zero_within_the_rating_and_grows_with_the_overload(paper):
     params = resolve_parameters(paper, ["screw_nut_preload"])
-    penalty = _DutyPenalty(paper, params, ["I", "III"], "physics")
+    penalty = _DutyPenalty(paper, params, ["I", "III"])
     assert penalty.motors == ["nut_motor", "screw_motor"]
     assert np.all(penalty(np.array([150.0])) == 0.0)
     at_340 = penalty(np.array([340.0]))
     overloaded = apply(paper, params, [340.0]).system
-    expected = [max(0.0, motor_duties(boundary_conditions(overloaded, c, "physics").heats)[m] - DUTY_LIMIT) / DUTY_SIGMA
+    expected = [max(0.0, motor_duties(boundary_conditions(overloaded, c).heats)[m] - DUTY_LIMIT) / DUTY_SIGMA
                 for c in ("I", "III") for m in ("nut_motor", "screw_motor")]
     assert at_340 == pytest.approx(expected)
     assert at_340[1] > 0.0 and at_340[3] > 0.0  # the screw motor passes its rating at both speeds
     # the declared limit and stiffness: a duty of d gives (d - 0.995) / 0.0005
-    duty_i = motor_duties(boundary_conditions(overloaded, "I", "physics").heats)["screw_motor"]
+    duty_i = motor_duties(boundary_conditions(overloaded, "I").heats)["screw_motor"]
     assert at_340[1] == pytest.approx((duty_i - 0.995) / 0.0005)
 
 
 def test_paper_mode_has_no_duty_to_keep(paper):
     params = resolve_parameters(paper, ["screw_nut_preload"])
-    assert _DutyPenalty(paper, params, ["I"], "paper")(np.array([340.0])).size == 0
+    in_paper_mode = with_mode(paper, "paper")
+    assert _DutyPenalty(in_paper_mode, params, ["I"])(np.array([340.0])).size == 0
 
 
 def test_a_fit_that_wants_an_overloaded_motor_stops_at_its_rating(paper, tmp_path):

@@ -19,7 +19,7 @@ TRUTH = {"sources.screw_nut.preload": 250.0, "surfaces.screw_shaft.chtc_factor":
 GAINS = {"I": (0.010, -2.0), "II": (0.014, -2.5), "III": (0.020, -1.0), "IV": (0.012, -3.0)}
 
 
-def fake_finals(loaded, condition, mode):
+def fake_finals(loaded, condition):
     """Smooth, slightly nonlinear values of the two parameters (no thermal model run)."""
     preload = float(get_path(loaded.system, "sources.screw_nut.preload"))
     chtc = float(get_path(loaded.system, "surfaces.screw_shaft.chtc_factor"))
@@ -33,9 +33,9 @@ def counted(monkeypatch):
     """The fake model in place of the thermal model, and the list of the runs it made."""
     runs = []
 
-    def run(loaded, condition, mode):
+    def run(loaded, condition):
         runs.append(condition)
-        return fake_finals(loaded, condition, mode)
+        return fake_finals(loaded, condition)
 
     monkeypatch.setattr(calibration, "_final_values", run)
     return runs
@@ -48,7 +48,7 @@ def measured(paper, tmp_path):
     truth = with_values(paper, TRUTH)
     lines = ["condition,quantity,unit,measured"]
     for c in CONDITIONS:
-        values = fake_finals(truth, c, "physics")
+        values = fake_finals(truth, c)
         lines += [f"{c},{q},{'um' if q == 'D_um' else 'C'},{float(v)!r}" for q, v in values.items()]
     path = tmp_path / "measured.csv"
     path.write_text("\n".join(lines) + "\n")
@@ -90,7 +90,7 @@ def test_the_cache_runs_each_point_once_even_through_the_fit_scaling(paper, coun
     lower = np.array([p.lower for p in params])
     upper = np.array([p.upper for p in params])
     x = np.array([187.3, 1.234567])
-    with calibration._Model(paper, params, "physics", cache=RunCache()) as model:
+    with calibration._Model(paper, params, cache=RunCache()) as model:
         first = model.finals(x, ["I", "II"])
         scaled = lower + ((x - lower) / (upper - lower)) * (upper - lower)  # differs in the last bit
         again = model.finals(scaled, ["I", "II"])

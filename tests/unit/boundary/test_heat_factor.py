@@ -2,7 +2,7 @@
 
 import pytest
 
-from feedtherm.boundary import boundary_conditions
+from feedtherm.plan import boundary_of, with_mode
 from feedtherm.system.load import load_system
 from feedtherm.system.variants import with_values
 
@@ -14,9 +14,10 @@ def paper():
 
 @pytest.mark.parametrize("mode", ["physics", "paper"])
 def test_heat_factor_scales_that_source_only(paper, mode):
-    base = boundary_conditions(paper.system, "II", mode)
-    variant = with_values(paper, {"sources.front_bearing.heat_factor": 1.2})
-    scaled = boundary_conditions(variant.system, "II", mode)
+    loaded = with_mode(paper, mode)
+    base = boundary_of(loaded, "II")
+    variant = with_values(loaded, {"sources.front_bearing.heat_factor": 1.2})
+    scaled = boundary_of(variant, "II")
     assert scaled.heats["front_bearing"].power == pytest.approx(1.2 * base.heats["front_bearing"].power, rel=1e-12)
     for name, heat in base.heats.items():
         if name != "front_bearing":  # the motors' loads (torques) do not follow the factor

@@ -41,7 +41,7 @@ def test_a_surface_takes_its_coefficients_at_its_own_temperature(paper):
     system = paper.system
     point = point_of(system)
     reading = LocalTemperatures(surfaces={"worktable": 310.0, "screw_shaft": 330.0})
-    bc = boundary_conditions_at(system, point, "physics", temperatures=reading)
+    bc = boundary_conditions_at(system, point, temperatures=reading)
     for name, t_surface in reading.surfaces.items():
         expected = surface_transfer(system, name, point, t_surface, with_radiation=True)
         assert bc.surfaces[name].convection == pytest.approx(expected.convection, rel=1e-12)

@@ -12,6 +12,7 @@ import math
 import pytest
 
 from feedtherm.boundary import boundary_conditions
+from feedtherm.system.overlay import available_overlay
 
 NU, K_AIR, PR, ALPHA, BETA = 1.55770e-5, 0.0262469, 0.707300, 2.20231e-5, 1 / 298.15
 G = 9.80665
@@ -21,6 +22,12 @@ G = 9.80665
 def bench(paper_equations):
     """The hand calculations here follow the paper's own equations (Eq. 14 motors, Palmgren)."""
     return paper_equations.system
+
+
+@pytest.fixture(scope="module")
+def tables(paper_equations):
+    """The paper bench's overlay: Tables 1 and 2 at condition I."""
+    return available_overlay(paper_equations)
 
 
 def rpm_to_rad(n):
@@ -39,7 +46,7 @@ def test_screw_shaft_chtc_eq27_mixed_with_natural(bench, condition, n_screw):
     h_natural = 0.48 * ra**0.25 * K_AIR / d
     # mixed convection, Churchill n = 3
     expected = (h_forced**3 + h_natural**3) ** (1 / 3)
-    got = boundary_conditions(bench, condition, "physics").surfaces["screw_shaft"]
+    got = boundary_conditions(bench, condition).surfaces["screw_shaft"]
     assert got.convection == pytest.approx(expected, rel=2e-4)
     # radiation at eps = 0.3 between 303.15 K and 293.15 K
     ts, ta = 303.15, 293.15
@@ -54,7 +61,7 @@ def palmgren_heat(n, f1, p1, dm_mm, f0, nu_mm2s):
 
 @pytest.mark.parametrize("condition, n_screw, n_nut", [("I", 396.0, 360.0), ("III", 2214.0, 2160.0)])
 def test_each_bearing_heat_at_its_own_speed(bench, condition, n_screw, n_nut):
-    bc = boundary_conditions(bench, condition, "physics")
+    bc = boundary_conditions(bench, condition)
     # front: angular-contact pair, Fa 3150 N, Fr 50 N, C0 40.5 kN, dm 43.5 mm, f0 4, nu 100 mm^2/s
     f1 = 1e-3 * (3150 / 40500) ** 0.33  # P0 = max(Fa, Fr) = 3150 N
     p1 = max(1.4 * 3150 - 0.1 * 50, 50)  # 4405 N
@@ -82,13 +89,13 @@ def test_screw_nut_heat_at_relative_speed(bench, condition, n_rel):
     omega = rpm_to_rad(n_rel)
     m_grease = 1.0 * omega * r2**2 * (math.pi * d2 * 0.060) / 0.2e-3
     expected = (m_load + m_preload + m_grease) * omega  # I: 6.0 W, III: 9.1 W
-    got = boundary_conditions(bench, condition, "physics").heats["screw_nut"]
+    got = boundary_conditions(bench, condition).heats["screw_nut"]
     assert got.power == pytest.approx(expected, rel=1e-9)
     assert got.speed_rpm == pytest.approx(n_rel)
 
 
-def test_paper_mode_at_I_reproduces_tables_1_and_2(bench):
-    bc = boundary_conditions(bench, "I", "paper")
+def test_paper_mode_at_I_reproduces_tables_1_and_2(bench, tables):
+    bc = boundary_conditions(bench, "I", tables)
     table1 = {"guideways": 0.39, "screw_motor": 1.87, "nut_motor": 1.70, "front_bearing": 4.95,
               "nut_bearing": 5.31, "rear_bearing": 4.36}
     for source, value in table1.items():
@@ -100,11 +107,11 @@ def test_paper_mode_at_I_reproduces_tables_1_and_2(bench):
         assert bc.surfaces[surface].radiation == 0.0  # radiation off in paper mode
 
 
-def test_paper_mode_at_III_follows_the_written_scaling_rule(bench):
+def test_paper_mode_at_III_follows_the_written_scaling_rule(bench, tables):
     # rule: value(III) = printed value(I) * physics(III) / physics(I); uncovered values = physics(III)
-    physics_i = boundary_conditions(bench, "I", "physics")
-    physics_iii = boundary_conditions(bench, "III", "physics")
-    paper_iii = boundary_conditions(bench, "III", "paper")
+    physics_i = boundary_conditions(bench, "I")
+    physics_iii = boundary_conditions(bench, "III")
+    paper_iii = boundary_conditions(bench, "III", tables)
     printed = {"front_bearing": 4.95, "nut_bearing": 5.31, "rear_bearing": 4.36, "screw_motor": 1.87,
                "nut_motor": 1.70, "guideways": 0.39}
     for source, value in printed.items():
@@ -122,7 +129,7 @@ def test_paper_mode_at_III_follows_the_written_scaling_rule(bench):
 def test_motor_loads_follow_the_torque_balance(bench):
     # The screw motor turns the two screw bearings and drives the thread; the thread's friction
     # drags the nut, so the nut motor brakes by (thread torque - nut bearing torque).
-    bc = boundary_conditions(bench, "I", "physics")
+    bc = boundary_conditions(bench, "I")
     thread = bc.heats["screw_nut"].details["friction_torque_Nm"] + 17.716 * 0.010 / (2 * math.pi)
     screw_load = bc.heats["front_bearing"].details["friction_torque_Nm"] + bc.heats["rear_bearing"].details["friction_torque_Nm"] + thread
     nut_load = bc.heats["nut_bearing"].details["friction_torque_Nm"] - thread

@@ -186,7 +186,7 @@ def test_what_rides_on_the_screw_and_the_rails_covers_them(paper, fast):
 
 
 def test_heat_enters_where_it_arises(paper, fast):
-    bc = boundary_conditions(paper, "I", "physics")
+    bc = boundary_conditions(paper, "I")
     nut, screw = fast.layout.part_nodes("nut"), fast.layout.part_nodes("screw")
     half = bc.heats["screw_nut"].power * 0.5
     for k in (0, 20, 40):

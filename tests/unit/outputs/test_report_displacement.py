@@ -29,7 +29,7 @@ def validation(measured_d: dict[str, float], simulated_d: dict[str, float], mean
         runs[c] = solution
         comparisons += [Comparison(c, q, "C", mean_t[c] + 1.0, mean_t[c], None) for q in ("T1", "T2", "T3", "T4", "T5")]
         comparisons.append(Comparison(c, "D_um", "um", simulated_d[c], measured_d[c], None))
-    values = dict(system_name="bench", mode="physics", model="fast", comparisons=comparisons, solutions=runs,
+    values = dict(system_name="bench", model="fast", comparisons=comparisons, solutions=runs,
                   single_drive={}, heat_budget={}, measured_equilibrium_min={}, sensitivities=[],
                   sensitivity_condition="I", inconsistencies=[], assumptions=[])
     values.update(changes)

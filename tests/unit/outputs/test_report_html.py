@@ -116,7 +116,7 @@ def synthetic_validation(**changes) -> Validation:
                         for q in ("T1", "T2", "T3", "T4", "T5")]
         comparisons.append(Comparison(condition, "D_um", "um", final["D_um"], final["D_um"] - 4.0, None))
     values = dict(
-        system_name=HOSTILE, mode="physics", model="fast", comparisons=comparisons, solutions=runs,
+        system_name=HOSTILE, model="fast", comparisons=comparisons, solutions=runs,
         single_drive={"I": make_solution()}, heat_budget={"I": {"front_bearing": 5.0, "screw_nut": 6.0},
                                                           "II": {"front_bearing": 18.6, "screw_nut": 6.0}},
         measured_equilibrium_min={"I": 120.0, "II": 100.0},

@@ -57,7 +57,6 @@ class StudySettings:
     spread: float = DEFAULT_SPREAD
     sample_interval: float = 60.0
     model: str = "fast"
-    mode: str = "physics"
     motion: str = "averaged"
     mesh: str | None = None
 
@@ -129,7 +128,7 @@ def simulate_set(loaded: LoadedSystem, candidates: dict[str, Candidate], setting
             described = variant.apply(base, label=f"{name} machine {index}")
         described = with_values(described, {"duty_cycles": {**described.system.duty_cycles, CYCLE_NAME: cycle}},
                                 origin_suffix=f"{name} cycle {index}")
-        runs.append(SweepRun(described, {"cycle": CYCLE_NAME, "mode": settings.mode, "model": settings.model,
+        runs.append(SweepRun(described, {"cycle": CYCLE_NAME, "model": settings.model,
                                          "motion": settings.motion, "mesh": settings.mesh,
                                          "sample_interval": settings.sample_interval},
                              label=f"{name} cycle {index} of seed {settings.seed}"))

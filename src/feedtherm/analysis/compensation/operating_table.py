@@ -17,6 +17,7 @@ import numpy as np
 
 from ...boundary import boundary_conditions_at
 from ...boundary.operating import OperatingPoint
+from ...system.overlay import Overlay
 from ...system.schema import FeedSystem
 from ..random_cycles import SpeedEnvelope
 from .state_space import coefficients
@@ -80,7 +81,7 @@ def _bracket(axis: np.ndarray, value: float) -> tuple[int, float]:
 
 
 def build_table(system: FeedSystem, surfaces: list[str], sources: list[str], ambient: float, *,
-                mode: str = "physics", grid: tuple[int, int] = GRID) -> OperatingTable:
+                overlay: Overlay | None = None, grid: tuple[int, int] = GRID) -> OperatingTable:
     """Evaluate the boundary conditions on the grid (see the module's notes)."""
     envelope = SpeedEnvelope.of(system)
     lead = system.kinematics.lead
@@ -91,8 +92,8 @@ def build_table(system: FeedSystem, surfaces: list[str], sources: list[str], amb
     for i, screw in enumerate(screws):
         for j, relative in enumerate(relatives):
             nut = screw - relative if envelope.dual else 0.0
-            bc = boundary_conditions_at(system, OperatingPoint(screw, nut, ambient, lead), mode)
+            bc = boundary_conditions_at(system, OperatingPoint(screw, nut, ambient, lead), overlay)
             h[i, j], q[i, j] = coefficients(bc, surfaces, sources)
-    bc = boundary_conditions_at(system, OperatingPoint(0.0, 0.0, ambient, lead), mode)
+    bc = boundary_conditions_at(system, OperatingPoint(0.0, 0.0, ambient, lead), overlay)
     h0, q0 = coefficients(bc, surfaces, sources)
     return OperatingTable(screws, relatives, envelope.dual, h, q, h0, q0, ambient)

@@ -39,6 +39,7 @@ import scipy.sparse as sp
 
 from ...boundary import BoundaryConditions, boundary_conditions_at
 from ...boundary.operating import OperatingPoint
+from ...system.overlay import Overlay
 from ...constants import ELONGATION_PROBE
 from ...errors import FeedthermError
 from ...models.interface import cycle_weights, source_powers, surface_coefficients, weighted_sum
@@ -78,9 +79,10 @@ class ReducedModel:
         """``A`` and the ambient's input column at coefficients ``h`` (one per surface)."""
         return self.A0 + np.tensordot(h, self.A_surface, axes=1), h @ self.f_surface
 
-    def operating(self, system, point: OperatingPoint, mode: str) -> tuple[np.ndarray, np.ndarray]:
-        """``h`` per surface and ``q`` per source at ``point`` (frozen coefficients, nominal loss models)."""
-        bc = boundary_conditions_at(system, point, mode)
+    def operating(self, system, point: OperatingPoint, overlay: Overlay | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """``h`` per surface and ``q`` per source at ``point`` (frozen coefficients, nominal loss models;
+        ``overlay``: printed values laid over them)."""
+        bc = boundary_conditions_at(system, point, overlay)
         return coefficients(bc, self.surfaces, self.sources)
 
 
@@ -94,7 +96,7 @@ def coefficients(bc: BoundaryConditions, surfaces: list[str], sources: list[str]
     return h, source_powers(bc, sources)
 
 
-def reduce_model(loaded: LoadedSystem, outputs: list[str], reference: OperatingPoint, *, mode: str = "physics",
+def reduce_model(loaded: LoadedSystem, outputs: list[str], reference: OperatingPoint, *,
                  order: int = DEFAULT_ORDER) -> ReducedModel:
     """Balanced-truncation basis at ``reference``, Galerkin projection (see the module's notes).
 
@@ -128,7 +130,7 @@ def reduce_model(loaded: LoadedSystem, outputs: list[str], reference: OperatingP
     out_rows = rows[[names.index(o) for o in outputs]]
     out_offset = np.asarray(offset)[[names.index(o) for o in outputs]]
 
-    bc = boundary_conditions_at(system, reference, mode)
+    bc = boundary_conditions_at(system, reference, loaded.overlay)
     h_ref, q_ref = coefficients(bc, list(basis.surfaces), list(basis.sources))
     K = (G.toarray() if sp.issparse(G) else np.asarray(G)) + np.diag(exposure.T @ h_ref)
     Ks = s[:, None] * K * s[None, :]

@@ -150,8 +150,8 @@ def kalman_factory(loaded: LoadedSystem, candidates: dict[str, Candidate], train
     ambient = sum(settings.ranges.ambient_mean) / 2 + KELVIN_OFFSET
     reference = OperatingPoint(screw, nut, ambient, system.kinematics.lead)
     outputs = [n for n in candidates if n != AMBIENT_SENSOR] + [ELONGATION_PROBE]
-    model = reduce_model(described, outputs, reference, mode=settings.mode, order=order)
-    table = build_table(system, model.surfaces, model.sources, ambient, mode=settings.mode)
+    model = reduce_model(described, outputs, reference, order=order)
+    table = build_table(system, model.surfaces, model.sources, ambient, overlay=described.overlay)
     errors = model_errors(model, table, train.cycles, train.names)
     methods = {name: sensor.method for name, sensor in system.sensors.items()}
 

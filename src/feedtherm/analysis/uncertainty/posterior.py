@@ -20,6 +20,7 @@ import numpy as np
 
 from ...errors import FeedthermError
 from ...system.load import LoadedSystem, load_system
+from ...system.overlay import with_overlay
 from ...system.variants import si_unit_at
 from .declared import resolve_uncertainties
 from .sampling import POSTERIOR, to_values
@@ -95,7 +96,7 @@ def read_posterior(folder: Path, original: LoadedSystem, summary: dict) -> Poste
     toml = Path(folder) / "calibrated.toml"
     if not toml.is_file():
         raise FeedthermError(f"--calibration: {toml} is missing (feedtherm calibrate writes it)")
-    calibrated = load_system(str(toml))
+    calibrated = with_overlay(load_system(str(toml)), original.overlay)  # runs as the original does
     fitted, correlation = posterior_parameters(summary, calibrated, where)
     fitted_paths = {p for parameter in fitted for p in parameter.paths}
     kept = []

@@ -24,9 +24,8 @@ GRID_STEP_S = CALIBRATION_STEP_S
 class SampleRun:
     """The runs of one point: ``loaded`` (the variant) at each of ``conditions``."""
 
-    loaded: LoadedSystem
+    loaded: LoadedSystem  # with the overlay its runs take
     conditions: tuple[str, ...]
-    mode: str
     label: str  # "prior sample 17", "Sobol point 3", "calibrated nominal"
     values: tuple[tuple[str, float], ...] = ()  # the parameters' values at this point [SI or factor]
 
@@ -54,7 +53,7 @@ def run_sample(run: SampleRun) -> SampleResult:
 
     series, finals = {}, {}
     for condition in run.conditions:
-        solution = simulate(run.loaded, condition=condition, mode=run.mode, motion="averaged",
+        solution = simulate(run.loaded, condition=condition, motion="averaged",
                             options=CALIBRATION_OPTIONS, sample_interval=GRID_STEP_S,
                             allow_overload=True)  # a sampled machine is run as declared, overloaded or not
         times = grid(run.loaded.system.conditions[condition].duration)

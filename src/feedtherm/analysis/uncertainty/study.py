@@ -29,6 +29,7 @@ import numpy as np
 
 from ...errors import FeedthermError
 from ...system.load import LoadedSystem
+from ...system.overlay import mode_of
 from ..consistency import ConsistencyReport
 from ..execution import Execution, TaskFailure, run_ordered
 from ..measurements import MeasurementSet
@@ -50,7 +51,7 @@ QUANTILES = (BAND[0], 0.5, BAND[1])
 
 
 def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sobol_base: int | None = DEFAULT_SOBOL_BASE,
-                    seed: int = 0, sobol_condition: str = "I", mode: str = "physics",
+                    seed: int = 0, sobol_condition: str | None = None,
                     data: MeasurementSet | None = None, consistency: ConsistencyReport | None = None,
                     posterior: Posterior | BayesianUpdate | None = None, execution: Execution = Execution(),
                     progress: Callable[[float], None] | None = None,
@@ -69,6 +70,8 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
     started = time.perf_counter()
     prior = resolve_uncertainties(loaded)
     conditions = list(loaded.system.conditions) if conditions is None else list(conditions)
+    if sobol_condition is None:
+        sobol_condition = next(iter(loaded.system.conditions))
     for c in conditions + ([sobol_condition] if sobol_base is not None else []):
         if c not in loaded.system.conditions:
             raise FeedthermError(f"--condition: no condition {c!r} in {loaded.origin}; conditions: "
@@ -82,8 +85,8 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
     for label, base, nominal, parameters, sampler in states:
         points = sampler(unit_points(samples, len(parameters), seed))
         start = len(items)
-        items.append(SampleRun(nominal, tuple(conditions), mode, f"{label} nominal"))
-        items.extend(_point(base, parameters, x, tuple(conditions), mode, f"{label} sample {i}")
+        items.append(SampleRun(nominal, tuple(conditions), f"{label} nominal"))
+        items.extend(_point(base, parameters, x, tuple(conditions), f"{label} sample {i}")
                      for i, x in enumerate(points))
         slices[label] = (start, len(items))
     sobol_points = None
@@ -91,7 +94,7 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
         unit = saltelli_points([p.name for p in prior], sobol_base, seed)
         sobol_points = to_values(prior, unit)
         start = len(items)
-        items.extend(_point(loaded, prior, x, (sobol_condition,), mode, f"Sobol point {i}")
+        items.extend(_point(loaded, prior, x, (sobol_condition,), f"Sobol point {i}")
                      for i, x in enumerate(sobol_points))
         slices["sobol"] = (start, len(items))
     results = _run_all(items, execution, progress)
@@ -112,7 +115,7 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
         "samples": samples, "seed": seed, "sampler": "scrambled Sobol' points (scipy.stats.qmc), inverse CDFs",
         "sobol_base": sobol_base, "sobol_runs": 0 if sobol_points is None else len(sobol_points),
         "sobol_scheme": None if sobol_points is None else "Saltelli 2010 (SALib), first-order and total, no second order",
-        "model": "fast", "motion": "averaged", "time_step_s": GRID_STEP_S, "mode": mode,
+        "model": "fast", "motion": "averaged", "time_step_s": GRID_STEP_S, "mode": mode_of(loaded),
         "conditions": conditions,
         "duration_s": {c: loaded.system.conditions[c].duration for c in conditions},
         "band": list(BAND), "execution": execution.describe(),
@@ -123,9 +126,9 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
     return UncertaintyStudy(system=loaded.origin, settings=settings, sets=sets)
 
 
-def _point(base: LoadedSystem, parameters: list[UncertainParameter], x, conditions, mode, label) -> SampleRun:
+def _point(base: LoadedSystem, parameters: list[UncertainParameter], x, conditions, label) -> SampleRun:
     values = tuple((p.name, float(v)) for p, v in zip(parameters, x))
-    return SampleRun(variant(base, parameters, x, label), conditions, mode, label, values)
+    return SampleRun(variant(base, parameters, x, label), conditions, label, values)
 
 
 def _run_all(items: list[SampleRun], execution: Execution, progress) -> list[SampleResult]:

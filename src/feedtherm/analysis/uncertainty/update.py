@@ -204,14 +204,13 @@ class _ModelResiduals:
     prior: list[UncertainParameter]
     rows: list[_Row]
     conditions: tuple[str, ...]
-    mode: str
     execution: Execution
     runs: int = 0
 
     def __call__(self, z: np.ndarray) -> np.ndarray:
         x = to_x(self.prior, z)
         items = [SampleRun(variant(self.loaded, self.prior, xi, f"update point {self.runs + k}"), self.conditions,
-                           self.mode, f"update point {self.runs + k}",
+                           f"update point {self.runs + k}",
                            tuple((p.name, float(v)) for p, v in zip(self.prior, xi)))
                  for k, xi in enumerate(x)]
         self.runs += len(items)
@@ -254,7 +253,7 @@ class BayesianUpdate:
 
 
 def bayesian_update(loaded: LoadedSystem, data: MeasurementSet, fit_conditions: list[str], *,
-                    consistency: ConsistencyReport | None = None, mode: str = "physics",
+                    consistency: ConsistencyReport | None = None,
                     execution: Execution = Execution(), s2: float | None = None,
                     max_nfev: int | None = None) -> BayesianUpdate:
     """Update every declared uncertainty of ``loaded`` with the measured finals of ``fit_conditions``.
@@ -282,7 +281,7 @@ def bayesian_update(loaded: LoadedSystem, data: MeasurementSet, fit_conditions: 
     excluded = [{"condition": r.condition, "quantity": r.quantity, "measured": r.measured, "reason": r.flag}
                 for r in every if r.flag]
     with kept_open(execution) as where:  # one cluster for every Jacobian
-        model = _ModelResiduals(loaded, prior, rows, tuple(fit_conditions), mode, where)
+        model = _ModelResiduals(loaded, prior, rows, tuple(fit_conditions), where)
         fit = laplace_update(model, len(prior), s2=s2, max_nfev=max_nfev)
     x_map = to_x(prior, fit.z)[0]
     k = stats.norm.ppf(BAND[1])  # the band's quantile in z: a one-dimensional normal's 5–95 % range
