@@ -101,7 +101,7 @@ def make_study(*, calibrated: bool = True, sobol: bool = True) -> UncertaintyStu
     sets = [make_set("prior", 1.0, sobol=sobol)]
     if calibrated:
         sets.append(make_set("calibrated", HALF_WIDTH_RATIO, sobol=False))
-    settings = {"samples": 512, "seed": 7, "sampler": "sobol", "model": "fast", "mode": "physics",
+    settings = {"samples": 512, "seed": 7, "sampler": "sobol", "model": "fast", "mode": "physics", "ambient_sensor": "T6",
                 "duration_s": 10800.0, "band": [0.05, 0.95], "execution": "serial", "wall_time_s": 12.5}
     return UncertaintyStudy("paper", settings, sets)
 

@@ -535,13 +535,13 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
 
 
 def _update_conditions(loaded, text: str, data) -> list[str]:
-    """The conditions of ``--update-with I,II,IV``, each once, with measurements to update with
+    """The conditions of ``--update-with A,B,C``, each once, with measurements to update with
     (:func:`~feedtherm.analysis.uncertainty.update.bayesian_update` checks that each is known
     and measured, before any run)."""
     conditions = [c.strip() for c in text.split(",")]
     if any(not c for c in conditions) or len(set(conditions)) != len(conditions):
         raise FeedthermError(f"--update-with: {text!r} is not a comma-separated list of distinct conditions, "
-                             f"such as I,II,IV")
+                             f"such as A,B,C")
     if data is None:
         raise FeedthermError(f"--update-with: {loaded.origin} has no measurements to update with; give --measured CSV")
     return conditions
@@ -719,7 +719,7 @@ def build_parser() -> argparse.ArgumentParser:
     calibrate = sub.add_parser("calibrate", help="fit declared parameters to measured conditions; predict the others")
     _system_argument(calibrate)
     _measured_argument(calibrate)
-    calibrate.add_argument("--fit", required=True, metavar="C,C,...", help="conditions to fit, e.g. I,II,IV")
+    calibrate.add_argument("--fit", required=True, metavar="C,C,...", help="conditions to fit, separated by commas")
     calibrate.add_argument("--params", required=True, metavar="NAME,...",
                            help="parameters declared under [calibration.parameters]")
     calibrate.add_argument("--cross-validate", action="store_true",
@@ -737,7 +737,7 @@ def build_parser() -> argparse.ArgumentParser:
                                                    "choose sensor positions, judge them on other machines of the design")
     _system_argument(compensate)
     compensate.add_argument("--sensors", default="3", metavar="K|NAME,...",
-                            help="K sensors chosen greedily, or candidate names such as T1,T3 (default 3)")
+                            help="K sensors chosen greedily, or candidate names separated by commas (default 3)")
     compensate.add_argument("--cycles", type=_positive_int, default=8, metavar="N",
                             help="cycles in each of the training, validation and test sets (default 8)")
     compensate.add_argument("--seed", type=_integer, default=0, metavar="S", help="seed of every random draw (default 0)")
@@ -750,7 +750,7 @@ def build_parser() -> argparse.ArgumentParser:
     _out_argument(compensate, "out/<system>_compensation_<mode>")
     compensate.set_defaults(func=cmd_compensate)
 
-    uncertainty = sub.add_parser("uncertainty", help="prediction bands (5-95 %%) of T1-T6 and D over time and Sobol' "
+    uncertainty = sub.add_parser("uncertainty", help="prediction bands (5-95 %%) of the sensors and D over time and Sobol' "
                                                      "indices from the description's declared uncertainties")
     _system_argument(uncertainty)
     uncertainty.add_argument("--samples", type=_power_of_two, default=128, metavar="N",
@@ -767,7 +767,7 @@ def build_parser() -> argparse.ArgumentParser:
                              help="output folder of `feedtherm calibrate`: also the bands after calibration (the "
                                   "fitted parameters' posterior, the other priors kept)")
     uncertainty.add_argument("--update-with", metavar="CONDITIONS",
-                             help="comma-separated measured conditions, such as I,II,IV: also the bands after a "
+                             help="comma-separated measured conditions: also the bands after a "
                                   "Bayesian update of every declared prior with their measured final values "
                                   "(docs/uncertainty.md); not with --calibration")
     _measured_argument(uncertainty)

@@ -7,8 +7,6 @@ import math
 import os
 from pathlib import Path
 
-#: The sensor that reads the ambient air; every model reports it from the boundary conditions.
-AMBIENT_SENSOR = "T6"
 #: Name of the screw's elongation among a model's probes.
 ELONGATION_PROBE = "D"
 #: 0 °C in kelvin.

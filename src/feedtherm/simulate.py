@@ -1,4 +1,4 @@
-"""Run a model on a described feed system: ``simulate(loaded, condition="I")``.
+"""Run a model on a described feed system: ``simulate(loaded, condition=name)``.
 
 This is the public entry point the CLI and the analyses use.  A run has three steps:
 :func:`~feedtherm.plan.plan_run` (validated segments and their boundary conditions),
@@ -15,7 +15,7 @@ from typing import Callable
 import numpy as np
 
 from . import __version__
-from .constants import AMBIENT_SENSOR, KELVIN_OFFSET
+from .constants import KELVIN_OFFSET
 from .errors import FeedthermError
 from .models.integrator import Integrator, Segment
 from .models.interface import ThermalModel
@@ -146,7 +146,7 @@ class SteadySolve:
     def values(self) -> dict[str, float]:
         """Sensors [K], ``D`` [m] and the ambient sensor."""
         values = dict(zip(self.model.probe_names, self.model.probe(self.state, self.probe_position)))
-        values[AMBIENT_SENSOR] = self.segment.bc.point.ambient
+        values[self.model.system.room.ambient_sensor] = self.segment.bc.point.ambient
         return values
 
 

@@ -99,7 +99,7 @@ def fake_solution():
         final={"T1": 294.15, "T6": 293.15, "D": 1e-6}, steady={"T1": 295.15, "T6": 293.15, "D": 2e-6},
         equilibrium_time=None, energy=EnergyBalance(10.0, 5.0, 5.0),
         info={"condition": "I", "model": "fast", "mode": "physics", "wall_time_s": 0.0, "time_step_s": 10.0,
-              "unknowns": 4, "provenance": {}},
+              "unknowns": 4, "provenance": {}, "ambient_sensor": "T6"},
     )
 
 

@@ -17,7 +17,7 @@ import pytest
 
 from feedtherm.boundary import boundary_conditions
 from feedtherm.cli import main
-from feedtherm.constants import AMBIENT_SENSOR, ELONGATION_PROBE
+from feedtherm.constants import ELONGATION_PROBE
 from feedtherm.models.interface import AmbientCoupling, ThermalModel
 from feedtherm.models.registry import ModelEntry, register_model, unregister_model
 from feedtherm.simulate import simulate
@@ -35,7 +35,7 @@ class LumpedBody(ThermalModel):
         stroke = system.kinematics.stroke
         self.positions = np.array([-stroke / 2, stroke / 2])
         self.dx = stroke
-        self.probe_names = [n for n in system.sensors if n != AMBIENT_SENSOR] + [ELONGATION_PROBE]
+        self.probe_names = [n for n in system.sensors if n != system.room.ambient_sensor] + [ELONGATION_PROBE]
         lo, hi = bounds(system.parts[system.kinematics.screw])
         self.screw_edges = np.array([lo[0], hi[0]])
         self.screw_centres = self.screw_edges.mean(keepdims=True)

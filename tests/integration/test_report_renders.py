@@ -15,6 +15,7 @@ from pathlib import Path
 
 import pytest
 
+from feedtherm.analysis.validation import operating_points, report_notes, sensor_locations
 from feedtherm.analysis.validation_types import Comparison, Sensitivity, Validation
 from feedtherm.benches import bench
 from feedtherm.boundary import boundary_conditions
@@ -58,7 +59,8 @@ def validation() -> Validation:
         sensitivities=sensitivities, sensitivity_condition="I",
         inconsistencies=["Table 1: total heat 18.58 W < what the measured T3 needs", "Table 5 row I: lead 5 mm"],
         assumptions=assumptions, provenance=provenance, measurement_source="the paper's Tables 6 and 7",
-        wall_time_s=1.5,
+        wall_time_s=1.5, operating_points=operating_points(loaded), sensor_locations=sensor_locations(loaded),
+        notes=report_notes(loaded),
     )
 
 

@@ -8,24 +8,23 @@ here from the geometry alone, by one rule:
   ``side_pos_y``): at the face's centre, or, for a face longer than :data:`SPAN_FOR_THREE` along x,
   at a quarter, a half and three quarters of its length (``_x<mm>`` from the machine origin);
 - on each cylinder along x, points on its top line: every :data:`SCREW_PITCH` along a long
-  cylinder (the screw: an infrared reading, as the paper's T4), else at mid-length;
+  cylinder (the screw: an infrared reading, as the paper reads its screw), else at mid-length;
 - each point :data:`DEPTH` under its face (a sensor reads the wall it is glued to), and kept only
   where the face is exposed: :data:`DEPTH` outside it there is no part that moves with it (a part
   passing by, such as the table over a rail, does not hide a surface for good);
-- the description's own sensors (T1-T5 on the paper bench) and the ambient ``T6`` are candidates
+- the description's own sensors and the ambient (``room.ambient_sensor``) are candidates
   under their names.
 
 Names are ``<part>[_b<box>|_c<cylinder>]_<face>[_x<mm>]``, e.g. ``front_housing_b0_top``,
 ``screw_top_x200``, ``screw_top_xm50`` (at x = −50 mm).
 The candidates enter a run as extra sensors of the description (:func:`with_candidates`), so
-every model probes them the way it probes T1-T5.
+every model probes them the way it probes the declared sensors.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..constants import AMBIENT_SENSOR
 from ..system.geometry import contains
 from ..system.load import LoadedSystem
 from ..system.schema import Box, Cylinder, FeedSystem, Sensor
@@ -55,10 +54,11 @@ def candidate_sensors(system: FeedSystem) -> dict[str, Candidate]:
     """Every candidate of ``system``: its declared sensors first (ambient included), then the generated points."""
     out: dict[str, Candidate] = {}
     for name, sensor in system.sensors.items():
-        if name != AMBIENT_SENSOR:
+        if name != system.room.ambient_sensor:
             out[name] = Candidate(name, sensor.part, tuple(sensor.position), "declared")
     # the air: every run reports it (Solution.sensors), at no point of a part
-    out[AMBIENT_SENSOR] = Candidate(AMBIENT_SENSOR, "", (float("nan"),) * 3, "ambient")
+    ambient = system.room.ambient_sensor
+    out[ambient] = Candidate(ambient, "", (float("nan"),) * 3, "ambient")
     for part_name, part in system.parts.items():
         several = len(part.boxes) > 1
         for i, box in enumerate(part.boxes):
@@ -80,7 +80,7 @@ def with_candidates(loaded: LoadedSystem, candidates: dict[str, Candidate]) -> L
     sensors = dict(loaded.system.sensors)
     screw = loaded.system.kinematics.screw
     for name, candidate in candidates.items():
-        if name not in sensors and candidate.where != "ambient":  # the screw turns: read without contact, as the paper's T4
+        if name not in sensors and candidate.where != "ambient":  # the screw turns: read without contact
             sensors[name] = Sensor(part=candidate.part, position=[f"{v!r} m" for v in candidate.position],
                                    method="infrared" if candidate.part == screw else "contact",
                                    description=f"candidate: {candidate.part}, {candidate.where}")

@@ -28,7 +28,7 @@ import numpy as np
 from scipy.optimize import lsq_linear
 from scipy.stats import norm
 
-from ..constants import AMBIENT_SENSOR, ELONGATION_PROBE, KELVIN_OFFSET
+from ..constants import ELONGATION_PROBE, KELVIN_OFFSET
 from ..errors import FeedthermError
 from ..models.interface import cycle_weights, weighted_sum
 from ..simulate import steady_solve
@@ -206,11 +206,11 @@ def infer(transfer_: Transfer, measured: dict[str, float], noise: Noise, prior_w
                      float(np.sum(((y - fitted) / sigma) ** 2)), noise, prior_width)
 
 
-def measured_observations(data: MeasurementSet, condition: str) -> dict[str, float]:
-    """A condition's measurements in SI: sensors [K] (T6, the ambient, left out), ``D`` [m]."""
+def measured_observations(data: MeasurementSet, condition: str, ambient: str) -> dict[str, float]:
+    """A condition's measurements in SI: sensors [K] (``ambient``, the air's, left out), ``D`` [m]."""
     out = {}
     for row in data.for_condition(condition):
-        if row.quantity == AMBIENT_SENSOR:
+        if row.quantity == ambient:
             continue
         if row.quantity == "D_um":
             out[ELONGATION_PROBE] = row.measured * 1e-6
@@ -229,5 +229,6 @@ def infer_conditions(loaded: LoadedSystem, data: MeasurementSet, conditions: lis
             raise FeedthermError(f"--conditions: no measurements of condition {condition!r} in {data.source}; "
                                  f"measured: {', '.join(measured)}")
     grouping = parse_groups(groups, list(loaded.system.sources))
-    return [infer(transfer(loaded, c, grouping, model=model), measured_observations(data, c), noise, prior_width)
+    return [infer(transfer(loaded, c, grouping, model=model), measured_observations(data, c, loaded.system.room.ambient_sensor), noise,
+                  prior_width)
             for c in conditions]

@@ -48,7 +48,7 @@ class CycleRanges:
       time constant (~30-40 min on the paper bench);
     - ``dwell_share`` 0.2, ``standstill_share`` 0.15: the chance that the next piece is a dwell
       or a standstill (else a run): a shift of mostly machining with a few stops;
-    - ``ambient_mean`` 15-25 °C: the span of the paper's stated ambients (Table 5);
+    - ``ambient_mean`` 15-25 °C: the span of the paper bench's stated ambients;
     - ``ambient_amplitude`` 0-3 K and ``ambient_period`` 4-24 h: a workshop's drift of a few
       kelvin over hours (ISO 230-3 §5 [2]_; an air-conditioned room at the low end);
     - ``ambient_step`` 600 s: the ambient is held constant over steps of 10 min (the run's

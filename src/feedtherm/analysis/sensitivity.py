@@ -14,7 +14,7 @@ from __future__ import annotations
 import re
 from typing import Callable
 
-from ..constants import AMBIENT_SENSOR, ELONGATION_PROBE
+from ..constants import ELONGATION_PROBE
 from ..simulate import steady_state
 from ..system.checks import covers, leaf_paths, specificity
 from ..system.load import LoadedSystem
@@ -68,7 +68,7 @@ def source_of(loaded: LoadedSystem, path: str) -> str:
 
 def sensitivities(loaded: LoadedSystem, condition: str, *, factor: float = 1.1,
                   progress: Callable[[float], None] | None = None) -> list[Sensitivity]:
-    """Effect of each perturbable value, scaled by ``factor``, on the steady T1... [K] and D [µm]."""
+    """Effect of each perturbable value, scaled by ``factor``, on the steady sensor temperatures [K] and D [µm]."""
     base = steady_state(loaded, condition)
     paths = perturbable_paths(loaded)
     out = []
@@ -76,7 +76,7 @@ def sensitivities(loaded: LoadedSystem, condition: str, *, factor: float = 1.1,
         value = get_path(loaded.system, path)
         variant = with_values(loaded, {path: value * factor}, origin_suffix=f"{path} x {factor:g}")
         perturbed = steady_state(variant, condition)
-        effect = {name: perturbed[name] - base[name] for name in base if name not in (ELONGATION_PROBE, AMBIENT_SENSOR)}
+        effect = {name: perturbed[name] - base[name] for name in base if name not in (ELONGATION_PROBE, loaded.system.room.ambient_sensor)}
         effect[ELONGATION_QUANTITY] = (perturbed["D"] - base["D"]) * 1e6
         out.append(Sensitivity(path, source_of(loaded, path), factor, effect, name=readable_name(loaded, path)))
         if progress is not None:

@@ -26,7 +26,7 @@ from decimal import Decimal, InvalidOperation
 from ..boundary import boundary_conditions
 from ..boundary.heat import motor_duties
 from ..errors import FeedthermError
-from ..constants import AMBIENT_SENSOR, KELVIN_OFFSET
+from ..constants import KELVIN_OFFSET
 from ..system.load import LoadedSystem
 from ..system.overlay import mode_of
 from ..system.variants import with_condition
@@ -175,14 +175,14 @@ def _fmt(value: float) -> str:
 
 
 def sensor_labels(loaded: LoadedSystem) -> dict[str, str]:
-    """The description's sensors in order (without the ambient ``T6``) -> a short label.
+    """The description's sensors in order (without the ambient) -> a short label.
 
     The label is the part of the sensor's description before its first colon
     (``"front bearing"``), or the sensor's part name.
     """
     out = {}
     for name, sensor in loaded.system.sensors.items():
-        if name == AMBIENT_SENSOR:
+        if name == loaded.system.room.ambient_sensor:
             continue
         out[name] = sensor.description.split(":")[0].strip() or sensor.part
     return out

@@ -9,7 +9,9 @@ from __future__ import annotations
 import time
 from typing import Callable
 
+from ..benches import ReportNotes, bench, bench_name_of
 from ..boundary import boundary_conditions
+from ..constants import KELVIN_OFFSET, RPM_PER_RAD_S
 from ..errors import FeedthermError
 from ..simulate import provenance, simulate
 from ..system.checks import check_system
@@ -19,7 +21,7 @@ from .consistency import check_description_measurements
 from .inverse import Noise, infer_conditions
 from .measurements import MeasurementSet, measurement_spec, read_measurements
 from .sensitivity import sensitivities
-from .validation_types import ELONGATION_QUANTITY, Comparison, Validation
+from .validation_types import ELONGATION_QUANTITY, Comparison, OperatingPointRow, Validation
 
 #: Ratio beyond which a printed value and the physics are reported as inconsistent.
 INCONSISTENCY_RATIO = 2.0
@@ -110,7 +112,29 @@ def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = No
         calibration=calibration,
         compensation=compensation,
         uncertainty=uncertainty,
+        operating_points=operating_points(loaded),
+        sensor_locations=sensor_locations(loaded),
+        notes=report_notes(loaded),
     )
+
+
+def operating_points(loaded: LoadedSystem) -> dict[str, OperatingPointRow]:
+    """Each declared condition's motor speeds [rpm] and ambient [°C], as the report states them."""
+    return {name: OperatingPointRow(c.screw_speed * RPM_PER_RAD_S, c.nut_speed * RPM_PER_RAD_S,
+                                    c.ambient - KELVIN_OFFSET)
+            for name, c in loaded.system.conditions.items()}
+
+
+def sensor_locations(loaded: LoadedSystem) -> dict[str, str]:
+    """Sensor -> where it is: its description up to the first colon (``"front bearing"``), else its part."""
+    return {name: sensor.description.split(":")[0].strip() or sensor.part
+            for name, sensor in loaded.system.sensors.items()}
+
+
+def report_notes(loaded: LoadedSystem) -> ReportNotes:
+    """What the report says of the bench ``loaded`` comes from (none for a description of its own)."""
+    name = bench_name_of(loaded.origin)
+    return bench(name).report_notes() if name is not None else ReportNotes()
 
 
 def inconsistencies(loaded: LoadedSystem) -> list[str]:

@@ -4,12 +4,20 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from ..benches import ReportNotes
 from ..solution import Solution
 from .consistency import ConsistencyReport
 from .inverse import Inference
 from .measurements import ELONGATION_QUANTITY  # noqa: F401 (re-exported for the report and CLI)
 
-TEMPERATURE_QUANTITIES = ("T1", "T2", "T3", "T4", "T5")
+
+@dataclass(frozen=True)
+class OperatingPointRow:
+    """A declared condition as the report states it: motor speeds [rpm] and ambient [°C]."""
+
+    screw_rpm: float
+    nut_rpm: float
+    ambient_c: float
 
 
 @dataclass(frozen=True)
@@ -17,7 +25,7 @@ class Comparison:
     """One row of validation.csv (°C or µm)."""
 
     condition: str
-    quantity: str  # T1..T5 or D_um
+    quantity: str  # a sensor or D_um
     unit: str  # "C" or "um"
     simulated: float
     measured: float
@@ -44,7 +52,7 @@ class Sensitivity:
 
     @property
     def max_temperature_effect(self) -> float:
-        return max(abs(self.effect[q]) for q in TEMPERATURE_QUANTITIES)
+        return max((abs(v) for q, v in self.effect.items() if q != ELONGATION_QUANTITY), default=0.0)
 
 
 @dataclass(frozen=True)
@@ -57,7 +65,7 @@ class Validation:
     solutions: dict[str, Solution]  # condition -> run
     single_drive: dict[str, Solution]  # condition -> run with the nut motor off, same table speed
     heat_budget: dict[str, dict[str, float]]  # condition -> source -> W
-    measured_equilibrium_min: dict[str, float]  # condition -> the paper's stated equilibrium time
+    measured_equilibrium_min: dict[str, float]  # condition -> the stated equilibrium time
     sensitivities: list[Sensitivity]
     sensitivity_condition: str
     inconsistencies: list[str]  # findings of `feedtherm check` and of the data
@@ -73,6 +81,28 @@ class Validation:
     compensation: dict | None = None
     # a `feedtherm uncertainty` folder: {"summary": uncertainty.json, "figures": {png name: bytes}}
     uncertainty: dict | None = None
+    # the bench's own content: its conditions, where its sensors are, what the report says of it
+    operating_points: dict[str, OperatingPointRow] = field(default_factory=dict)
+    sensor_locations: dict[str, str] = field(default_factory=dict)  # sensor -> where it is
+    notes: ReportNotes = ReportNotes()
+
+    @property
+    def temperature_quantities(self) -> list[str]:
+        """The measured temperatures compared, in the order of the comparisons (the ambient's left out)."""
+        ambients = {s.ambient_sensor for s in self.solutions.values()}
+        return list(dict.fromkeys(c.quantity for c in self.comparisons if c.unit == "C" and c.quantity not in ambients))
+
+    def reference_worst(self, unit: str) -> float | None:
+        """The reference model's largest |simulated − measured| in ``unit`` ("C" or "um"; the measurements'
+        ``reference_simulated`` column, in sample), None without that column."""
+        values = [abs(c.paper_simulated - c.measured) for c in self.comparisons
+                  if c.unit == unit and c.paper_simulated is not None]
+        return round(max(values), 6) if values else None
+
+    @property
+    def quantities(self) -> list[str]:
+        """:attr:`temperature_quantities` and the elongation."""
+        return [*self.temperature_quantities, ELONGATION_QUANTITY]
 
     @property
     def mode(self) -> str:

@@ -6,6 +6,10 @@ A bench folder holds::
     measurements.csv        measured values to validate and calibrate against (optional; the
                             layout is in feedtherm.analysis.measurements)
     equilibrium_times.csv   the equilibrium time the source states per condition (optional)
+    overlay.toml            values the source prints, laid over the physics by --mode (optional;
+                            feedtherm.system.overlay)
+    report.toml             what the validation report says of the bench beyond its runs (optional;
+                            :class:`ReportNotes`)
     tables/tableN_*.csv     the source's printed tables, as printed (optional)
     SOURCES.md              where each file comes from
 
@@ -27,7 +31,7 @@ import csv
 import difflib
 import os
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from importlib import metadata
 from pathlib import Path
 
@@ -42,9 +46,27 @@ DESCRIPTION = "description.toml"
 MEASUREMENTS = "measurements.csv"
 EQUILIBRIUM_TIMES = "equilibrium_times.csv"
 TABLES = "tables"
+REPORT = "report.toml"
 
 _SHIPPED = Path(__file__).parent
 _PROVIDER = "feedtherm"
+
+
+@dataclass(frozen=True)
+class ReportNotes:
+    """What the validation report says of a bench beyond its runs (the bench folder's report.toml).
+
+    ``reference_model``: whose results the measurements' ``reference_simulated`` column holds;
+    ``field_condition``: the condition whose screw field the report shows (default: the first
+    run); ``findings``: what the source gets wrong or leaves open, one sentence or a few each;
+    ``earlier_held_out_elongation_um``: held-out elongation errors of earlier versions of the
+    bench's model [µm], by what they were, for the report to set today's beside.
+    """
+
+    reference_model: str = ""
+    field_condition: str = ""
+    findings: tuple[str, ...] = ()
+    earlier_held_out_elongation_um: dict[str, float] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -69,6 +91,32 @@ class Bench:
         return cls(name=name, folder=folder, title=_title(description), description=description,
                    measurements=_optional(folder / MEASUREMENTS),
                    equilibrium_times=_optional(folder / EQUILIBRIUM_TIMES), provider=provider)
+
+    def report_notes(self) -> ReportNotes:
+        """The bench's :class:`ReportNotes` (none without a report.toml); one-line error naming the file."""
+        path = self.folder / REPORT
+        if not path.is_file():
+            return ReportNotes()
+        try:
+            data = tomllib.loads(path.read_text(encoding="utf-8"))
+        except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+            raise DescriptionError(f"{path}: cannot be read: {' '.join(str(exc).split())}") from None
+        keys = ("reference_model", "field_condition", "findings", "earlier_held_out_elongation_um")
+        unknown = sorted(set(data) - set(keys))
+        if unknown:
+            raise DescriptionError(f"{path}: {unknown[0]}: unknown key; expected one of {', '.join(keys)}")
+        earlier = data.get("earlier_held_out_elongation_um", {})
+        if not isinstance(earlier, dict) or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                                    for v in earlier.values()):
+            raise DescriptionError(f"{path}: earlier_held_out_elongation_um: must be a table of numbers [µm]")
+        findings = data.get("findings", [])
+        texts = (data.get("reference_model", ""), data.get("field_condition", ""))
+        if not all(isinstance(t, str) for t in texts) or not isinstance(findings, list) \
+                or not all(isinstance(f, str) for f in findings):
+            raise DescriptionError(f"{path}: reference_model and field_condition must be text, findings a list "
+                                   f"of text")
+        return ReportNotes(*texts, tuple(" ".join(f.split()) for f in findings),
+                           {str(k): float(v) for k, v in earlier.items()})
 
     def table(self, number: int) -> list[dict[str, str]]:
         """Rows of the source's Table ``number`` (``tables/table<number>_*.csv``), strings as printed."""

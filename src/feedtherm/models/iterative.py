@@ -16,8 +16,8 @@ applications to boundary value problems", SIAM J. Numer. Anal. 24 (1987) 355–3
 around the iterations rather than inside them: measured as a preconditioner it cost more
 per step than it saved in iterations (fine mesh, below).
 
-Measured, condition I over 10,800 s on the coarse mesh against the direct solver: 1e-5 moves
-T1–T5 by at most 5e-6 K and D by 2e-6 µm in 23.5 iterations a step; 1e-4 by 5e-5 K in 18.8;
+Measured, the paper bench's first condition over 10,800 s on the coarse mesh against the direct solver: 1e-5 moves
+the paper bench's sensors by at most 5e-6 K and D by 2e-6 µm in 23.5 iterations a step; 1e-4 by 5e-5 K in 18.8;
 1e-3 by 6e-4 K in 14.7 (the former absolute tolerance: about 1e-6 K a step, 20.3 iterations).
 Every run's energy balance closes to 1e-12.  :data:`STEP_RTOL` is 1e-5: the solver's error
 stays below a millionth of a kelvin a step, as the verification cases ask of it.

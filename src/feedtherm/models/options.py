@@ -28,6 +28,6 @@ class ModelOptions:
     snapshot_interval: float = 600.0  # [s] full-field snapshots kept for field output (FE)
     # nonlinear coupling (temperatures.coupling = "nonlinear")
     # [K] largest lag of a surface's or source's temperature before re-evaluation: at 0.5 K the
-    # lagging heats moved the paper bench's time to 95 % of the rise at condition I by 2.3 min,
+    # lagging heats moved the paper bench's time to 95 % of the rise at 396 rpm by 2.3 min,
     # at 0.2 K by 0.4 min, for 30 % more re-evaluations
     coupling_tolerance: float = 0.2

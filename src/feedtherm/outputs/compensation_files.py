@@ -23,6 +23,7 @@ from ..analysis.compensation.law import law_document
 from ..analysis.compensation.measured import MeasuredPrediction
 from ..analysis.compensation.study import LawResult, StudyResult
 from ..system.load import LoadedSystem
+from ..system.overlay import mode_of
 from . import compensation_plots as plots
 from .files import read_study_summary, staged_directory, write_json
 from .report.compensation import compensation_section
@@ -41,7 +42,7 @@ def _entry(result: LawResult) -> dict:
 
 def summary(result: StudyResult, loaded: LoadedSystem, measured: dict[str, list[MeasuredPrediction]]) -> dict:
     """The study as a JSON-able document (µm at output)."""
-    settings = asdict(result.settings)
+    settings = {**asdict(result.settings), "mode": mode_of(loaded)}  # the overlay the runs took
     best = result.best(3)
     test = result.curves["regression"][0].test
     return {

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..constants import AMBIENT_SENSOR, KELVIN_OFFSET
+from ..constants import KELVIN_OFFSET
 from ..solution import Solution
 from .files import staged_directory
 from .instants import spread_instants, time_label, time_unit
@@ -70,7 +70,7 @@ def plot_sensors(solution: Solution, path: Path) -> None:
     hours = solution.times / _HOURS
     celsius = solution.sensors_celsius()
     for name in ordered_sensor_names(solution):
-        if name == AMBIENT_SENSOR:
+        if name == solution.ambient_sensor:
             ax.plot(hours, celsius[name], color="0.45", linestyle="--", linewidth=1.2, label=f"{name} (ambient)")
         else:
             ax.plot(hours, celsius[name], linewidth=1.4, label=name)

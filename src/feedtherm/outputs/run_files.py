@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..constants import AMBIENT_SENSOR, KELVIN_OFFSET
+from ..constants import KELVIN_OFFSET
 from ..solution import Solution
 from .field_images import (
     SCREW_AXIAL_DEFORMATION_PNG,
@@ -147,7 +147,7 @@ def sample_rows(times: np.ndarray, interval: float) -> np.ndarray:
 
 
 def write_sensors_csv(solution: Solution, path: Path, rows: np.ndarray) -> None:
-    """``time_s,T1,…,T6,D_um``: sensor temperatures [°C] and the elongation D [µm]."""
+    """``time_s,<sensors>,<ambient>,D_um``: sensor temperatures [°C] and the elongation D [µm]."""
     names = ordered_sensor_names(solution)
     celsius = solution.sensors_celsius()
     columns = [solution.times[rows]] + [celsius[name][rows] for name in names] + [solution.elongation_um[rows]]
@@ -248,7 +248,7 @@ def summary_line(solution: Solution, out_dir: Path) -> str:
     """One line: where the files are and the final values (°C, µm, energy balance)."""
     final = solution.summary_values("final")
     temperatures = ", ".join(f"{name} {final[name]:.2f} °C" for name in ordered_sensor_names(solution)
-                             if name != AMBIENT_SENSOR and name in final)
+                             if name != solution.ambient_sensor and name in final)
     error_percent = 100.0 * solution.energy.relative_error
     return (f"{out_dir}: {temperatures}, D {final['D_um']:.2f} µm, "
             f"energy balance error {error_percent:.2g} %")

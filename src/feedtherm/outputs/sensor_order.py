@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from ..constants import AMBIENT_SENSOR
 from ..solution import Solution
 
 
@@ -12,7 +11,8 @@ def ordered_sensor_names(solution: Solution) -> list[str]:
     The ambient air temperature is an input of the run, not a result: columns, legends and
     summaries list it after the sensors on the machine.
     """
-    names = [name for name in solution.sensors if name != AMBIENT_SENSOR]
-    if AMBIENT_SENSOR in solution.sensors:
-        names.append(AMBIENT_SENSOR)
+    ambient = solution.ambient_sensor
+    names = [name for name in solution.sensors if name != ambient]
+    if ambient in solution.sensors:
+        names.append(ambient)
     return names

@@ -54,7 +54,7 @@ def write_sweep(rows: list[dict], sensors: dict[str, str], out_dir: Path, *, tit
     rows : list of dict
         One per grid point, keyed by :func:`~feedtherm.analysis.sweep.columns`.
     sensors : dict
-        Sensor name -> short label (``{"T1": "front bearing", …}``), in column order.
+        Sensor name -> short label (``{"<sensor>": "front bearing", …}``), in column order.
     out_dir : Path
         Created if missing; an earlier sweep's files (:data:`SWEEP_FILES`) are replaced as a
         whole, also plots this sweep does not draw; other files are kept.

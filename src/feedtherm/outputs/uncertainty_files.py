@@ -233,7 +233,7 @@ def print_uncertainty(study: UncertaintyStudy, out_dir: Path, console: Console |
             console.print(f"{uset.label}: {inside} of {total} measured values inside the {low}–{high} % band")
     for uset in (s for s in study.sets if s.sobol):
         for quantity in plots.quantity_order(i.quantity for i in uset.sobol):
-            if quantity == "T6":
+            if quantity == study.settings.get("ambient_sensor"):
                 continue  # the ambient: its indices say which input sets the ambient, nothing more
             top = sorted((i for i in uset.sobol if i.quantity == quantity), key=lambda i: -i.ST)[:3]
             console.print(f"Sobol ST at {uset.sobol_condition}, {quantity}: "

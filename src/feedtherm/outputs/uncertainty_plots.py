@@ -22,13 +22,13 @@ _HOURS = 3600.0
 SET_COLOURS = {"prior": "tab:blue", "calibrated": "tab:orange", "predictive": "tab:green"}
 UNIT_LABELS = {"C": "°C", "um": "µm"}
 #: The quantity the Sobol figure orders its parameters by, the first one present.
-SOBOL_ORDER_BY = ("D_um", "T4")
+SOBOL_ORDER_BY = ("D_um",)
 
 
 def quantity_order(quantities) -> list[str]:
-    """Temperatures by name (T1 … T6), then D_um, then anything else, each once."""
+    """Sensor temperatures by name, then D_um, each once."""
     names = list(dict.fromkeys(quantities))
-    return sorted(names, key=lambda q: (0 if q.startswith("T") else 1 if q == "D_um" else 2, q))
+    return sorted(names, key=lambda q: (q == "D_um", q))
 
 
 def display_name(quantity: str) -> str:
@@ -141,7 +141,7 @@ class SobolMatrix:
 
 
 def sobol_matrix(uset: UncertaintySet) -> SobolMatrix:
-    """The indices of ``uset`` (which must have some), ordered by ST on D (or T4, or the first quantity)."""
+    """The indices of ``uset`` (which must have some), ordered by ST on D (or the first quantity)."""
     if not uset.sobol:
         raise ValueError(f"the {uset.label} set has no Sobol indices")
     quantities = quantity_order(i.quantity for i in uset.sobol)

@@ -73,19 +73,24 @@ def print_validation(validation: Validation, out_dir: Path, console: Console | N
     console = console or Console(width=None if sys.stdout.isatty() else 120)
     table = Table(title=f"{validation.system_name}: simulated − measured ({validation.mode} mode, {validation.model} model)",
                   title_justify="left")
-    for column in ("condition", "T1", "T2", "T3", "T4", "T5", "D [µm]", "largest |ΔT| [K]", "|ΔD| [µm]"):
+    quantities = validation.quantities
+    for column in ("condition", *quantities[:-1], "D [µm]", "largest |ΔT| [K]", "|ΔD| [µm]"):
         table.add_column(column, justify="left" if column == "condition" else "right")
     largest = validation.largest_per_condition()
     for condition in validation.solutions:
         rows = {c.quantity: c for c in validation.comparisons if c.condition == condition}
-        cells = [f"{rows[q].deviation:+.1f}" if q in rows else "—" for q in ("T1", "T2", "T3", "T4", "T5", "D_um")]
+        cells = [f"{rows[q].deviation:+.1f}" if q in rows else "—" for q in quantities]
         t, d = largest[condition].get("temperature"), largest[condition].get("elongation")
         table.add_row(condition, *cells, f"{abs(t.deviation):.1f} ({t.quantity})" if t else "—",
                       f"{abs(d.deviation):.1f}" if d else "—")
     console.print(table)
     t, d = validation.largest("temperature"), validation.largest("elongation")
+    reference = [(validation.reference_worst(unit), symbol) for unit, symbol in (("C", "K"), ("um", "µm"))]
+    said = (f"; {validation.notes.reference_model or 'the reference model'} is off by up to "
+            + " and ".join(f"{value:.1f} {symbol}" for value, symbol in reference if value is not None)
+            if any(value is not None for value, _ in reference) else "")
     console.print(f"largest |deviation|: temperature {abs(t.deviation):.1f} K ({t.condition} {t.quantity}), "
-                  f"elongation {abs(d.deviation):.1f} µm ({d.condition}); the paper reports 2.1 K and 6.2 µm for its own model")
+                  f"elongation {abs(d.deviation):.1f} µm ({d.condition})" + said)
     for flag in (validation.consistency.flags if validation.consistency else []):
         console.print(f"flagged measurement {flag.condition} {flag.quantity}: {flag.reason}")
     if validation.calibration and validation.calibration.get("cross_validation"):

@@ -50,7 +50,7 @@ class Solution:
     times : ndarray, shape (n,)
         Sample times [s], from 0 to the end of the run.
     sensors : dict[str, ndarray]
-        Sensor temperatures [K] at ``times``: the declared sensors and ``T6`` (ambient).
+        Sensor temperatures [K] at ``times``: the declared sensors and the ambient (:attr:`ambient_sensor`).
     elongation : ndarray, shape (n,)
         The elongation D [m]: what the declared displacement sensor reads
         (``mechanics.elongation``), zero at the reference temperature (the quantity compared
@@ -110,6 +110,11 @@ class Solution:
     def sensor_names(self) -> list[str]:
         return list(self.sensors)
 
+    @property
+    def ambient_sensor(self) -> str:
+        """Which of :attr:`sensors` is the air's temperature (the description's ``room.ambient_sensor``)."""
+        return self.info.get("ambient_sensor", "ambient")
+
     def sensors_celsius(self) -> dict[str, np.ndarray]:
         return {name: values - KELVIN_OFFSET for name, values in self.sensors.items()}
 
@@ -123,7 +128,7 @@ class Solution:
         return (self.elongation - self.elongation[0]) * 1e6
 
     def summary_values(self, which: str = "final") -> dict[str, float]:
-        """``final`` or ``steady`` values in °C and µm, keyed T1…, D_um."""
+        """``final`` or ``steady`` values in °C and µm, keyed by sensor name, and D_um."""
         values = self.final if which == "final" else self.steady
         out = {name: value - KELVIN_OFFSET for name, value in values.items() if name != ELONGATION_PROBE}
         out["D_um"] = values[ELONGATION_PROBE] * 1e6

@@ -39,7 +39,7 @@ class FieldSeries:
     screw_displacement : ndarray, shape (k, b)
         The screw's axial thermal displacement at ``screw_x`` [m].
     title : str
-        What the run was, e.g. ``"condition I, physics mode, fem model (medium mesh)"``.
+        What the run was, e.g. ``"condition <name>, physics mode, fem model (medium mesh)"``.
     displacements : ndarray, shape (k, n, 3), optional
         Thermal displacement of every vertex [m] from the reference temperature (the
         thermoelastic solution), or None.

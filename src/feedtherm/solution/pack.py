@@ -11,7 +11,7 @@ import time
 
 import numpy as np
 
-from ..constants import AMBIENT_SENSOR, ELONGATION_PROBE
+from ..constants import ELONGATION_PROBE
 from ..models.integrator import Integrator, Segment, Trace
 from ..system.geometry import nut_centre_x
 from ..system.schema import FeedSystem
@@ -64,14 +64,15 @@ def pack_solution(system: FeedSystem, integrator: Integrator, segments: list[Seg
     cycle_sensors = {n: cycle_values[in_cycle, names.index(n)] for n in sensor_names}
     t_eq = equilibrium_time(times[in_cycle], cycle_sensors, initial, steady)
     sensors = {n: samples[:, names.index(n)] for n in sensor_names}
-    sensors[AMBIENT_SENSOR] = np.array([ambient_at(segments, t) for t in times])
-    final[AMBIENT_SENSOR] = window_ambient(segments, t_end - window, t_end)
-    steady[AMBIENT_SENSOR] = last.bc.point.ambient
+    ambient = system.room.ambient_sensor
+    sensors[ambient] = np.array([ambient_at(segments, t) for t in times])
+    final[ambient] = window_ambient(segments, t_end - window, t_end)
+    steady[ambient] = last.bc.point.ambient
     screw_T = np.array(trace.sample_screw)
     displacement = np.array(trace.sample_displacement)[:, 1:]
     table_x = nut_centre_x(system) + model.positions
     positioning = along_stroke(model.screw_centres, displacement, table_x)
-    info = {**info, "time_step_s": trace.time_step, "steps": len(step_end), "solver": integrator.solver_name,
+    info = {**info, "ambient_sensor": ambient, "time_step_s": trace.time_step, "steps": len(step_end), "solver": integrator.solver_name,
             **({"cg_iterations": integrator.cg_iterations} if integrator.cg_iterations else {}),
             "unknowns": model.n_nodes, "cycle_window_s": window}
     mesh = model.field_mesh()

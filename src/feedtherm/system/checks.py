@@ -18,7 +18,6 @@ import math
 import re
 from dataclasses import dataclass
 
-from ..constants import AMBIENT_SENSOR
 from ..physics.mechanics import speed_table
 from .geometry import bounds, contains, gap, screw_axis, surface_area
 from .holding import free_motions
@@ -157,10 +156,11 @@ def _elastic_constants(system: FeedSystem) -> list[Finding]:
 
 
 def _ambient_sensor(system: FeedSystem) -> list[Finding]:
-    if AMBIENT_SENSOR not in system.sensors:
+    name = system.room.ambient_sensor
+    if name not in system.sensors:
         return []
-    return [Finding(f"sensors.{AMBIENT_SENSOR}",
-                    f"{AMBIENT_SENSOR} is the ambient temperature; a declared {AMBIENT_SENSOR} is ignored")]
+    return [Finding(f"sensors.{name}", f"{name} is the ambient temperature (room.ambient_sensor); a declared "
+                                       f"{name} is ignored")]
 
 
 def turning_parts(system: FeedSystem) -> set[str]:

@@ -1,23 +1,23 @@
 """Printed boundary conditions that a bench may lay over the physics: its overlay.
 
-A source that prints heats and CHTCs at one operating point (the paper's Tables 1 and 2)
+A source that prints heats and CHTCs at one operating point (the paper's first two tables)
 supplies them to feedtherm as an overlay file beside the bench's description::
 
     name = "paper"                 # the --mode that applies it
     title = "..."
-    reference_condition = "I"      # the condition at which the values are printed
+    reference_condition = "C1"     # the condition at which the values are printed
 
     [[heat]]                       # one per printed heat
     source = "guideways"           # a source of the description
     value = "0.39 W"
     table_label = "Guideways"      # as the source prints it
-    ref = "Table 1"
+    ref = "table 1 of the source"
 
     [[chtc]]                       # one per printed CHTC
     surfaces = ["screw_pair"]      # the description's surfaces it covers
     value = "56.3 W/(m^2*K)"
     table_label = "Screw"
-    ref = "Table 2"
+    ref = "table 2 of the source"
 
 A bench folder's ``overlay.toml`` is its overlay; a description loaded from a file names one in
 ``meta.overlay`` (``bundled:<bench>`` or a path relative to the description). Only

@@ -16,6 +16,7 @@ from typing import Annotated, Literal
 
 from pydantic import (
     Field,
+    StringConstraints,
     field_validator,
     model_serializer,
     model_validator,
@@ -190,9 +191,14 @@ class Room(Strict):
     draught, say 0.1-0.3 m/s); it adds forced convection to every surface whose CHTC comes from
     a correlation (mixed convection, boundary/surfaces.py).  0: still air, convection only from
     buoyancy and the machine's own motion.
+
+    ``ambient_sensor``: the name the air's temperature goes by among the sensors' readings (in
+    runs, measurements and compensation laws); every model reports it from the boundary
+    conditions, so it is not declared under ``[sensors]``.
     """
 
     air_speed: NonNegSpeed = 0.0
+    ambient_sensor: Annotated[str, StringConstraints(pattern=r"^[A-Za-z_][A-Za-z0-9_.-]*$")] = "ambient"
 
 
 class Condition(Strict):

@@ -139,8 +139,8 @@ class BearingSource(_Source):
     bearings_in_set: Annotated[int, Field(ge=1)] = 1  # identical bearings the source stands for (a pair: 2)
     lubrication: Literal["grease", "oil_air", "oil_jet", "oil_bath_low_level", "oil_bath"] = "grease"
     base_oil: Literal["mineral", "synthetic", "transmission_fluid"] = "mineral"
-    seal: Literal["RSL", "RZ", "RSH", "RS1"] | None = None  # contact seal type (SKF Table 4); None: open or shielded
-    seal_counterface_diameter: PosLength | None = None  # d_s: d1 or d2 of the product table, as Table 4 names
+    seal: Literal["RSL", "RZ", "RSH", "RS1"] | None = None  # contact seal type (SKF's seal constants); None: open or shielded
+    seal_counterface_diameter: PosLength | None = None  # d_s: d1 or d2 of the product table, as SKF's seal constants name
     seals_per_bearing: Literal[1, 2] = 2
     drag_torque: NonNegTorque = 0.0  # M_drag per bearing of an oil bath or oil jet (SKF Diagram 2)
     # Constant-friction model: mu of the bearing type (the catalogue's table); each bearing of the

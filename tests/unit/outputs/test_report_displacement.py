@@ -9,14 +9,21 @@ import numpy as np
 import pytest
 
 from feedtherm.analysis.consistency import ConsistencyReport, ElongationLaw, Flag
-from feedtherm.analysis.validation_types import Comparison, Validation
-from feedtherm.outputs.report.displacement import EARLIER_HELD_OUT_UM, displacement_section, gains
+from feedtherm.analysis.validation_types import Comparison, OperatingPointRow, Validation
+from feedtherm.benches import ReportNotes
+from feedtherm.outputs.report.displacement import displacement_section, gains
 
 from test_run_files import make_solution
 
 LOOP = {"elongation": {"target": "screw at (450, 0, 0) mm", "mount": "base at (480, 0, -60) mm",
                        "direction": [1.0, 0.0, 0.0], "description": "laser on a stand"},
         "positioning_reference": "base at (0, 0, -60) mm"}
+#: A bench's conditions as its description declares them: I-III differ in speed at 20 °C, IV, II, V
+#: in ambient at the speeds of II.
+POINTS = {"I": OperatingPointRow(396.0, 360.0, 20.0), "II": OperatingPointRow(1116.0, 1080.0, 20.0),
+          "III": OperatingPointRow(2214.0, 2160.0, 20.0), "IV": OperatingPointRow(1116.0, 1080.0, 15.0),
+          "V": OperatingPointRow(1116.0, 1080.0, 25.0)}
+EARLIER = {"with a fitted read point (193 mm)": 1.7, "read at 400 mm, nothing fitted there": 21.0}
 
 
 def validation(measured_d: dict[str, float], simulated_d: dict[str, float], mean_t: dict[str, float], **changes):
@@ -31,7 +38,8 @@ def validation(measured_d: dict[str, float], simulated_d: dict[str, float], mean
         comparisons.append(Comparison(c, "D_um", "um", simulated_d[c], measured_d[c], None))
     values = dict(system_name="bench", model="fast", comparisons=comparisons, solutions=runs,
                   single_drive={}, heat_budget={}, measured_equilibrium_min={}, sensitivities=[],
-                  sensitivity_condition="I", inconsistencies=[], assumptions=[])
+                  sensitivity_condition="I", inconsistencies=[], assumptions=[], operating_points=POINTS,
+                  notes=ReportNotes(earlier_held_out_elongation_um=EARLIER))
     values.update(changes)
     return Validation(**values)
 
@@ -93,5 +101,5 @@ def test_a_calibration_puts_the_held_out_elongation_beside_the_earlier_figures()
                                            calibration=calibration))
     assert "held out, 7.2 µm (II)" in html or "held out, 7.3 µm (II)" in html
     assert "leave-one-condition-out, 12.0 µm (IV)" in html
-    for value in EARLIER_HELD_OUT_UM.values():
+    for value in EARLIER.values():
         assert f"{value:.1f} µm" in html

@@ -5,16 +5,17 @@ from __future__ import annotations
 import base64
 import io
 import re
+from dataclasses import replace
 from datetime import datetime, timezone
 
 import pytest
 
-from feedtherm.analysis.validation_types import Comparison, Sensitivity, Validation
+from feedtherm.analysis.validation_types import Comparison, OperatingPointRow, Sensitivity, Validation
 from feedtherm.errors import FeedthermError
 from feedtherm.outputs import report as report_module
 from feedtherm.outputs.report import REPORT_HTML, render_report, write_report
 from feedtherm.outputs.report.comparison import condition_table, deviation_cell, summary_text
-from feedtherm.outputs.report.data import deviation_band
+from feedtherm.outputs.report.data import deviation_band, deviation_bands
 from feedtherm.outputs.report.figures import profile_rows
 from feedtherm.outputs.report.html import Cell, Raw, bullets, esc, number, page, png_image, section, table
 
@@ -83,13 +84,23 @@ def test_page_section_and_bullets():
     (2.9, "um", 0), (-6.2, "um", 1), (10.0, "um", 2), (45.0, "um", 3),
 ])
 def test_deviation_bands(deviation, unit, band):
-    assert deviation_band(deviation, unit) == band
-    assert deviation_cell(deviation, unit).css_class == f"dev-{band}"
+    # the middle band is the reference model's own worst: 2.1 K and 6.2 µm on the paper's bench
+    limits = {"C": (1.0, 2.1, 5.0), "um": (3.0, 6.2, 15.0)}[unit]
+    assert deviation_band(deviation, limits) == band
+    assert deviation_cell(deviation, limits).css_class == f"dev-{band}"
+
+
+def test_the_middle_band_is_the_reference_models_worst_in_sample():
+    v = synthetic_validation()
+    worst = max(abs(c.paper_simulated - c.measured) for c in v.comparisons if c.unit == "C" and c.paper_simulated)
+    assert deviation_bands(v, "C") == (1.0, pytest.approx(worst), 5.0)
+    assert deviation_bands(replace(v, comparisons=[replace(c, paper_simulated=None) for c in v.comparisons]),
+                           "C") == (1.0, 2.0, 5.0)  # none given: 2 K
 
 
 def test_condition_table_has_quantities_as_columns_with_units():
     rows = [Comparison("I", "T1", "C", 22.61, 27.1, 28.1), Comparison("I", "D_um", "um", 23.5, 29.9, None)]
-    html = condition_table("I", rows)
+    html = condition_table("I", rows, {"C": (1.0, 2.1, 5.0), "um": (3.0, 6.2, 15.0)})
     assert "T1 [°C]" in html and "D [µm]" in html
     assert "22.6" in html and "\u22124.5" in html  # 22.61 − 27.1
     assert '<td class="dev-2">\u22124.5</td>' in html
@@ -109,6 +120,7 @@ def test_profile_rows_are_distinct_and_end_at_the_last_sample():
 
 def synthetic_validation(**changes) -> Validation:
     runs = {"I": make_solution(), "II": make_solution(equilibrium_time=None)}
+    speeds = {"I": OperatingPointRow(396.0, 360.0, 20.0), "II": OperatingPointRow(1116.0, 1080.0, 20.0)}
     comparisons = []
     for condition, solution in runs.items():
         final = solution.summary_values()
@@ -116,7 +128,7 @@ def synthetic_validation(**changes) -> Validation:
                         for q in ("T1", "T2", "T3", "T4", "T5")]
         comparisons.append(Comparison(condition, "D_um", "um", final["D_um"], final["D_um"] - 4.0, None))
     values = dict(
-        system_name=HOSTILE, model="fast", comparisons=comparisons, solutions=runs,
+        system_name=HOSTILE, model="fast", comparisons=comparisons, solutions=runs, operating_points=speeds,
         single_drive={"I": make_solution()}, heat_budget={"I": {"front_bearing": 5.0, "screw_nut": 6.0},
                                                           "II": {"front_bearing": 18.6, "screw_nut": 6.0}},
         measured_equilibrium_min={"I": 120.0, "II": 100.0},
@@ -194,7 +206,7 @@ def test_a_joint_is_named_by_its_parts_under_its_path(rendered):
 
 
 def test_no_calibration_is_said_and_a_calibration_is_tabled(rendered):
-    assert "None: every value is from the paper" in rendered
+    assert "None: every value is from the source or a declared assumption" in rendered
     html = render_report(synthetic_validation(calibrated=[
         {"path": "sources.screw_nut.mu", "value": 0.1234567, "conditions": ["I", "III"]}]))
     assert '<th scope="row">sources.screw_nut.mu</th><td>0.1235</td><td>I, III</td>' in html
@@ -281,7 +293,9 @@ def test_headline_puts_physics_held_out_leave_one_out_and_the_paper_side_by_side
     assert "calibrated on I, predicting II (held out)" in html
     assert "1.3 (II T3)" in html and "30.0 (II t_eq)" in html and "30.0 (II D)" not in html
     assert "2.4 (I T1)" in html and "5.5 (I D)" in html and "12.0 (II t_eq)" in html
-    assert "2.1" in html and "6.2" in html  # the paper's in-sample figures
+    # the reference model's in-sample figures, from the measurements' reference values: 1.0 K, no D
+    assert ("<tr><th scope=\"row\">the reference model, in sample (the measurements&#x27; reference values)</th>"
+            "<td class=\"num\">1.0</td><td>—</td>") in html
     assert "screw_nut_preload = 812 ± 40" in html
     # the flagged value is listed with its reason (escaped) and this model's deviation
     assert "off the line &lt;by far&gt;" in html and f"{flagged_d.deviation:+.1f} µm" in html

@@ -59,7 +59,7 @@ def make_solution(*, sensor_names=("T1", "T2", "T3", "T4", "T5", "T6"), step=10.
         cycle_elongation=elongation[::6], final=final, steady=steady, equilibrium_time=equilibrium_time,
         energy=EnergyBalance(heat_in=1.0e5, heat_lost=6.0e4, heat_stored=3.99e4),
         info=info if info is not None else {
-            "condition": "I", "model": "fast", "mode": "physics", "wall_time_s": np.float64(0.42),
+            "condition": "I", "model": "fast", "mode": "physics", "wall_time_s": np.float64(0.42), "ambient_sensor": "T6",
             "time_step_s": 10.0, "unknowns": np.int64(137),
             "provenance": {"feedtherm_version": "0.1.0", "description_sha256": "ab" * 32,
                            "description": "bundled:paper", "mode": "physics",
@@ -239,7 +239,7 @@ def test_summary_json_writes_null_for_a_run_without_equilibrium(tmp_path):
 
 def test_summary_never_writes_nan(tmp_path):
     info = {"condition": "I", "model": "fast", "mode": "physics", "wall_time_s": math.nan, "time_step_s": 10.0,
-            "unknowns": 3, "provenance": {}}
+            "unknowns": 3, "provenance": {}, "ambient_sensor": "T6"}
     write_run_outputs(make_solution(info=info), tmp_path, sample_interval=10.0)
     text = (tmp_path / "summary.json").read_text()
     assert "NaN" not in text and json.loads(text)["wall_time_s"] is None

@@ -19,7 +19,7 @@ def study():
 
 
 def test_quantity_order_puts_temperatures_first_then_d():
-    assert plots.quantity_order(["D_um", "T6", "T1", "x", "T1"]) == ["T1", "T6", "D_um", "x"]
+    assert plots.quantity_order(["D_um", "T6", "T1", "x", "T1"]) == ["T1", "T6", "x", "D_um"]
 
 
 def test_band_panels_hold_each_sets_band_and_the_measured_final_value(study):

@@ -5,7 +5,7 @@ the law's JSON file (:func:`~feedtherm.analysis.compensation.law.law_document` w
 feed it readings as they arrive::
 
     law = CompensationLaw.from_file("law.json")
-    for t, readings in stream:                 # readings: {"T1": 301.2, ...} in kelvin
+    for t, readings in stream:                 # readings: {sensor: 301.2, ...} in kelvin
         correction = -law.update(t, readings)  # D [m]; the axis moves by -D
 
 The document (``format = "feedtherm-compensation-law"``, ``version = 1``) holds the inputs'

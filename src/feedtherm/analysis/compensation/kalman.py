@@ -4,7 +4,7 @@ State ``x = [ζ, δ]``: the reduced temperature field ``ζ`` (:mod:`.state_space
 heat error ``δ_j`` per source (the heat is ``q_j (1 + δ_j)``): another machine of the design
 differs from the model by its losses first, and a persistent error is what a filter must learn
 rather than treat as noise.  Over each sample interval ``Δt`` the motor speeds and the ambient
-(the sensor ``T6``, an input) are held; the operating point gives ``h`` and ``q`` from the law's
+(the ambient sensor, an input) are held; the operating point gives ``h`` and ``q`` from the law's
 table (:mod:`.operating_table`), and the step is exact for held inputs:
 
 .. math:: ζ^+ = A_d ζ + Γ (B_q q + T_∞ f) + Γ B_q \\mathrm{diag}(q)\\, δ, \\qquad δ^+ = δ + w_δ,
@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sl
 
-from ...constants import AMBIENT_SENSOR, ELONGATION_PROBE
+from ...constants import ELONGATION_PROBE
 from .operating_table import OperatingTable
 from .state_space import ReducedModel
 
@@ -71,7 +71,7 @@ class KalmanNoise:
 
 
 class KalmanEstimator:
-    """The filter on ``sensors`` (names among ``model.outputs``; ``T6`` is the ambient input, not a reading).
+    """The filter on ``sensors`` (names among ``model.outputs``; ``model.ambient`` is the ambient input, not a reading).
 
     Parameters
     ----------
@@ -85,8 +85,8 @@ class KalmanEstimator:
 
     def __init__(self, model: ReducedModel, table: OperatingTable, sensors, sigma, noise: KalmanNoise = KalmanNoise()):
         self.model, self.table, self.noise = model, table, noise
-        self.sensors = [s for s in sensors if s != AMBIENT_SENSOR]
-        self.sigma = np.array([sg for s, sg in zip(sensors, sigma) if s != AMBIENT_SENSOR], dtype=float)
+        self.sensors = [s for s in sensors if s != model.ambient]
+        self.sigma = np.array([sg for s, sg in zip(sensors, sigma) if s != model.ambient], dtype=float)
         rows = [model.outputs.index(s) for s in self.sensors]
         d = model.outputs.index(ELONGATION_PROBE)
         self.r, self.m = model.order, len(model.sources)
@@ -127,9 +127,9 @@ class KalmanEstimator:
         """D [m] and its standard deviation [m] after the readings [K] at ``time`` [s].
 
         ``screw_rpm``, ``nut_rpm``: the speeds commanded since the previous reading; ``readings``
-        must hold every sensor and ``T6`` (the ambient).
+        must hold every sensor and the ambient (``model.ambient``).
         """
-        ambient = float(readings[AMBIENT_SENSOR])
+        ambient = float(readings[self.model.ambient])
         if self.x is None:
             zeta = self.model.uniform * ambient
             self.x = np.concatenate([zeta, np.zeros(self.m)])
@@ -171,7 +171,7 @@ def sensor_sigma(names, methods: dict[str, str], noise: KalmanNoise = KalmanNois
 def run_filter(estimator: KalmanEstimator, times, readings: np.ndarray, names: list[str], screw_rpm, nut_rpm):
     """D [m] and its standard deviation [m] at every sample of a recorded cycle (columns ``names``)."""
     estimator.reset()
-    needed = [*estimator.sensors, AMBIENT_SENSOR]
+    needed = [*estimator.sensors, estimator.model.ambient]
     columns = {n: names.index(n) for n in needed}
     out = np.zeros((len(times), 2))
     for n, t in enumerate(times):
@@ -183,6 +183,8 @@ def run_filter(estimator: KalmanEstimator, times, readings: np.ndarray, names: l
 # --------------------------------------------------------------------------- the law and its document
 
 FORMAT = "feedtherm-compensation-law"
+#: The role of the ambient among a law document's inputs: the model's input, not a reading.
+AMBIENT_ROLE = "ambient (model input)"
 VERSION = 1
 
 
@@ -212,13 +214,13 @@ class KalmanLaw:
     def document(self, provenance: dict | None = None) -> dict:
         """The JSON-able document (SI units) that :meth:`from_document` reads back."""
         m = self.model
-        keep = [m.outputs.index(s) for s in (*self.sensors, ELONGATION_PROBE) if s != AMBIENT_SENSOR]
+        keep = [m.outputs.index(s) for s in (*self.sensors, ELONGATION_PROBE) if s != m.ambient]
         return {
             "format": FORMAT, "version": VERSION, "kind": "kalman",
             "output": {"name": "D", "unit": "m", "meaning": "the screw's thermal elongation; correct the axis by -D"},
             "inputs": [{"name": s, "unit": "K", "sigma_K": sg} for s, sg in zip(self.sensors, self.sigma)
-                       if s != AMBIENT_SENSOR]
-                      + [{"name": AMBIENT_SENSOR, "unit": "K", "role": "ambient (model input)"}],
+                       if s != m.ambient]
+                      + [{"name": m.ambient, "unit": "K", "role": AMBIENT_ROLE}],
             "speeds": "screw_rpm and nut_rpm commanded over the interval ending at each reading",
             "model": {"surfaces": m.surfaces, "sources": m.sources,
                       "outputs": [m.outputs[i] for i in keep],
@@ -235,13 +237,14 @@ class KalmanLaw:
         if document.get("format") != FORMAT or document.get("kind") != "kalman":
             raise ValueError("not a feedtherm Kalman law document")
         d = document["model"]
+        ambient = next(i["name"] for i in document["inputs"] if i.get("role") == AMBIENT_ROLE)
         model = ReducedModel(d["surfaces"], d["sources"], d["outputs"], np.array(d["A0"]), np.array(d["A_surface"]),
                              np.array(d["f_surface"]), np.array(d["Bq"]), np.array(d["Cy"]), np.array(d["dy"]),
-                             np.array(d["uniform"]), np.array(d["hankel"]))
+                             np.array(d["uniform"]), np.array(d["hankel"]), ambient)
         n = document["noise"]
         noise = KalmanNoise(n["contact_K"], n["infrared_K"], n["heat_prior"], n["heat_drift_per_sqrt_h"],
                             n["heat_noise"], n["air_noise_K"], n["initial_K"])
-        inputs = [i for i in document["inputs"] if i["name"] != AMBIENT_SENSOR]
+        inputs = [i for i in document["inputs"] if i.get("role") != AMBIENT_ROLE]
         return cls(model, OperatingTable.from_dict(document["table"]), tuple(i["name"] for i in inputs),
                    tuple(float(i["sigma_K"]) for i in inputs), noise)
 
@@ -253,11 +256,11 @@ def model_errors(model: ReducedModel, table: OperatingTable, cycles, names: list
     squares = np.zeros(len(model.outputs))
     count = 0
     columns = [names.index(o) if o != ELONGATION_PROBE else None for o in model.outputs]
-    ambient = names.index(AMBIENT_SENSOR)
+    ambient = names.index(model.ambient)
     for record in cycles:
         estimator.reset()
         for n, t in enumerate(record.times):
-            estimator.update(t, {AMBIENT_SENSOR: record.sensors[n, ambient]}, record.screw_rpm[n], record.nut_rpm[n])
+            estimator.update(t, {model.ambient: record.sensors[n, ambient]}, record.screw_rpm[n], record.nut_rpm[n])
             y = model.Cy @ estimator.x[:estimator.r] + model.dy
             truth = np.array([record.elongation[n] if j is None else record.sensors[n, j] for j in columns])
             squares += (y - truth) ** 2

@@ -1,9 +1,9 @@
 """A law trained on simulated cycles, applied to the measured bench.
 
 For each measured condition the law reads the measured equilibrium temperatures of its inputs
-(Table 6 on the paper's bench; the ambient ``T6`` is the condition's stated ambient, Table 5)
-and predicts D, which is compared with the measured D (Table 7) and beside the deviation of the
-paper's own model (its simulated D − measured D, 2.9 … 6.2 µm).  The measurements are
+(the ambient sensor reads the condition's stated ambient) and predicts D, which is compared with
+the measured D and beside the deviation of the reference model where the measurements carry it
+(its simulated D − measured D).  The measurements are
 equilibrium values, so each is one reading of a machine in its thermal equilibrium: a regression
 law's lags start settled at the first reading (:mod:`.evaluator`), as on a machine that has run
 at that state for long; the Kalman estimator reads the same values every :data:`STEP` for
@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...constants import AMBIENT_SENSOR, KELVIN_OFFSET
+from ...constants import KELVIN_OFFSET
 from ...system.load import LoadedSystem
 from ..measurements import ELONGATION_QUANTITY, MeasurementSet
 from ...constants import RPM_PER_RAD_S
@@ -54,10 +54,10 @@ class MeasuredPrediction:
 
 
 def measured_inputs(loaded: LoadedSystem, data: MeasurementSet, condition: str) -> dict[str, float]:
-    """The measured temperatures [K] of one condition, and ``T6`` from the condition's ambient."""
+    """The measured temperatures [K] of one condition, and the ambient sensor from the condition's ambient."""
     values = {r.quantity: r.measured + KELVIN_OFFSET for r in data.for_condition(condition)
               if r.quantity != ELONGATION_QUANTITY}
-    values.setdefault(AMBIENT_SENSOR, loaded.system.conditions[condition].ambient)
+    values.setdefault(loaded.system.room.ambient_sensor, loaded.system.conditions[condition].ambient)
     return values
 
 
@@ -84,7 +84,7 @@ def _held(law: KalmanLaw, inputs: dict[str, float], condition) -> float:
     """The estimator's D after reading ``inputs`` every STEP for HOLD at the condition's speeds."""
     estimator = law.estimator()
     screw, nut = condition.screw_speed * RPM_PER_RAD_S, condition.nut_speed * RPM_PER_RAD_S
-    readings = {name: inputs[name] for name in (*law.sensors, AMBIENT_SENSOR)}
+    readings = {name: inputs[name] for name in (*law.sensors, law.model.ambient)}
     d = 0.0
     for t in np.arange(0.0, HOLD + STEP / 2, STEP):
         d, _ = estimator.update(float(t), readings, screw, nut)

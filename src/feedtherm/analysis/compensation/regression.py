@@ -32,7 +32,7 @@ import numpy as np
 from ...errors import FeedthermError
 
 #: Time constants of the lags [s].  900 s: the screw's own time constant, ρ c r / (2 h) with
-#: GCr15 (7800 kg/m³, 729 J/(kg K)), r = 16 mm and Table 2's 56.3 W/(m² K) is 810 s.  3600 s: the
+#: GCr15 (7800 kg/m³, 729 J/(kg K)), r = 16 mm and the paper's printed screw CHTC, 56.3 W/(m² K), is 810 s.  3600 s: the
 #: slow mode of the housings, base and table (the bench reaches equilibrium in 2-3 h, paper §4.2,
 #: about three time constants).  Declared from the physics, not chosen on the held-out error.
 DEFAULT_LAGS: tuple[float, ...] = (900.0, 3600.0)

@@ -70,6 +70,7 @@ class ReducedModel:
     dy: np.ndarray  # (outputs,)
     uniform: np.ndarray  # (r,): ζ of the machine at 1 K throughout
     hankel: np.ndarray  # the Hankel singular values at the reference point (all kept and dropped)
+    ambient: str = "ambient"  # the name of the ambient reading, the model's input (room.ambient_sensor)
 
     @property
     def order(self) -> int:
@@ -163,7 +164,7 @@ def reduce_model(loaded: LoadedSystem, outputs: list[str], reference: OperatingP
     Cy = (out_rows * s[None, :]) @ Q
     A0 = (A0 + A0.T) / 2
     return ReducedModel(list(basis.surfaces), list(basis.sources), list(outputs), A0, A_surface, f_surface, Bq, Cy,
-                        out_offset, Q.T @ uniform, hankel)
+                        out_offset, Q.T @ uniform, hankel, system.room.ambient_sensor)
 
 
 def _psd_root(M: np.ndarray) -> np.ndarray:

@@ -3,7 +3,7 @@
 :func:`parse_sensors` checks ``--sensors`` (a count K, or names of candidates) before anything
 runs; :func:`run_study` simulates the three sets of cycles (:mod:`.data`), chooses sensors
 greedily for the static and the lagged regression (:mod:`.selection`), fits the law asked for,
-the law on the description's own sensors (T1-T5 on the paper bench) for comparison, and
+the law on the description's own sensors for comparison, and
 judges each on the test cycles (:mod:`.metrics`).
 """
 
@@ -14,7 +14,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from ...boundary.operating import OperatingPoint
-from ...constants import AMBIENT_SENSOR, ELONGATION_PROBE, KELVIN_OFFSET
+from ...constants import ELONGATION_PROBE, KELVIN_OFFSET
 from ...errors import FeedthermError
 from ...system.load import LoadedSystem
 from ..candidates import Candidate, candidate_sensors, with_candidates
@@ -119,7 +119,7 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
     n_curve = max(CURVE_SENSORS, request if isinstance(request, int) else 0)
     n_curve = min(n_curve, len(candidates))
     curves, chosen, declared = {}, {}, {}
-    own = tuple(n for n in loaded.system.sensors if n != AMBIENT_SENSOR)
+    own = tuple(n for n in loaded.system.sensors if n != loaded.system.room.ambient_sensor)
     for kind, lags in LAWS.items():
         steps = greedy_selection(sets["train"], sets["validation"], n_curve, lags)
         curves[kind] = [_judge(kind, step.law, sets) for step in steps]
@@ -149,7 +149,7 @@ def kalman_factory(loaded: LoadedSystem, candidates: dict[str, Candidate], train
     nut = screw - sum(envelope.relative) / 2 if envelope.dual else 0.0
     ambient = sum(settings.ranges.ambient_mean) / 2 + KELVIN_OFFSET
     reference = OperatingPoint(screw, nut, ambient, system.kinematics.lead)
-    outputs = [n for n in candidates if n != AMBIENT_SENSOR] + [ELONGATION_PROBE]
+    outputs = [n for n in candidates if n != system.room.ambient_sensor] + [ELONGATION_PROBE]
     model = reduce_model(described, outputs, reference, order=order)
     table = build_table(system, model.surfaces, model.sources, ambient, overlay=described.overlay)
     errors = model_errors(model, table, train.cycles, train.names)

@@ -3,7 +3,7 @@
 A :class:`SampleRun` carries the variant description as data; :func:`run_sample` (module
 level, so a Dask worker imports it by name) runs its conditions with the fast model and the
 cycle-averaged motion in 60 s steps, as calibration does (``CALIBRATION_OPTIONS``), and returns
-the series of T1… [°C] and D [µm] on a fixed grid and the final values.
+the series of the sensors [°C] and D [µm] on a fixed grid and the final values.
 """
 
 from __future__ import annotations

@@ -116,7 +116,7 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
         "sobol_base": sobol_base, "sobol_runs": 0 if sobol_points is None else len(sobol_points),
         "sobol_scheme": None if sobol_points is None else "Saltelli 2010 (SALib), first-order and total, no second order",
         "model": "fast", "motion": "averaged", "time_step_s": GRID_STEP_S, "mode": mode_of(loaded),
-        "conditions": conditions,
+        "conditions": conditions, "ambient_sensor": loaded.system.room.ambient_sensor,
         "duration_s": {c: loaded.system.conditions[c].duration for c in conditions},
         "band": list(BAND), "execution": execution.describe(),
         "runs": sum(len(item.conditions) for item in items),
@@ -170,7 +170,7 @@ def _predictive(updated: UncertaintySet, samples: list[SampleResult], error_sd: 
     """The updated set's final values with the model error added: each fitted quantity's band is
     the 5–95 % of the posterior predictive mixture (:func:`.predictive.predictive_quantiles`).
 
-    A quantity the update did not fit (the ambient T6, the condition's input) keeps its band.
+    A quantity the update did not fit (the ambient, the condition's input) keeps its band.
     There are no bands over time: s² is measured on the final values only, and how the misfit
     grows from zero at the start is not known.
     """

@@ -4,7 +4,7 @@ The study (:mod:`feedtherm.analysis.uncertainty.study`) fills these; the output 
 (:mod:`feedtherm.outputs.uncertainty_files`, the figures and the report section) reads only
 these, so either side can change without the other.
 
-Quantities are named as in the measurements: ``T1`` … ``T6`` [°C] and ``D_um`` [µm].
+Quantities are named as in the measurements: sensors (the ambient's included) [°C] and ``D_um`` [µm].
 Percentile bands are the 5 % and 95 % quantiles of the sampled runs (``BAND``).
 """
 
@@ -59,7 +59,7 @@ class FinalBand:
     """The band of one quantity's final value at one condition, beside its measurement."""
 
     condition: str
-    quantity: str  # "T1" … "T6" or "D_um"
+    quantity: str  # a sensor (the ambient's included) or "D_um"
     unit: str  # "C" or "um"
     p05: float
     p50: float

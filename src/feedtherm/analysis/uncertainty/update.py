@@ -1,6 +1,6 @@
 """A Bayesian update of every declared uncertainty with measured final values (Laplace approximation).
 
-The declared priors are the prior; the measured final values of T1…T5 and D at chosen
+The declared priors are the prior; the measured final values of the sensors and D at chosen
 conditions are the data.  The update works in standard-normal coordinates, one per declared
 parameter,
 
@@ -258,7 +258,7 @@ def bayesian_update(loaded: LoadedSystem, data: MeasurementSet, fit_conditions: 
                     max_nfev: int | None = None) -> BayesianUpdate:
     """Update every declared uncertainty of ``loaded`` with the measured finals of ``fit_conditions``.
 
-    The data: T1…T5 and D_um finals (whatever ``data`` measures at those conditions) but the
+    The data: the sensors' and D_um finals (whatever ``data`` measures at those conditions) but the
     values ``consistency`` flags, as calibration leaves them out (:func:`..calibration._data`,
     without the equilibrium times, which the fast runs of a study do not give).  The runs: the
     fast model with the cycle-averaged motion in 60 s steps (:func:`.runs.run_sample`), each

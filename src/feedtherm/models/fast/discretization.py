@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from ...constants import AMBIENT_SENSOR, ELONGATION_PROBE
+from ...constants import ELONGATION_PROBE
 from ...system.schema import FeedSystem
 from ..interface import BoundaryBasis, HeatInput, ThermalModel, source_shares
 from ..options import ModelOptions
@@ -60,7 +60,7 @@ class FastDiscretization(ThermalModel):
         rows = []  # each sensor reads a weighted mean of nodes
         names = []
         for name, sensor in system.sensors.items():
-            if name == AMBIENT_SENSOR:
+            if name == system.room.ambient_sensor:  # reported from the boundary conditions
                 continue
             if sensor.part in layout.cells:  # between the centres of the cells around it
                 nodes, weights = layout.cells[sensor.part].interpolation(sensor.position)

@@ -24,7 +24,7 @@ import time
 import numpy as np
 import scipy.sparse as sp
 
-from ...constants import AMBIENT_SENSOR, ELONGATION_PROBE
+from ...constants import ELONGATION_PROBE
 from ...errors import ModelError
 from ...system.geometry import bounds
 from ...system.schema import FeedSystem
@@ -203,7 +203,7 @@ class FemDiscretization(ThermalModel):
         mesh, system = self.mesh, self.system
         names, rows = [], []
         for name, sensor in system.sensors.items():
-            if name == AMBIENT_SENSOR:
+            if name == system.room.ambient_sensor:  # reported from the boundary conditions
                 continue
             names.append(name)
             tets = mesh.tets[:, mesh.part_tets(sensor.part)]
@@ -344,7 +344,7 @@ class FemDiscretization(ThermalModel):
         return self.deformation.field(state)
 
     def probe(self, T: np.ndarray, k: int | None = None) -> np.ndarray:
-        """Sensor temperatures [K] (system order, without T6), then D [m].
+        """Sensor temperatures [K] (system order, without the ambient), then D [m].
 
         ``k`` is accepted for the shared integrator; the moving group's sensors sit at fixed
         points of its own mesh, so the values do not depend on it.

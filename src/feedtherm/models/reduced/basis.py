@@ -29,7 +29,7 @@ The boundary conditions are not known when the model is built (they follow the o
 point and, coupled, the temperatures); the snapshots use a reference film coefficient
 (:data:`REFERENCE_HTC`) on every surface whose coefficient follows them, and its own on a
 surface whose coefficient the description fixes (:func:`reference_coefficients`: a foundation
-at 800 W/(m²·K) taken at 10 left the base plate's state out of the span, 0.12 K at T1).  The
+at 800 W/(m²·K) taken at 10 left the base plate's state out of the span, 0.12 K at the front bearing).  The
 reduced operators themselves take each run's coefficients exactly: they are sums of
 per-surface projected matrices.
 

@@ -2,15 +2,15 @@
 
 ``write_report(validation, path)`` renders a :class:`~feedtherm.analysis.validation_types.Validation`
 into one page with its images embedded as base64 PNG and its CSS inline: no external URL,
-no JavaScript.  It reads only the Validation (and the paper's Table 5 and 6 for the
-speeds and the names of the measuring points).  Sections, in order (docs/report.md):
+no JavaScript.  It reads only the Validation, which carries what the report says of the bench
+(its operating points, where its sensors are, its report notes).  Sections, in order (docs/report.md):
 
 1. title and summary · 2. headline: predictive accuracy (physics mode, held out, leave-one-out,
-the paper's in-sample) · 3. deviation tables · 4. the thermal error as a displacement (the
-measuring loop, the gain, the error along the stroke) · 5. sensor curves (Fig. 10) · 6. screw
-field (Fig. 11) · 7. equilibrium time · 8. final values against speed and ambient · 9. dual
+the reference model's in-sample) · 3. deviation tables · 4. the thermal error as a displacement (the
+measuring loop, the gain, the error along the stroke) · 5. sensor curves · 6. screw
+field · 7. equilibrium time · 8. final values against speed and ambient · 9. dual
 against single drive · 10. heat budget · 11. inferred heat per source · 12. measurement
-consistency · 13. sensitivity ranking · 14. the paper's inconsistencies · 15. calibrated values ·
+consistency · 13. sensitivity ranking · 14. inconsistencies in the data · 15. calibrated values ·
 16. assumptions and provenance · 17. thermal-error compensation (with ``validate --compensation``) ·
 18. prediction bands and Sobol indices (with ``validate --uncertainty``).
 

@@ -1,18 +1,18 @@
-"""Sections 1–2: title and summary; the deviation tables (Tables 6 and 7 against the model)."""
+"""Sections 1–2: title and summary; the deviation tables (the measurements against the model)."""
 
 from __future__ import annotations
 
 from datetime import datetime, timezone
 
-from ...analysis.validation_types import ELONGATION_QUANTITY, TEMPERATURE_QUANTITIES, Comparison, Validation
+from ...analysis.validation_types import ELONGATION_QUANTITY, Comparison, Validation
 from . import data
 from .html import Cell, esc, grid, heading, number, paragraph, paragraph_html, section, table
 
 SECTIONS = (
     ("headline", "Headline: predictive accuracy"),
     ("deviations", "Deviation from the measurements"),
-    ("sensor-curves", "Sensor curves per condition (Fig. 10)"),
-    ("screw-field", "Screw temperature over time and position (Fig. 11)"),
+    ("sensor-curves", "Sensor curves per condition"),
+    ("screw-field", "Screw temperature over time and position"),
     ("equilibrium", "Equilibrium time"),
     ("trends", "Final values against speed and ambient"),
     ("dual-single", "Dual drive against single drive"),
@@ -20,12 +20,10 @@ SECTIONS = (
     ("inferred-heat", "Inferred heat per source"),
     ("consistency", "Measurement consistency"),
     ("sensitivity", "Sensitivity ranking"),
-    ("inconsistencies", "Inconsistencies in the paper's data"),
+    ("inconsistencies", "Inconsistencies in the data"),
     ("calibrated", "Calibrated values"),
     ("assumptions", "Assumptions and provenance"),
 )
-# The paper's own claim (§4.3 and conclusion 1) when the rows carry no paper values.
-PAPER_WORST = {"C": 2.1, "um": 6.2}
 
 
 def title_section(validation: Validation, generated: datetime | None = None) -> str:
@@ -44,10 +42,10 @@ def title_section(validation: Validation, generated: datetime | None = None) -> 
 
 
 def summary_text(validation: Validation) -> str:
-    """One paragraph: the largest deviations, the bias, and how the paper's model did."""
+    """One paragraph: the largest deviations, the bias, and how the reference model did."""
     temperatures = [c for c in validation.comparisons if c.unit == "C"]
     elongations = [c for c in validation.comparisons if c.unit != "C"]
-    source = validation.measurement_source or "the paper's Tables 6 and 7"
+    source = validation.measurement_source or "the measurements"
     parts = [f"Compared with the measurements ({source})"]
     if temperatures:
         worst = validation.largest("temperature")
@@ -61,11 +59,17 @@ def summary_text(validation: Validation) -> str:
     if len(parts) == 1:
         return "No comparisons with measurements were made."
     text = parts[0] + ", " + " and ".join(parts[1:]) + "."
-    return text + " " + headline(temperatures, elongations)
+    return text + " " + headline(temperatures, elongations, reference_name(validation))
 
 
-def headline(temperatures: list[Comparison], elongations: list[Comparison]) -> str:
-    """The finding: the model's bias and how many points are as close as the paper's own model."""
+def reference_name(validation: Validation) -> str:
+    """Who made the measurements' ``reference_simulated`` values (the bench's report notes)."""
+    return validation.notes.reference_model or "the reference model"
+
+
+def headline(temperatures: list[Comparison], elongations: list[Comparison],
+             reference: str = "the reference model") -> str:
+    """The finding: the model's bias and how many points are as close as the reference model's own."""
     sentences = []
     if temperatures:
         bias = sum(c.deviation for c in temperatures) / len(temperatures)
@@ -76,61 +80,67 @@ def headline(temperatures: list[Comparison], elongations: list[Comparison]) -> s
     counts = []
     for rows, unit, name in ((temperatures, "C", "temperatures"), (elongations, "um", "elongations")):
         if rows:
-            limit = paper_worst(rows, unit)
+            limit = reference_worst(rows)
+            if limit is None:
+                continue
             inside = sum(abs(c.deviation) <= limit + 1e-9 for c in rows)
             symbol = "K" if unit == "C" else "µm"
             counts.append(f"{inside} of {len(rows)} {name} within {limit:.1f} {symbol}")
     if counts:
-        sentences.append("Measured against the paper's own worst deviation: " + ", ".join(counts) + ".")
+        sentences.append(f"Measured against {reference}'s own worst deviation: " + ", ".join(counts) + ".")
     return " ".join(sentences)
 
 
-def paper_worst(rows: list[Comparison], unit: str) -> float:
-    """Largest |paper simulated − measured| among ``rows``; the paper's claim if none are given."""
-    paper = [abs(c.paper_simulated - c.measured) for c in rows if c.paper_simulated is not None]
-    return max(paper) if paper else PAPER_WORST[unit]
+def reference_worst(rows: list[Comparison]) -> float | None:
+    """Largest |reference simulated − measured| among ``rows``; None if they carry no reference values."""
+    values = [abs(c.paper_simulated - c.measured) for c in rows if c.paper_simulated is not None]
+    return max(values) if values else None
 
 
 def deviations_section(validation: Validation) -> str:
     rows = data.comparisons_by_key(validation)
+    bands = {unit: data.deviation_bands(validation, unit) for unit in ("C", "um")}
+    reference = reference_name(validation)
     blocks = []
     for condition in data.conditions(validation):
-        quantities = [q for q in data.QUANTITIES if (condition, q) in rows]
+        quantities = [q for q in validation.quantities if (condition, q) in rows]
         if quantities:
-            blocks.append(condition_table(condition, [rows[(condition, q)] for q in quantities]))
+            blocks.append(condition_table(condition, [rows[(condition, q)] for q in quantities], bands, reference))
     if not blocks:
         return section("deviations", "Deviation from the measurements",
                        paragraph("No measurements were compared."))
-    where = ", ".join(f"{q} {data.location(q)}" for q in TEMPERATURE_QUANTITIES if data.location(q))
-    legend = " ".join(f'<span class="dev-{band}">{esc(text)}</span>' for band, text in enumerate(_band_texts()))
-    body = (paragraph("Per condition: this model's value, the measurement, the paper's own simulated value, and "
-                      "the deviations Δ = simulated − measured of both models. Temperatures in °C, their "
+    where = ", ".join(f"{q} {data.location(validation, q)}" for q in validation.temperature_quantities
+                      if data.location(validation, q))
+    legend = " ".join(f'<span class="dev-{band}">{esc(text)}</span>'
+                      for band, text in enumerate(_band_texts(bands, reference)))
+    body = (paragraph(f"Per condition: this model's value, the measurement, {reference}'s simulated value where "
+                      "the measurements carry it, and the deviations Δ = simulated − measured of both models. Temperatures in °C, their "
                       "deviations in K; the elongation D and its deviations in µm. Deviations are coloured by "
                       "magnitude:")
             + paragraph_html(legend)
             + grid(blocks)
-            + paragraph(f"Measuring points (paper §4.2): {where}; D is the screw's axial elongation.",
-                        css_class="note")
+            + paragraph(f"Measuring points: {where}; D is the screw's axial elongation.", css_class="note")
             + heading("Largest |deviation| per condition")
-            + largest_table(validation))
+            + largest_table(validation, bands))
     return section("deviations", "Deviation from the measurements", body)
 
 
-def condition_table(condition: str, rows: list[Comparison]) -> str:
-    """One condition: quantities as columns; simulated, measured, paper, deviations as rows."""
+def condition_table(condition: str, rows: list[Comparison], bands: dict[str, tuple[float, float, float]],
+                    reference: str = "the reference model") -> str:
+    """One condition: quantities as columns; simulated, measured, reference, deviations as rows."""
     headers = [""] + [f"{data.label(r.quantity)} [{_unit(r)}]" for r in rows]
     body = [
         ["this model"] + [number(r.simulated) for r in rows],
         ["measured"] + [number(r.measured) for r in rows],
-        ["paper's model"] + [number(r.paper_simulated) for r in rows],
-        ["Δ this model"] + [deviation_cell(r.deviation, r.unit) for r in rows],
-        ["Δ paper's model"] + [deviation_cell(None if r.paper_simulated is None
-                                              else r.paper_simulated - r.measured, r.unit) for r in rows],
+        [reference] + [number(r.paper_simulated) for r in rows],
+        ["Δ this model"] + [deviation_cell(r.deviation, bands[r.unit]) for r in rows],
+        [f"Δ {reference}"] + [deviation_cell(None if r.paper_simulated is None
+                                             else r.paper_simulated - r.measured, bands[r.unit]) for r in rows],
     ]
     return table(headers, body, caption=f"Condition {condition}")
 
 
-def largest_table(validation: Validation) -> str:
+def largest_table(validation: Validation, bands: dict[str, tuple[float, float, float]]) -> str:
     per_condition = validation.largest_per_condition()
     body = []
     for condition in data.conditions(validation):
@@ -139,22 +149,22 @@ def largest_table(validation: Validation) -> str:
         body.append([
             condition,
             "—" if temp is None else data.label(temp.quantity),
-            "—" if temp is None else deviation_cell(temp.deviation, "C"),
-            "—" if elong is None else deviation_cell(elong.deviation, "um"),
+            "—" if temp is None else deviation_cell(temp.deviation, bands["C"]),
+            "—" if elong is None else deviation_cell(elong.deviation, bands["um"]),
         ])
     return table(["condition", "point", "largest temperature deviation [K]", "elongation deviation [µm]"], body)
 
 
-def deviation_cell(value: float | None, unit: str) -> Cell | str:
-    """A signed deviation with the CSS class of its magnitude band (``dev-0`` … ``dev-3``)."""
+def deviation_cell(value: float | None, limits: tuple[float, float, float]) -> Cell | str:
+    """A signed deviation with the CSS class of its magnitude band (``dev-0`` … ``dev-3``) among ``limits``."""
     if value is None:
         return "—"
-    return Cell(number(value, 1, signed=True), f"dev-{data.deviation_band(value, unit)}")
+    return Cell(number(value, 1, signed=True), f"dev-{data.deviation_band(value, limits)}")
 
 
-def _band_texts() -> list[str]:
-    t, u = data.DEVIATION_BANDS["C"], data.DEVIATION_BANDS["um"]
-    return [f"≤ {t[0]:g} K / {u[0]:g} µm", f"≤ {t[1]:g} K / {u[1]:g} µm (the paper's worst)",
+def _band_texts(bands: dict[str, tuple[float, float, float]], reference: str) -> list[str]:
+    t, u = bands["C"], bands["um"]
+    return [f"≤ {t[0]:g} K / {u[0]:g} µm", f"≤ {t[1]:g} K / {u[1]:g} µm ({reference}'s worst, where known)",
             f"≤ {t[2]:g} K / {u[2]:g} µm", f"> {t[2]:g} K / {u[2]:g} µm"]
 
 

@@ -1,34 +1,16 @@
-"""Sections 9–12: sensitivity ranking, the paper's inconsistencies, calibrated values, provenance."""
+"""Sections 9–12: sensitivity ranking, inconsistencies in the data, calibrated values, provenance."""
 
 from __future__ import annotations
 
 import math
 
-from ...analysis.validation_types import ELONGATION_QUANTITY, TEMPERATURE_QUANTITIES, Sensitivity, Validation
+from ...analysis.validation_types import ELONGATION_QUANTITY, Sensitivity, Validation
 from . import figures
 from .html import (Cell, Raw, bullets, code, definition_table, esc, heading, number, paragraph, png_image, section,
                    table)
 
 TOP_SENSITIVITIES = 15  # in the bar chart
 TABLE_ROWS = 30  # in the open table; the rest folded below it
-
-# From docs/paper-audit.md (§2, §4, §6): the paper's tables disagree with each other.
-PAPER_FINDINGS = (
-    "Table 2 cannot be derived from Eqs. 27–29 at the stated speeds: Eq. 27 gives about 19 W/(m²·K) on the screw "
-    "at 396 rpm, Table 2 prints 56.3, which needs about 2100 rpm (condition III's speed) or a 0.86 m screw; "
-    "the worktable's 16.2 and the nut housing's 31.3 W/(m²·K) are as far out (docs/paper-audit.md §4).",
-    "Table 1 supplies far too little heat for the measured T3–T5: the nut, screw and table group would need "
-    "26–75 W of screw–nut friction heat with ordinary coefficients, while the motor heats of Table 1 allow at "
-    "most about 1 W (docs/paper-audit.md §6).",
-    "Table 5 row I is inconsistent: n_s − n_n = 36 rpm as in condition II, which with the 10 mm lead of rows "
-    "II–V is 0.36 m/min, not the 0.18 m/min printed (that needs a 5 mm lead) (docs/paper-audit.md §2).",
-    "Table 7 condition V is an outlier: about +12 µm off in every fit of D against the bearing and screw "
-    "temperatures. The paper's \"29 µm at a similar temperature field\" (III against V) is impossible in "
-    "linear thermoelasticity, where the elongation follows from the temperature field alone (docs/paper-audit.md §4).",
-    "The stated equilibrium times at 15 and 25 °C ambient (70 and 110 min) contradict the paper's own "
-    "assumption 3, under which the ambient cannot change the equilibrium time (docs/paper-audit.md §6; section 5 above).",
-)
-
 
 def sensitivity_section(validation: Validation) -> str:
     title = "Sensitivity ranking"
@@ -39,7 +21,7 @@ def sensitivity_section(validation: Validation) -> str:
         f"Each declared assumption perturbed alone: its value multiplied by the factor shown, everything else "
         f"unchanged, and the change of the steady state (cycle-averaged) of condition "
         f"{validation.sensitivity_condition}. One parameter at a time: the effects do not add up when several "
-        f"values change together. Sorted by the largest temperature change over T1–T5.")
+        f"values change together. Sorted by the largest temperature change over the sensors.")
     top = rows[:TOP_SENSITIVITIES]
     png = figures.sensitivity_bars(top, validation.sensitivity_condition)
     caption = f"Top {len(top)} of {len(rows)}" if len(rows) > len(top) else ""
@@ -66,7 +48,7 @@ def _parameter_cell(row: Sensitivity) -> Raw:
 
 
 def ranked(rows: list[Sensitivity]) -> list[Sensitivity]:
-    """By largest |ΔT| over T1–T5, then |ΔD|, largest first."""
+    """By largest |ΔT| over the sensors, then |ΔD|, largest first."""
     return sorted(rows, key=lambda r: (r.max_temperature_effect, _abs_d(r) if math.isfinite(_abs_d(r)) else 0.0),
                   reverse=True)
 
@@ -76,15 +58,18 @@ def _abs_d(row: Sensitivity) -> float:
 
 
 def _largest_sensor(row: Sensitivity) -> str:
-    return max(TEMPERATURE_QUANTITIES, key=lambda q: abs(row.effect[q]))
+    temperatures = [q for q in row.effect if q != ELONGATION_QUANTITY]
+    return max(temperatures, key=lambda q: abs(row.effect[q])) if temperatures else "—"
 
 
 def inconsistencies_section(validation: Validation) -> str:
     found = validation.inconsistencies
     body = heading("Found in this validation (feedtherm check and the data)")
     body += bullets(found) if found else paragraph("None reported.")
-    body += heading("Known from the review of the paper (docs/paper-audit.md)") + bullets(PAPER_FINDINGS)
-    return section("inconsistencies", "Inconsistencies in the paper's data", body)
+    if validation.notes.findings:
+        body += heading("Known from the review of the source (the bench's report notes)")
+        body += bullets(list(validation.notes.findings))
+    return section("inconsistencies", "Inconsistencies in the data", body)
 
 
 def calibrated_section(validation: Validation) -> str:
@@ -92,7 +77,7 @@ def calibrated_section(validation: Validation) -> str:
     entries = validation.calibrated
     if not entries:
         return section("calibrated", title, paragraph(
-            "None: every value is from the paper or a declared assumption; nothing was fitted to the "
+            "None: every value is from the source or a declared assumption; nothing was fitted to the "
             "measurements, so every comparison above is a prediction."))
     keys: list[str] = []
     for entry in entries:

@@ -2,17 +2,20 @@
 
 from __future__ import annotations
 
-from functools import lru_cache
+from dataclasses import dataclass
 
-from ...analysis.validation_types import ELONGATION_QUANTITY, TEMPERATURE_QUANTITIES, Comparison, Validation
-from ...constants import AMBIENT_SENSOR, KELVIN_OFFSET
+from ...analysis.validation_types import ELONGATION_QUANTITY, Comparison, Validation
+from ...constants import KELVIN_OFFSET
 from ...solution import Solution
 
-QUANTITIES = (*TEMPERATURE_QUANTITIES, ELONGATION_QUANTITY)
-# The paper's two series (§4.3): speed at 20 °C ambient, and ambient at the speed of II.
-SPEED_SERIES = ("I", "II", "III")
-AMBIENT_SERIES = ("IV", "II", "V")
-REFERENCE_CONDITION = "I"  # the paper's Fig. 11 shows the screw field of condition I
+
+@dataclass(frozen=True)
+class Series:
+    """Conditions run that differ in one thing only: ``varies`` is "speed" or "ambient"."""
+
+    varies: str
+    conditions: list[str]
+    title: str  # what the others share, e.g. "ambient 20 °C"
 
 
 def conditions(validation: Validation) -> list[str]:
@@ -29,14 +32,38 @@ def comparisons_by_key(validation: Validation) -> dict[tuple[str, str], Comparis
     return {(row.condition, row.quantity): row for row in validation.comparisons}
 
 
-def series(validation: Validation, names: tuple[str, ...]) -> list[str]:
-    """The conditions of a series that were run."""
-    return [name for name in names if name in validation.solutions]
+def speed_series(validation: Validation) -> Series | None:
+    """The largest set of run conditions at one ambient with different screw speeds, slowest first."""
+    return _series(validation, "speed", lambda p: round(p.ambient_c, 6), lambda p: p.screw_rpm,
+                   lambda p: f"ambient {p.ambient_c:g} °C")
+
+
+def ambient_series(validation: Validation) -> Series | None:
+    """The largest set of run conditions at the same motor speeds with different ambients, coldest first."""
+    return _series(validation, "ambient", lambda p: (round(p.screw_rpm, 6), round(p.nut_rpm, 6)),
+                   lambda p: p.ambient_c, lambda p: f"screw {p.screw_rpm:.0f} rpm, nut {p.nut_rpm:.0f} rpm")
+
+
+def _series(validation: Validation, varies: str, shared, varying, title) -> Series | None:
+    points = {c: p for c, p in validation.operating_points.items() if c in validation.solutions}
+    groups: dict = {}
+    for condition, point in points.items():
+        groups.setdefault(shared(point), []).append(condition)
+    best = []
+    for members in groups.values():
+        distinct = {round(varying(points[c]), 6) for c in members}
+        if len(distinct) >= 2 and len(members) > len(best):
+            best = members
+    if not best:
+        return None
+    best = sorted(best, key=lambda c: varying(points[c]))
+    return Series(varies, best, title(points[best[0]]))
 
 
 def reference_condition(validation: Validation) -> str | None:
-    if REFERENCE_CONDITION in validation.solutions:
-        return REFERENCE_CONDITION
+    """The condition whose screw field the report shows: the bench's choice, else the first run."""
+    if validation.notes.field_condition in validation.solutions:
+        return validation.notes.field_condition
     return next(iter(validation.solutions), None)
 
 
@@ -46,11 +73,12 @@ def final_values(solution: Solution) -> dict[str, float]:
 
 
 def ambient_c(solution: Solution) -> float | None:
-    """The run's final ambient temperature [°C] (sensor T6), None without one."""
-    if AMBIENT_SENSOR in solution.final:
-        return float(solution.final[AMBIENT_SENSOR] - KELVIN_OFFSET)
-    if AMBIENT_SENSOR in solution.sensors:
-        return float(solution.sensors[AMBIENT_SENSOR][-1] - KELVIN_OFFSET)
+    """The run's final ambient temperature [°C] (its ambient sensor), None without one."""
+    ambient = solution.ambient_sensor
+    if ambient in solution.final:
+        return float(solution.final[ambient] - KELVIN_OFFSET)
+    if ambient in solution.sensors:
+        return float(solution.sensors[ambient][-1] - KELVIN_OFFSET)
     return None
 
 
@@ -68,30 +96,15 @@ def equilibrium_minutes(solution: Solution) -> float | None:
     return None if solution.equilibrium_time is None else solution.equilibrium_time / 60.0
 
 
-@lru_cache(maxsize=1)
-def _table5() -> dict[str, dict[str, float]]:
-    from ...benches import bench
-
-    return {row["condition"]: {key: float(value) for key, value in row.items() if key != "condition"}
-            for row in bench("paper").table(5)}
+def screw_rpm(validation: Validation, condition: str) -> float | None:
+    """Screw speed [rpm] of a declared condition, None for other conditions."""
+    point = validation.operating_points.get(condition)
+    return None if point is None else point.screw_rpm
 
 
-@lru_cache(maxsize=1)
-def _locations() -> dict[str, str]:
-    from ...benches import bench
-
-    return {row["point"]: row["location"] for row in bench("paper").table(6)}
-
-
-def screw_rpm(condition: str) -> float | None:
-    """Screw speed [rpm] of a paper condition (Table 5), None for other conditions."""
-    row = _table5().get(condition)
-    return None if row is None else row["screw_speed_rpm"]
-
-
-def nut_rpm(condition: str) -> float | None:
-    row = _table5().get(condition)
-    return None if row is None else row["nut_speed_rpm"]
+def nut_rpm(validation: Validation, condition: str) -> float | None:
+    point = validation.operating_points.get(condition)
+    return None if point is None else point.nut_rpm
 
 
 def label(quantity: str) -> str:
@@ -99,18 +112,30 @@ def label(quantity: str) -> str:
     return "D" if quantity == ELONGATION_QUANTITY else quantity
 
 
-def location(quantity: str) -> str:
-    """Where the paper measured a point (§4.2): ``T1`` -> ``front bearing``."""
+def location(validation: Validation, quantity: str) -> str:
+    """Where a sensor is (its description's first words, ``front bearing``), or ``screw elongation D``."""
     if quantity == ELONGATION_QUANTITY:
         return "screw elongation D"
-    return _locations().get(quantity, "")
+    return validation.sensor_locations.get(quantity, "")
 
 
-def deviation_band(deviation: float, unit: str) -> int:
-    """0–3: within 1 K / 3 µm, within the paper's own worst (2.1 K / 6.2 µm), within 5 K / 15 µm, beyond."""
-    limits = DEVIATION_BANDS["um" if unit == "um" else "C"]
+def reference_worst(validation: Validation, unit: str) -> float | None:
+    """The reference model's largest |simulated − measured| (the measurements' ``reference_simulated``
+    column, in sample: the values it was shown against), None without that column."""
+    return validation.reference_worst(unit)
+
+
+def deviation_bands(validation: Validation, unit: str) -> tuple[float, float, float]:
+    """Upper limits of colour bands 0–2: 1 K / 3 µm, the reference model's own worst where known
+    (else 2 K / 6 µm), 5 K / 15 µm."""
+    low, middle, high = DEVIATION_BANDS["um" if unit == "um" else "C"]
+    return low, reference_worst(validation, "um" if unit == "um" else "C") or middle, high
+
+
+def deviation_band(deviation: float, limits: tuple[float, float, float]) -> int:
+    """0–3: the first band of ``limits`` (:func:`deviation_bands`) that holds |deviation|, 3 beyond."""
     size = abs(deviation)
     return next((band for band, limit in enumerate(limits) if size <= limit), len(limits))
 
 
-DEVIATION_BANDS = {"C": (1.0, 2.1, 5.0), "um": (3.0, 6.2, 15.0)}
+DEVIATION_BANDS = {"C": (1.0, 2.0, 5.0), "um": (3.0, 6.0, 15.0)}

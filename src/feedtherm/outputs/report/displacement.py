@@ -13,14 +13,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...analysis.validation_types import ELONGATION_QUANTITY, TEMPERATURE_QUANTITIES, Validation
+from ...analysis.validation_types import ELONGATION_QUANTITY, Validation
 from . import data
 from .html import Cell, number, paragraph, png_image, section, table
-
-#: The held-out elongation errors before the loop was declared: D read at a fitted point of the
-#: screw (193 mm; declared 350-450 mm) and read at 400 mm without fitting it (docs/report.md).
-EARLIER_HELD_OUT_UM = {"with a fitted read point (193 mm)": 1.7, "read at 400 mm, nothing fitted there": 21.0}
-
 
 def gains(validation: Validation, conditions: list[str] | None = None) -> tuple[float | None, float | None, list[str]]:
     """Slopes [µm/K] of simulated and of measured D against the mean measured temperature T̄.
@@ -35,10 +30,11 @@ def gains(validation: Validation, conditions: list[str] | None = None) -> tuple[
     names = conditions if conditions is not None else (
         law.conditions if law is not None else data.conditions(validation))
     points, used = [], []
+    sensors = validation.temperature_quantities
     for c in names:
-        temps = [rows[(c, q)].measured for q in TEMPERATURE_QUANTITIES if (c, q) in rows]
+        temps = [rows[(c, q)].measured for q in sensors if (c, q) in rows]
         if ((c, ELONGATION_QUANTITY) in rows and (c, ELONGATION_QUANTITY) not in flagged
-                and len(temps) == len(TEMPERATURE_QUANTITIES)):
+                and len(temps) == len(sensors)):
             d = rows[(c, ELONGATION_QUANTITY)]
             points.append((float(np.mean(temps)), d.simulated, d.measured))
             used.append(c)
@@ -55,16 +51,18 @@ def gains(validation: Validation, conditions: list[str] | None = None) -> tuple[
 
 def _gain_table(validation: Validation) -> str:
     rows = []
+    series = [s for s in (data.speed_series(validation), data.ambient_series(validation)) if s is not None]
     for label, names in (("the conditions the elongation law holds for", None),
-                         ("against speed (ambient 20 °C)", list(data.SPEED_SERIES)),
-                         ("against ambient (speeds of II)", list(data.AMBIENT_SERIES))):
+                         *((f"against {s.varies} ({s.title})", s.conditions) for s in series)):
         model, bench, used = gains(validation, names)
         if model is not None:
             rows.append([label, ", ".join(used), number(model, 2), number(bench, 2)])
     if not rows:
         return ""
+    sensors = validation.temperature_quantities
     return table(["series", "conditions", "the model's gain [µm/K]", "the bench's gain [µm/K]"], rows) + paragraph(
-        "The gain is the slope of D against the mean measured temperature T1–T5 (both models' D against the same "
+        f"The gain is the slope of D against the mean measured temperature of {', '.join(sensors)} (both models' "
+        "D against the same "
         "measured temperatures). A gain above the bench's says the loop expands too much per kelvin of what the "
         "sensors read: too long a warm length in the loop, or a screw warmer than its sensors say; a gain that "
         "agrees over all conditions while the series disagree hides opposite errors against speed and against "
@@ -100,10 +98,11 @@ def _calibration_text(validation: Validation) -> str:
         parts.append(f"leave-one-condition-out, {abs(cross['deviation']):.1f} µm ({cross['condition']})")
     if not parts:
         return ""
-    earlier = " and ".join(f"{v:.1f} µm {k}" for k, v in EARLIER_HELD_OUT_UM.items())
+    earlier = " and ".join(f"{v:.1f} µm {k}" for k, v in validation.notes.earlier_held_out_elongation_um.items())
+    before = f" Before the loop was declared, the held-out error was {earlier}." if earlier else ""
     return (f"Calibrated with this loop (nothing fitted about where or how the laser reads), the largest "
-            f"elongation error is {' and '.join(parts)}, leaving out the values the consistency check flags. "
-            f"Before the loop was declared, the held-out error was {earlier}.")
+            f"elongation error is {' and '.join(parts)}, leaving out the values the consistency check flags."
+            + before)
 
 
 def displacement_section(validation: Validation) -> str:
@@ -114,7 +113,7 @@ def displacement_section(validation: Validation) -> str:
     table_rows = []
     for c in data.conditions(validation):
         d = rows.get((c, ELONGATION_QUANTITY))
-        temps = [rows[(c, q)].measured for q in TEMPERATURE_QUANTITIES if (c, q) in rows]
+        temps = [rows[(c, q)].measured for q in validation.temperature_quantities if (c, q) in rows]
         if d is None:
             continue
         mark = " (flagged)" if (c, ELONGATION_QUANTITY) in flagged else ""
@@ -122,8 +121,10 @@ def displacement_section(validation: Validation) -> str:
                            Cell(f"{d.measured:.1f}{mark}", "num"), number(d.deviation, signed=True),
                            number(d.paper_simulated)])
     if table_rows:
-        body.append(table(["condition", "mean measured T1–T5 [°C]", "simulated D [µm]", "measured D [µm]",
-                           "deviation [µm]", "the paper's simulated D [µm]"], table_rows))
+        reference = validation.notes.reference_model or "the reference model"
+        sensors = ", ".join(validation.temperature_quantities)
+        body.append(table(["condition", f"mean measured {sensors} [°C]", "simulated D [µm]", "measured D [µm]",
+                           "deviation [µm]", f"{reference}'s simulated D [µm]"], table_rows))
     body.append(_gain_table(validation))
     text = _calibration_text(validation)
     if text:
@@ -138,4 +139,4 @@ def displacement_section(validation: Validation) -> str:
     return section("displacement", title, "".join(body))
 
 
-__all__ = ["displacement_section", "gains", "EARLIER_HELD_OUT_UM"]
+__all__ = ["displacement_section", "gains"]

@@ -2,7 +2,7 @@
 
 The headline puts side by side what a user needs to judge the model: the model as described
 (nothing fitted), the model calibrated on some conditions and judged on the others (held out,
-and leave-one-condition-out), and the paper's own in-sample deviations.  A measured value the
+and leave-one-condition-out), and the reference model's own in-sample deviations.  A measured value the
 consistency check flags is reported apart, with its reason, never dropped.
 """
 
@@ -10,9 +10,8 @@ from __future__ import annotations
 
 from ...analysis.validation_types import Comparison, Validation
 from ..calibration_files import UNIT_SYMBOLS
+from . import data
 from .html import Cell, bullets, heading, number, paragraph, section, table
-
-PAPER_IN_SAMPLE = {"C": 2.1, "um": 6.2}  # the paper's abstract and conclusion 1
 
 
 def _flagged(validation: Validation) -> set[tuple[str, str]]:
@@ -94,8 +93,12 @@ def headline_section(validation: Validation) -> str:
     rows = [_physics_row(validation, flagged)]
     if validation.calibration:
         rows += _calibration_rows(validation.calibration)
-    rows.append(["the paper's ANSYS model, in sample (Tables 6–7)", _cell(PAPER_IN_SAMPLE["C"], ""),
-                 _cell(PAPER_IN_SAMPLE["um"], ""), "—"])
+    worst = {unit: data.reference_worst(validation, unit) for unit in ("C", "um")}
+    if any(value is not None for value in worst.values()):
+        reference = validation.notes.reference_model or "the reference model"
+        rows.append([f"{reference}, in sample (the measurements' reference values)",
+                     "—" if worst["C"] is None else _cell(worst["C"], ""),
+                     "—" if worst["um"] is None else _cell(worst["um"], ""), "—"])
     body = paragraph(
         "Largest |simulated − measured| over the conditions and points of each row. Held-out rows judge a "
         "calibration on conditions it was not fitted to: the only figures that say how the model will do on "
@@ -109,7 +112,7 @@ def headline_section(validation: Validation) -> str:
         body += paragraph(f"Calibrated parameters (fit on {', '.join(validation.calibration.get('fit_conditions', []))}): "
                           f"{listed}.", css_class="note")
     else:
-        body += paragraph("No calibration was given: run `feedtherm calibrate <system> --fit I,II,IV --params … "
+        body += paragraph("No calibration was given: run `feedtherm calibrate <system> --fit <conditions> --params … "
                           "--cross-validate`, then `feedtherm validate <system> --calibration <its output folder>` "
                           "(`make validate` does both).", css_class="note")
     body += _flag_lines(validation)

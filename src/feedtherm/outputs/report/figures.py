@@ -13,8 +13,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ...analysis.validation_types import ELONGATION_QUANTITY, TEMPERATURE_QUANTITIES, Comparison, Sensitivity
-from ...constants import AMBIENT_SENSOR, KELVIN_OFFSET
+from ...analysis.validation_types import ELONGATION_QUANTITY, Comparison, Sensitivity
+from ...constants import KELVIN_OFFSET
 from ...solution import Solution
 from ..plots import _thinned
 
@@ -22,13 +22,18 @@ _DPI = 120
 _WIDTH = 9.0  # in
 _HOURS = 3600.0
 _MAX_HEATMAP_COLUMNS = 1200
-_SENSOR_COLOURS = {name: f"C{index}" for index, name in enumerate(TEMPERATURE_QUANTITIES)}
 _D_COLOUR = "C5"
 
 
+def _colours(names: Sequence[str]) -> dict[str, str]:
+    """One colour per sensor in its order, skipping D's."""
+    palette = [f"C{i}" for i in range(10) if f"C{i}" != _D_COLOUR]
+    return {name: palette[i % len(palette)] for i, name in enumerate(names)}
+
+
 def sensor_curves(solution: Solution, condition: str, measured: dict[str, float],
-                  paper_equilibrium_min: float | None) -> bytes:
-    """T1–T5 [°C] over time [h] above D [µm]; the measured equilibrium values dashed (Fig. 10).
+                  stated_equilibrium_min: float | None) -> bytes:
+    """The sensors [°C] over time [h] above D [µm]; the measured equilibrium values dashed.
 
     Each sensor has one legend entry showing its simulated (solid) and measured (dashed) line
     and the measured value.
@@ -40,10 +45,9 @@ def sensor_curves(solution: Solution, condition: str, measured: dict[str, float]
     hours = solution.times / _HOURS
     celsius = solution.sensors_celsius()
     handles, labels = [], []
-    for name in TEMPERATURE_QUANTITIES:
-        if name not in celsius:
-            continue
-        colour = _SENSOR_COLOURS[name]
+    ambient = solution.ambient_sensor
+    colours = _colours([n for n in celsius if n != ambient])
+    for name, colour in colours.items():
         (line,) = top.plot(hours, celsius[name], color=colour, linewidth=1.6)
         if name in measured:
             level = top.axhline(measured[name], color=colour, linestyle="--", linewidth=1.2, alpha=0.85)
@@ -52,16 +56,16 @@ def sensor_curves(solution: Solution, condition: str, measured: dict[str, float]
         else:
             handles.append(line)
             labels.append(f"{name} (not measured)")
-    if AMBIENT_SENSOR in celsius:
-        (line,) = top.plot(hours, celsius[AMBIENT_SENSOR], color="0.5", linestyle=":", linewidth=1.2)
+    if ambient in celsius:
+        (line,) = top.plot(hours, celsius[ambient], color="0.5", linestyle=":", linewidth=1.2)
         handles.append(line)
-        labels.append(f"{AMBIENT_SENSOR} ambient")
+        labels.append(f"{ambient} ambient")
     bottom.plot(hours, solution.elongation_um, color=_D_COLOUR, linewidth=1.6, label="D simulated")
     if ELONGATION_QUANTITY in measured:
         bottom.axhline(measured[ELONGATION_QUANTITY], color=_D_COLOUR, linestyle="--", linewidth=1.2,
                        label=f"D measured {measured[ELONGATION_QUANTITY]:.1f} µm")
     for ax in (top, bottom):
-        _mark_times(ax, solution, paper_equilibrium_min, label=ax is bottom)
+        _mark_times(ax, solution, stated_equilibrium_min, label=ax is bottom)
         ax.grid(True, alpha=0.3)
     top.legend(handles, labels, handler_map={tuple: HandlerTuple(ndivide=None, pad=0.6)}, handlelength=4.0,
                loc="center left", bbox_to_anchor=(1.01, 0.5), frameon=False, fontsize=9,
@@ -76,7 +80,7 @@ def sensor_curves(solution: Solution, condition: str, measured: dict[str, float]
 
 
 def screw_field(solution: Solution, condition: str, profile_count: int = 5) -> bytes:
-    """Screw temperature [°C] by time [h] and position [mm], above axial profiles (Fig. 11)."""
+    """Screw temperature [°C] by time [h] and position [mm], above axial profiles."""
     import matplotlib
 
     figure = _figure(8.0)
@@ -124,8 +128,10 @@ def positioning_error(solutions: dict[str, Solution]) -> bytes:
 
 
 def trends(speed: Sequence[tuple[str, float | None]], ambient: Sequence[tuple[str, float | None]],
-           rows: dict[tuple[str, str], Comparison]) -> bytes:
-    """Final T1–T5 [°C] and D [µm] against screw speed and against ambient, simulated and measured.
+           rows: dict[tuple[str, str], Comparison], temperatures: Sequence[str],
+           shared: tuple[str, str] = ("", "")) -> bytes:
+    """Final ``temperatures`` [°C] and D [µm] against screw speed and against ambient, simulated and
+    measured; ``shared``: what each series holds fixed (its panels' titles).
 
     ``speed`` and ``ambient`` are ``(condition, x)``; a series with an unknown x is drawn at
     evenly spaced positions labelled by condition.
@@ -134,14 +140,15 @@ def trends(speed: Sequence[tuple[str, float | None]], ambient: Sequence[tuple[st
 
     figure = _figure(7.4)
     axes = figure.subplots(2, 2, sharex="col")
-    panels = ((speed, "screw speed n_s [rpm] (Table 5)", "against speed (ambient 20 °C)"),
-              (ambient, "ambient temperature [°C]", "against ambient (speed of II)"))
+    colours = _colours(temperatures)
+    panels = ((speed, "screw speed n_s [rpm]", f"against speed ({shared[0]})"),
+              (ambient, "ambient temperature [°C]", f"against ambient ({shared[1]})"))
     for column, (points, xlabel, title) in enumerate(panels):
         temps, elong = axes[0, column], axes[1, column]
         xs, ticks = _positions(points)
         names = [name for name, _ in points]
-        for quantity in TEMPERATURE_QUANTITIES:
-            _trend_lines(temps, xs, names, quantity, rows, _SENSOR_COLOURS[quantity])
+        for quantity in temperatures:
+            _trend_lines(temps, xs, names, quantity, rows, colours[quantity])
         _trend_lines(elong, xs, names, ELONGATION_QUANTITY, rows, _D_COLOUR)
         temps.set_title(f"Final temperatures {title}", fontsize=10.5)
         elong.set_title(f"Elongation D {title}", fontsize=10.5)
@@ -154,7 +161,7 @@ def trends(speed: Sequence[tuple[str, float | None]], ambient: Sequence[tuple[st
             if len(xs):
                 pad = 0.08 * (max(xs) - min(xs) or 1.0)
                 ax.set_xlim(min(xs) - pad, max(xs) + pad)
-    handles = [Line2D([], [], color=_SENSOR_COLOURS[q], linewidth=1.6, label=q) for q in TEMPERATURE_QUANTITIES]
+    handles = [Line2D([], [], color=colours[q], linewidth=1.6, label=q) for q in temperatures]
     handles += [Line2D([], [], color=_D_COLOUR, linewidth=1.6, label="D"),
                 Line2D([], [], color="0.2", marker="o", linewidth=1.6, label="simulated"),
                 Line2D([], [], color="0.2", marker="s", markerfacecolor="white", linestyle="--",
@@ -219,7 +226,7 @@ def sensitivity_bars(rows: Sequence[Sensitivity], condition: str) -> bytes:
     t_ax.barh(y, [row.max_temperature_effect for row in rows], color="C3")
     d_ax.barh(y, [abs(row.effect.get(ELONGATION_QUANTITY, np.nan)) for row in rows], color=_D_COLOUR)
     t_ax.set_yticks(y, labels, fontsize=8.5)
-    t_ax.set_xlabel("largest |ΔT| over T1–T5 [K]")
+    t_ax.set_xlabel("largest |ΔT| over the sensors [K]")
     d_ax.set_xlabel("|ΔD| [µm]")
     t_ax.set_title(f"Steady-state effect, condition {condition}", fontsize=10.5)
     d_ax.set_title("Elongation", fontsize=10.5)
@@ -257,15 +264,15 @@ def _positions(points) -> tuple[list[float], list[str]]:
     return [float(i) for i in range(len(points))], [name for name, _ in points]
 
 
-def _mark_times(ax, solution: Solution, paper_equilibrium_min: float | None, *, label: bool) -> None:
+def _mark_times(ax, solution: Solution, stated_equilibrium_min: float | None, *, label: bool) -> None:
     if solution.equilibrium_time is not None:
         hours = solution.equilibrium_time / _HOURS
         ax.axvline(hours, color="0.25", linestyle=":", linewidth=1.2,
                    label=f"model equilibrium ({hours * 60:.0f} min)" if label else None)
     end_h = solution.times[-1] / _HOURS
-    if paper_equilibrium_min is not None and paper_equilibrium_min / 60.0 <= end_h:
-        ax.axvline(paper_equilibrium_min / 60.0, color="0.55", linestyle="-.", linewidth=1.2,
-                   label=f"paper's equilibrium ({paper_equilibrium_min:.0f} min)" if label else None)
+    if stated_equilibrium_min is not None and stated_equilibrium_min / 60.0 <= end_h:
+        ax.axvline(stated_equilibrium_min / 60.0, color="0.55", linestyle="-.", linewidth=1.2,
+                   label=f"stated equilibrium ({stated_equilibrium_min:.0f} min)" if label else None)
 
 
 def _duration_label(seconds: float) -> str:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ...analysis.validation_types import TEMPERATURE_QUANTITIES, Validation
+from ...analysis.validation_types import Validation
 from ...solution import Solution
 from . import data, figures
 from .html import grid, number, paragraph, png_image, section, table
@@ -10,19 +10,22 @@ from .html import grid, number, paragraph, png_image, section, table
 
 def trends_section(validation: Validation) -> str:
     title = "Final values against speed and ambient"
-    speed = [(c, data.screw_rpm(c)) for c in data.series(validation, data.SPEED_SERIES)]
-    ambient = [(c, data.ambient_c(validation.solutions[c])) for c in data.series(validation, data.AMBIENT_SERIES)]
-    ambient.sort(key=lambda point: point[1] if point[1] is not None else 0.0)
+    by_speed, by_ambient = data.speed_series(validation), data.ambient_series(validation)
+    speed = [(c, data.screw_rpm(validation, c)) for c in by_speed.conditions] if by_speed else []
+    ambient = [(c, data.ambient_c(validation.solutions[c])) for c in by_ambient.conditions] if by_ambient else []
     rows = data.comparisons_by_key(validation)
     if not (speed or ambient) or not rows:
-        return section("trends", title, paragraph("The speed and ambient series were not both run and compared."))
-    png = figures.trends(speed, ambient, rows)
+        return section("trends", title, paragraph("The conditions run form no speed series at one ambient and no "
+                                                  "ambient series at one speed, or were not compared."))
+    png = figures.trends(speed, ambient, rows, validation.temperature_quantities,
+                         (by_speed.title if by_speed else "", by_ambient.title if by_ambient else ""))
+    temperatures = ", ".join(validation.temperature_quantities)
+    series = [f"{', '.join(s.conditions)} differ in {s.varies} at {s.title}" for s in (by_speed, by_ambient) if s]
     intro = paragraph(
-        "The simulated values of the deviation tables (filled circles, solid) and the measured ones (open "
-        "squares, dashed) of T1–T5 and D: conditions I, II, III differ in speed at 20 °C ambient; IV, II, V in "
-        "ambient at the speeds of II. With frozen coefficients the model's temperatures shift one for one with "
-        "the ambient; D, taken from a fixed reference temperature (20 °C for the paper's bench), rises with it by "
-        "α·L per kelvin of ambient.")
+        f"The simulated values of the deviation tables (filled circles, solid) and the measured ones (open "
+        f"squares, dashed) of {temperatures} and D: conditions {'; '.join(series)}. With frozen "
+        f"coefficients the model's temperatures shift one for one with the ambient; D, taken from a fixed "
+        f"reference temperature, rises with it by α·L per kelvin of ambient.")
     return section("trends", title, intro + png_image(png, "Final temperatures and elongation against speed "
                                                            "and ambient"))
 
@@ -44,8 +47,8 @@ def dual_single_section(validation: Validation) -> str:
 
 
 def drive_values(solution: Solution) -> dict[str, float]:
-    """Final T1–T5 [°C], D [µm] and the mean heat generated [W] of one run."""
-    values = {k: v for k, v in data.final_values(solution).items() if k in data.QUANTITIES}
+    """Final sensor temperatures [°C] (the ambient's left out), D [µm] and the mean heat generated [W] of one run."""
+    values = {k: v for k, v in data.final_values(solution).items() if k != solution.ambient_sensor}
     heat = data.mean_heat_w(solution)
     if heat is not None:
         values["heat_W"] = heat
@@ -54,7 +57,7 @@ def drive_values(solution: Solution) -> dict[str, float]:
 
 def drive_table(condition: str, dual: dict[str, float], single: dict[str, float]) -> str:
     rows = []
-    keys = [q for q in TEMPERATURE_QUANTITIES if q in dual] + ["D_um", "heat_W"]
+    keys = [q for q in dual if q not in ("D_um", "heat_W")] + ["D_um", "heat_W"]
     labels = {"D_um": "D [µm]", "heat_W": "mean heat [W]"}
     for key in keys:
         if key not in dual or key not in single:

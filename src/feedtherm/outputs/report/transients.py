@@ -1,4 +1,4 @@
-"""Sections 3–5: sensor curves (Fig. 10), the screw field (Fig. 11), the equilibrium time."""
+"""Sections 3–5: sensor curves, the screw field, the equilibrium time."""
 
 from __future__ import annotations
 
@@ -12,13 +12,12 @@ from .html import heading, number, paragraph, png_image, section, table
 
 NOT_REACHED = "not reached in the run"
 EQUILIBRIUM_PHYSICS = (
-    "Why the ambient temperature cannot change the equilibrium time under the paper's assumption 3. With the "
+    "Why the ambient temperature cannot change the equilibrium time when the coefficients are frozen. With the "
     "convection and radiation coefficients frozen for a run, the model is linear: C·dT/dt = "
     "−G·(T − T_amb) + q. Written for the rise θ = T − T_amb it reads C·dθ/dt = −G·θ + q with θ = 0 at the "
     "start, and the ambient temperature has disappeared: it shifts every temperature by the same amount and "
-    "leaves every rise, and so the equilibrium time, unchanged. Conditions II, IV and V run at the same "
-    "speeds and differ only in ambient, so they must reach equilibrium at the same time; the paper's 70 min "
-    "at 15 °C against 110 min at 25 °C cannot come from such a model (docs/paper-audit.md §6). The only ambient effect left "
+    "leaves every rise, and so the equilibrium time, unchanged: conditions at the same speeds that differ only "
+    "in ambient must reach equilibrium at the same time. The only ambient effect left "
     "in physics mode comes through the temperature at which the coefficients are frozen: the air's properties "
     "change the convection coefficients by a few per cent over 10 K, and the linearised radiation coefficient "
     "(∝ T³) by about 10 %, far too little to move the equilibrium time by 40 min. A warmer room does not make "
@@ -29,7 +28,7 @@ COUPLED_PHYSICS = (
     "coefficients, the lubricants' viscosities and the windings' resistances follow the simulated "
     "temperatures, so the equation above is linear only within a step. The ambient then also acts through the "
     "air's and the oils' properties (a cooler room: thicker oil, more bearing heat; warmer windings: more "
-    "copper loss), by a few per cent per 10 K; the model's times at IV, II and V above show how much."
+    "copper loss), by a few per cent per 10 K; the model's times of the ambient series above show how much."
 )
 TIME_CONSTANT_PHYSICS = (
     "The time constants are the eigenvalues of C⁻¹G: they follow from the heat capacities and the "
@@ -40,36 +39,36 @@ SPEED_PHYSICS = (
     "What changes with speed: the heats grow (bearing and motor losses with the shaft speeds, the screw–nut "
     "friction with the relative speed), which raises the steady temperatures but not the time constants. "
     "The speed does shorten the time constants through the forced convection of the rotating screw and nut "
-    "(Eq. 27: h grows with the rotational Reynolds number; paper mode scales Table 2 the same way). "
+    "(h grows with the rotational Reynolds number; an overlay's printed CHTCs are scaled the same way). "
     "It also moves the heat between fast parts (screw, nut) and slow ones "
-    "(housings, table, base), which changes which time constants dominate the sensors. Against the paper's "
-    "criterion the absolute part (less than 0.5 K change over 600 s) is met later by a larger rise, which "
-    "works against the shorter times the paper reports at higher speed (120, 100, 90 min for I–III)."
+    "(housings, table, base), which changes which time constants dominate the sensors. The absolute part of "
+    "the equilibrium criterion (less than 0.5 K change over 600 s) is met later by a larger rise, so a "
+    "faster condition need not reach equilibrium sooner."
 )
 
 
 def sensor_curves_section(validation: Validation) -> str:
     rows = data.comparisons_by_key(validation)
+    ambients = sorted({s.ambient_sensor for s in validation.solutions.values()})
     body = [paragraph(
-        "Simulated sensor temperatures T1–T5 and the elongation D over time, as in the paper's Fig. 10. The "
-        "paper publishes the measured curves only as images; its tables give the measured values at thermal "
-        "equilibrium, drawn here as dashed lines in the colour of their sensor: the level a run should "
-        "approach. T6 (dotted grey) is the ambient.")]
+        f"Simulated sensor temperatures and the elongation D over time. The measured values at thermal "
+        f"equilibrium are drawn as dashed lines in the colour of their sensor: the level a run should "
+        f"approach. {', '.join(ambients) or 'The ambient'} (dotted grey) is the ambient.")]
     for condition, solution in validation.solutions.items():
-        measured = {q: rows[(condition, q)].measured for q in data.QUANTITIES if (condition, q) in rows}
+        measured = {q: rows[(condition, q)].measured for q in validation.quantities if (condition, q) in rows}
         png = figures.sensor_curves(solution, condition, measured, validation.measured_equilibrium_min.get(condition))
         body.append(png_image(png, f"Sensor temperatures and elongation, condition {condition}",
-                              caption=run_caption(condition, solution)))
+                              caption=run_caption(validation, condition, solution)))
     if not validation.solutions:
         body.append(paragraph("No runs to show."))
-    return section("sensor-curves", "Sensor curves per condition (Fig. 10)", "".join(body))
+    return section("sensor-curves", "Sensor curves per condition", "".join(body))
 
 
-def run_caption(condition: str, solution: Solution) -> str:
+def run_caption(validation: Validation, condition: str, solution: Solution) -> str:
     parts = [f"Condition {condition}"]
-    screw, nut = data.screw_rpm(condition), data.nut_rpm(condition)
+    screw, nut = data.screw_rpm(validation, condition), data.nut_rpm(validation, condition)
     if screw is not None:
-        parts.append(f"screw {screw:.0f} rpm, nut {nut:.0f} rpm (Table 5)")
+        parts.append(f"screw {screw:.0f} rpm, nut {nut:.0f} rpm")
     ambient = data.ambient_c(solution)
     if ambient is not None:
         parts.append(f"ambient {ambient:.1f} °C")
@@ -79,15 +78,14 @@ def run_caption(condition: str, solution: Solution) -> str:
 
 
 def screw_field_section(validation: Validation) -> str:
-    title = "Screw temperature over time and position (Fig. 11)"
+    title = "Screw temperature over time and position"
     condition = data.reference_condition(validation)
     if condition is None:
         return section("screw-field", title, paragraph("No runs to show."))
     solution = validation.solutions[condition]
     png = figures.screw_field(solution, condition)
     intro = paragraph(f"Cross-section mean temperature of the screw in condition {condition}, over time and "
-                      "axial position (x from the description's origin), and axial profiles at a few times. "
-                      "The paper's Fig. 11 shows the screw hottest in the middle and cooler at both ends.")
+                      "axial position (x from the description's origin), and axial profiles at a few times.")
     return section("screw-field", title, intro + png_image(png, f"Screw temperature field, condition {condition}",
                                                            caption=profile_facts(solution)))
 
@@ -105,16 +103,15 @@ def profile_facts(solution: Solution) -> str:
 def equilibrium_section(validation: Validation) -> str:
     body = [paragraph(
         "When each run reached thermal equilibrium (every sensor within 95 % of its steady rise and changing by "
-        "less than 0.5 K over 600 s; docs/fast-model.md), beside the times the paper states in §4.3.")]
-    for names, title in ((data.SPEED_SERIES, "Against speed (ambient 20 °C)"),
-                         (data.AMBIENT_SERIES, "Against ambient (speeds of condition II)")):
-        run = data.series(validation, names)
-        if title.startswith("Against ambient"):
-            run.sort(key=lambda c: data.ambient_c(validation.solutions[c]) or 0.0)
-        if run:
-            body.append(heading(title))
-            body.append(equilibrium_table(validation, run))
-    others = [c for c in validation.solutions if c not in data.SPEED_SERIES + data.AMBIENT_SERIES]
+        "less than 0.5 K over 600 s; docs/fast-model.md), beside the times the source states, where it does.")]
+    shown: list[str] = []
+    for series, what in ((data.speed_series(validation), "Against speed"),
+                         (data.ambient_series(validation), "Against ambient")):
+        if series is not None:
+            body.append(heading(f"{what} ({series.title})"))
+            body.append(equilibrium_table(validation, series.conditions))
+            shown += series.conditions
+    others = [c for c in validation.solutions if c not in shown]
     if others:
         body.append(heading("Other conditions"))
         body.append(equilibrium_table(validation, others))
@@ -133,14 +130,14 @@ def equilibrium_table(validation: Validation, conditions: list[str]) -> str:
         solution = validation.solutions[condition]
         rows.append([
             condition,
-            number(data.screw_rpm(condition), 0),
+            number(data.screw_rpm(validation, condition), 0),
             number(data.ambient_c(solution), 1),
             number(data.run_minutes(solution), 0),
             number(data.equilibrium_minutes(solution), 0, missing=NOT_REACHED),
             number(validation.measured_equilibrium_min.get(condition), 0),
         ])
     return table(["condition", "screw speed [rpm]", "ambient [°C]", "run length [min]",
-                  "model equilibrium [min]", "paper's statement [min]"], rows)
+                  "model equilibrium [min]", "stated [min]"], rows)
 
 
 def equilibrium_text(solution: Solution) -> str:

@@ -154,15 +154,15 @@ def _finals_table(sets: list[dict], band: str) -> str:
             row.append(f"{number(g['p05'], 1)} … {number(g['p95'], 1)}")
             row.append(Cell("yes", "dev-0") if g.get("inside") else Cell("no", "dev-3"))
         rows.append(row)
-    return table(headers, rows, caption="the measured final values (Tables 6 and 7) against the bands")
+    return table(headers, rows, caption="the measured final values against the bands")
 
 
 def sobol_table(entry: dict) -> str:
     """Parameters (by total index on D, else the first quantity) × quantities: ``ST (S1)``."""
     indices = entry["sobol"]
     quantities = list(dict.fromkeys(i["quantity"] for i in indices))
-    quantities = sorted(quantities, key=lambda q: (0 if q.startswith("T") else 1 if q == "D_um" else 2, q))
-    by = "D_um" if "D_um" in quantities else "T4" if "T4" in quantities else quantities[0]
+    quantities = sorted(quantities, key=lambda q: (q == "D_um", q))
+    by = "D_um" if "D_um" in quantities else quantities[0]
     lookup = {(i["parameter"], i["quantity"]): i for i in indices}
     parameters = sorted(dict.fromkeys(i["parameter"] for i in indices),
                         key=lambda p: -(lookup.get((p, by), {}).get("ST") or 0.0))
