@@ -21,7 +21,8 @@ Time series, one row per sample (:mod:`~feedtherm.analysis.measurement_series`):
 
 A series becomes one :class:`Measurement` whose ``measured`` is its last sample (so every
 reader of finals works on it unchanged) and whose ``series`` holds all of them. ``D`` is read
-as ``D_um`` in µm, every temperature in °C.
+as ``D_um`` in µm, every temperature in °C. In either layout, blank lines and lines starting
+with ``#`` (comments: where the data come from) are skipped.
 """
 
 from __future__ import annotations
@@ -124,9 +125,10 @@ def read_measurements(spec: str, relative_to: str | None = None, sensors: list[s
 
 
 def _lines(text: str) -> list[tuple[int, list[str]]]:
-    """The non-blank rows of a CSV text with their line numbers."""
+    """The rows of a CSV text with their line numbers, without blank lines and ``#`` comment lines."""
     reader = csv.reader(text.splitlines())
-    return [(reader.line_num, row) for row in reader if any(c.strip() for c in row)]
+    return [(reader.line_num, row) for row in reader
+            if any(c.strip() for c in row) and not row[0].lstrip().startswith("#")]
 
 
 def _parse(lines: list[tuple[int, list[str]]], source: str, sensors: list[str] | None,

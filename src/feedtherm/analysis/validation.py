@@ -17,6 +17,7 @@ from .consistency import check_description_measurements
 from .inverse import Noise, infer_conditions
 from .measurements import MeasurementSet, measurement_spec, read_measurements
 from .sensitivity import sensitivities
+from .transient_scores import compare_series
 from .validation_types import ELONGATION_QUANTITY, Comparison, Validation
 
 #: Ratio beyond which a printed value and the physics are reported as inconsistent.
@@ -62,10 +63,11 @@ def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast"
         if progress is not None:
             progress(done / steps)
 
-    solutions, single, budget, comparisons = {}, {}, {}, []
+    solutions, single, budget, comparisons, transients = {}, {}, {}, [], []
     for condition in conditions:
         run = simulate(loaded, condition=condition, mode=mode, model=model, mesh=mesh)
         solutions[condition] = run
+        transients += compare_series(condition, run, data.for_condition(condition))
         tick()
         if dual:
             single[condition] = simulate(loaded, condition=condition, mode=mode, model=model, mesh=mesh, single_drive=True)
@@ -106,6 +108,7 @@ def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast"
         calibration=calibration,
         compensation=compensation,
         uncertainty=uncertainty,
+        transients=transients,
     )
 
 

@@ -8,6 +8,7 @@ from ..solution import Solution
 from .consistency import ConsistencyReport
 from .inverse import Inference
 from .measurements import ELONGATION_QUANTITY  # noqa: F401 (re-exported for the report and CLI)
+from .transient_scores import TransientComparison
 
 TEMPERATURE_QUANTITIES = ("T1", "T2", "T3", "T4", "T5")
 
@@ -74,6 +75,8 @@ class Validation:
     compensation: dict | None = None
     # a `feedtherm uncertainty` folder: {"summary": uncertainty.json, "figures": {png name: bytes}}
     uncertainty: dict | None = None
+    # every measured time series against its run (empty when the measurements are finals only)
+    transients: list[TransientComparison] = field(default_factory=list)
 
     def largest(self, kind: str) -> Comparison:
         """The comparison with the largest |deviation| among temperatures or elongations."""
