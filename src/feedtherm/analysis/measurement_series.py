@@ -37,6 +37,7 @@ from ..system.quantities import TEMPERATURE_LIMIT, registry
 
 COLUMNS = ["condition", "time [<unit>]", "quantity", "value", "unit"]
 OPTIONAL = "uncertainty"
+SERIES_HEADER = ",".join(COLUMNS) + f"[,{OPTIONAL}]"
 #: The screw elongation among the measured quantities, as the finals name it [µm].
 ELONGATION_QUANTITY, ELONGATION_UNIT = "D_um", "um"
 TEMPERATURE_UNIT = "C"
@@ -140,11 +141,10 @@ def parse_series(rows: list[tuple[int, list[str]]], source: str, *, sensors: Col
 
 def _time_unit(header: list[str], source: str, number: int) -> float:
     """Seconds per unit of the header's ``time [<unit>]``; the rest of the header checked."""
-    expected = ",".join(COLUMNS) + f"[,{OPTIONAL}]"
     names = [header[0], "time", *header[2:]]
     if names not in (["condition", "time", "quantity", "value", "unit"],
                      ["condition", "time", "quantity", "value", "unit", OPTIONAL]):
-        raise DescriptionError(f"{source}: line {number}: header must be {expected}, got {','.join(header)}")
+        raise DescriptionError(f"{source}: line {number}: header must be {SERIES_HEADER}, got {','.join(header)}")
     text = header[1][len("time"):].strip()
     if not (text.startswith("[") and text.endswith("]") and text[1:-1].strip()):
         raise DescriptionError(f"{source}: line {number}: the time column names its unit, e.g. 'time [min]', "

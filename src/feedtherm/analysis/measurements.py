@@ -35,7 +35,7 @@ from typing import Collection, Mapping
 
 from ..benches import MEASUREMENTS, ORIGIN_PREFIX, bench, bench_name_of
 from ..errors import DescriptionError
-from .measurement_series import ELONGATION_QUANTITY, Series, is_series_header, parse_series
+from .measurement_series import ELONGATION_QUANTITY, SERIES_HEADER, Series, is_series_header, parse_series
 
 HEADER = ["condition", "quantity", "unit", "measured"]
 OPTIONAL = "reference_simulated"
@@ -135,8 +135,8 @@ def _parse(lines: list[tuple[int, list[str]]], source: str, sensors: list[str] |
            conditions: Collection[str] | None) -> list[Measurement]:
     header = [c.strip() for c in lines[0][1]]
     if header not in (HEADER, [*HEADER, OPTIONAL]):
-        raise DescriptionError(f"{source}: line {lines[0][0]}: header must be {','.join(HEADER)}[,{OPTIONAL}], "
-                               f"got {','.join(header)}")
+        raise DescriptionError(f"{source}: line {lines[0][0]}: header must be {','.join(HEADER)}[,{OPTIONAL}] "
+                               f"(final values) or {SERIES_HEADER} (time series), got {','.join(header)}")
     rows, seen = [], set()
     for number, row in lines[1:]:
         if len(row) != len(header):
