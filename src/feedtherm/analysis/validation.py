@@ -48,6 +48,8 @@ def validate(loaded: LoadedSystem, *, mode: str = "physics", model: str = "fast"
     :func:`~feedtherm.outputs.compensation_files.read_compensation_summary`) into its own section, and
     ``uncertainty`` (a ``feedtherm uncertainty`` folder as read by
     :func:`~feedtherm.outputs.uncertainty_files.read_uncertainty_summary`) into another.
+    Where the measurements are time series, each is scored against its run over the whole
+    transient (:mod:`~feedtherm.analysis.transient_scores`).
     """
     started = time.perf_counter()
     system = loaded.system

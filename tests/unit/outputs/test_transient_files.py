@@ -59,6 +59,7 @@ def test_the_report_and_the_summary_show_the_series():
     html = render_report(validation)
     assert 'id="measured-series"' in html
     assert "Condition I: 2 measured series, bars ±1 standard uncertainty." in html
+    assert '<a href="#measured-series">' in html  # in the contents too
     summary = validation_summary(validation)
     assert [e["quantity"] for e in summary["transients"]] == ["T2", "D_um"]
     json.dumps(summary)  # JSON-able: plain floats
@@ -67,7 +68,7 @@ def test_the_report_and_the_summary_show_the_series():
 def test_final_values_only_change_nothing(tmp_path):
     validation = synthetic_validation()
     assert write_transient_files(validation.transients, tmp_path) == []
-    assert "measured-series" not in render_report(validation)
+    assert "measured-series" not in render_report(validation)  # neither section nor contents entry
     assert "transients" not in validation_summary(validation)
     written = write_validation(validation, tmp_path / "out")
     assert sorted(p.name for p in written) == ["report.html", "validation.csv", "validation.json"]
