@@ -41,7 +41,8 @@ def test_series_convert_units_and_keep_the_last_sample_as_final(tmp_path):
 
 
 def test_time_unit_from_the_header_and_no_uncertainty_column(tmp_path):
-    data = _read(tmp_path, "condition,time [h],quantity,value,unit\nrun2,0.5,B,25,degC\nrun2,1.5,B,26,degC\n")
+    text = "condition, time [h] ,quantity,value,unit\nrun2,0.5,B,25,degC\nrun2, 1.5 ,B,26, °C \n"
+    data = _read(tmp_path, text)
     (b,) = data.rows
     np.testing.assert_allclose(b.series.times, [1800.0, 5400.0])
     assert b.series.uncertainties is None

@@ -100,7 +100,7 @@ def parse_series(rows: list[tuple[int, list[str]]], source: str, *, sensors: Col
     DescriptionError
         One line naming the file, the line and the reason.
     """
-    number, header = rows[0]
+    number, header = rows[0][0], [c.strip() for c in rows[0][1]]
     time_unit = _time_unit(header, source, number)
     width = len(header)
     samples: dict[tuple[str, str], list[tuple[int, float, float, float | None]]] = {}
