@@ -121,6 +121,7 @@ def test_a_synthetic_series_is_scored_over_the_whole_transient(tmp_path, capsys,
         # when written). Bounds well above the noise leave room for later model changes, while a
         # unit read wrong (K as °C: 273 K; mm as µm: a factor of 1000) exceeds them by far.
         assert float(row["rms_deviation"]) < (5.0 if quantity == "D_um" else 0.8), row
+        assert 0.0 <= float(row["inside_two_sigma"]) <= 1.0  # the file gives uncertainties
     t4 = [r for r in samples if r["quantity"] == "T4"]
     assert float(t4[0]["measured"]) == pytest.approx(293.209 - 273.15, abs=1e-3)  # written in K, read in °C
     assert all(r["uncertainty"] == "0.2" for r in t4)

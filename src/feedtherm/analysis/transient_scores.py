@@ -2,8 +2,8 @@
 
 The simulated series is interpolated linearly to the measured times (a run samples every
 10 s, far closer than a thermal transient bends), and the deviations simulated − measured are
-summarised by their root mean square, their largest magnitude and when it occurred, and their
-mean (the bias).
+summarised by their root mean square, their largest magnitude and when it occurred, their
+mean (the bias) and, where the file gives uncertainties, the share of samples within two of them.
 """
 
 from __future__ import annotations
@@ -70,6 +70,17 @@ class TransientComparison:
     def mean(self) -> float:
         """Mean deviation (the bias)."""
         return float(np.mean(self.deviation))
+
+    @property
+    def inside_two_sigma(self) -> float | None:
+        """Share of the samples within two standard uncertainties of the run, None without them.
+
+        The run's own uncertainty is not counted: this says whether the measurement's scatter
+        alone could explain the deviations (about 95 % of the samples if it did).
+        """
+        if self.uncertainty is None:
+            return None
+        return float(np.mean(np.abs(self.deviation) <= 2.0 * self.uncertainty))
 
 
 def simulated_series(solution: Solution, quantity: str) -> np.ndarray:

@@ -14,7 +14,7 @@ TRANSIENTS_CSV = "transients.csv"
 SAMPLES_CSV = "transient_samples.csv"
 #: Deviations are differences: kelvin for temperatures, µm for the elongation.
 SCORE_HEADER = ["condition", "quantity", "unit", "samples", "start_s", "end_s", "rms_deviation",
-                "max_abs_deviation", "time_of_max_s", "mean_deviation"]
+                "max_abs_deviation", "time_of_max_s", "mean_deviation", "inside_two_sigma"]
 SAMPLE_HEADER = ["condition", "quantity", "unit", "time_s", "measured", "simulated", "deviation", "uncertainty"]
 
 
@@ -34,7 +34,7 @@ def write_transient_files(comparisons: list[TransientComparison], directory: Pat
         for c in comparisons:
             writer.writerow([c.condition, c.quantity, deviation_unit(c), len(c.times), f"{c.times[0]:g}",
                              f"{c.times[-1]:g}", f"{c.rms:.4f}", f"{c.max_abs:.4f}", f"{c.time_of_max:g}",
-                             f"{c.mean:.4f}"])
+                             f"{c.mean:.4f}", "" if c.inside_two_sigma is None else f"{c.inside_two_sigma:.3f}"])
     with open(samples, "w", newline="") as handle:
         writer = csv.writer(handle, lineterminator="\n")
         writer.writerow(SAMPLE_HEADER)
@@ -50,7 +50,7 @@ def transient_summary(comparisons: list[TransientComparison]) -> list[dict]:
     """The scores for validation.json."""
     return [{"condition": c.condition, "quantity": c.quantity, "unit": deviation_unit(c), "samples": len(c.times),
              "rms_deviation": c.rms, "max_abs_deviation": c.max_abs, "time_of_max_s": c.time_of_max,
-             "mean_deviation": c.mean} for c in comparisons]
+             "mean_deviation": c.mean, "inside_two_sigma": c.inside_two_sigma} for c in comparisons]
 
 
 def transient_lines(comparisons: list[TransientComparison]) -> list[str]:

@@ -42,6 +42,13 @@ def test_scores_by_hand():
     assert c.time_of_max == 250.0
     assert c.mean == pytest.approx(-1.0 / 3.0)
     np.testing.assert_allclose(c.uncertainty, [0.1, 0.1, 0.2])
+    assert c.inside_two_sigma == pytest.approx(1.0 / 3.0)  # only |0| <= 0.4; 3 > 0.2, 4 > 0.2
+
+
+def test_inside_two_sigma_counts_the_boundary():
+    c = TransientComparison("c", "A", "C", np.arange(4.0), np.zeros(4), np.array([0.2, -0.2, 0.21, 0.0]),
+                            np.full(4, 0.1))
+    assert c.inside_two_sigma == 0.75
 
 
 def test_elongation_in_micrometres_and_finals_skipped():
@@ -53,6 +60,7 @@ def test_elongation_in_micrometres_and_finals_skipped():
     assert c.rms == pytest.approx(math.sqrt(0.5))
     assert c.max_abs == pytest.approx(1.0)
     assert c.time_of_max == 0.0
+    assert c.inside_two_sigma is None  # no uncertainties given
 
 
 def test_a_series_beyond_the_run_is_an_error():

@@ -43,6 +43,8 @@ def test_scores_and_samples_are_written(tmp_path):
     assert float(scores["T2"]["time_of_max_s"]) == 3600.0
     assert float(scores["T2"]["mean_deviation"]) == pytest.approx(1.0 / 3.0, abs=1e-4)
     assert scores["T2"]["unit"] == "K"
+    assert scores["T2"]["inside_two_sigma"] == "0.333"  # u = 0.2 K: only the 0 K deviation
+    assert scores["D_um"]["inside_two_sigma"] == ""  # no uncertainties
     assert float(scores["D_um"]["rms_deviation"]) == pytest.approx(3.0, abs=1e-4)
     assert scores["D_um"]["unit"] == "um"
     with open(paths[1], newline="") as handle:

@@ -15,7 +15,9 @@ INTRO = (
     "each run is interpolated linearly to the measured times (it samples every 10 s) and the deviations "
     "simulated − measured are summarised per series by their root mean square, their largest magnitude (and "
     "when it occurred) and their mean, the bias. The final value of a series in the deviation tables is its last "
-    "sample. transients.csv holds these scores, transient_samples.csv every sample."
+    "sample. Where the file gives standard uncertainties u, \"within 2 u\" is the share of samples whose "
+    "deviation the measurement's scatter alone could explain (about 95 % if it did; the model's own "
+    "uncertainty not counted). transients.csv holds these scores, transient_samples.csv every sample."
 )
 
 
@@ -25,10 +27,11 @@ def measured_series_section(validation: Validation) -> str:
         return ""
     rows = [[c.condition, "D" if c.unit != "C" else c.quantity, len(c.times), number(c.rms, 2),
              number(c.max_abs, 2), number(c.time_of_max / 60.0, 0), number(c.mean, 2, signed=True),
-             deviation_unit(c)] for c in comparisons]
+             deviation_unit(c),
+             "—" if c.inside_two_sigma is None else f"{100 * c.inside_two_sigma:.0f} %"] for c in comparisons]
     body = [paragraph(INTRO),
             table(["condition", "quantity", "samples", "RMS deviation", "max |deviation|", "at [min]",
-                   "mean deviation", "unit"], rows)]
+                   "mean deviation", "unit", "within 2 u"], rows)]
     for condition in dict.fromkeys(c.condition for c in comparisons):
         solution = validation.solutions[condition]
         own = [c for c in comparisons if c.condition == condition]
