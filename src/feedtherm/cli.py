@@ -560,7 +560,9 @@ def _mode_argument(parser: argparse.ArgumentParser) -> None:
 
 def _measured_argument(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--measured", metavar="FILE",
-                        help="measurements (condition,quantity,unit,measured); default: the description's own")
+                        help="measurements: final values (condition,quantity,unit,measured) or time series "
+                             "(condition,time [min],quantity,value,unit[,uncertainty]; docs/measurements.md); "
+                             "default: the description's own")
 
 
 def _out_argument(parser: argparse.ArgumentParser, default: str) -> None:

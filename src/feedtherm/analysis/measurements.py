@@ -1,10 +1,10 @@
 """Measured values to compare with (validation) or to fit to (calibration).
 
-File layout, one row per condition and quantity::
+Two layouts, told apart by the header. Finals, one row per condition and quantity::
 
     condition,quantity,unit,measured[,reference_simulated]
-    I,T1,C,27.1,28.1
-    I,D_um,um,29.9,32.8
+    run1,front_bearing,C,27.1,28.1
+    run1,D_um,um,29.9,32.8
 
 ``quantity`` is a sensor name (unit ``C``) or ``D_um`` (unit ``um``); the optional last
 column holds another model's simulated value (for the paper's bench: its ANSYS results).
@@ -12,6 +12,17 @@ A description names its measurements in ``meta.measurements``: ``bundled:<bench>
 measurements file of a bench (feedtherm.benches), or a path relative to the description file
 (for a bench's description: relative to its folder). A description loaded from a bench that
 names none is compared with the bench's own measurements file.
+
+Time series, one row per sample (:mod:`~feedtherm.analysis.measurement_series`)::
+
+    condition,time [min],quantity,value,unit[,uncertainty]
+    v10,0,front_bearing,20.0,degC,0.2
+    v10,10,D,41.5,um,1.0
+
+A series becomes one :class:`Measurement` whose ``measured`` is its last sample (so every
+reader of finals works on it unchanged) and whose ``series`` holds all of them. ``D`` is read
+as ``D_um`` in µm, every temperature in °C. In either layout, blank lines and lines starting
+with ``#`` (comments: where the data come from) are skipped.
 """
 
 from __future__ import annotations
@@ -20,14 +31,15 @@ import csv
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Collection, Mapping
 
 from ..benches import MEASUREMENTS, ORIGIN_PREFIX, bench, bench_name_of
 from ..errors import DescriptionError
+from .measurement_series import ELONGATION_QUANTITY, SERIES_HEADER, Series, is_series_header, parse_series
 
 HEADER = ["condition", "quantity", "unit", "measured"]
 OPTIONAL = "reference_simulated"
-#: The screw elongation among the measured quantities; every other quantity is a temperature.
-ELONGATION_QUANTITY = "D_um"
+# ELONGATION_QUANTITY ("D_um"): the screw elongation; every other quantity is a temperature.
 UNITS = {ELONGATION_QUANTITY: "um"}  # every other quantity is a temperature in C
 
 
@@ -36,8 +48,9 @@ class Measurement:
     condition: str
     quantity: str
     unit: str
-    measured: float
+    measured: float  # a series' last sample
     reference_simulated: float | None = None
+    series: Series | None = None  # all samples, where the file is a time series
 
 
 @dataclass(frozen=True)
@@ -51,6 +64,10 @@ class MeasurementSet:
 
     def for_condition(self, condition: str) -> list[Measurement]:
         return [r for r in self.rows if r.condition == condition]
+
+    def has_series(self) -> bool:
+        """True when the file gave time series (not only final values)."""
+        return any(r.series is not None for r in self.rows)
 
 
 def measurement_spec(measured: str | None, declared: str, origin: str) -> str:
@@ -76,11 +93,15 @@ def _from_bench(name: str) -> tuple[str, str, str | None]:
     return found.measurements.read_text(encoding="utf-8"), source, eq.read_text(encoding="utf-8") if eq else None
 
 
-def read_measurements(spec: str, relative_to: str | None = None, sensors: list[str] | None = None) -> MeasurementSet:
+def read_measurements(spec: str, relative_to: str | None = None, sensors: list[str] | None = None, *,
+                      conditions: Collection[str] | None = None,
+                      run_end: Mapping[str, float] | None = None) -> MeasurementSet:
     """Read a measurement file (path or ``bundled:<bench>``); one-line errors naming the line.
 
     ``relative_to`` is the origin of the description that names ``spec``: a relative path is
-    read beside that file, or in that bench's folder.
+    read beside that file, or in that bench's folder. ``sensors`` and ``conditions`` are the
+    description's: a row naming another is an error. ``run_end`` (condition → the end of its
+    simulated run [s]) rejects samples of a series after it.
     """
     if spec.startswith(ORIGIN_PREFIX):
         text, source, eq_text = _from_bench(spec[len(ORIGIN_PREFIX):])
@@ -92,22 +113,38 @@ def read_measurements(spec: str, relative_to: str | None = None, sensors: list[s
         if not path.is_file():
             raise DescriptionError(f"{path}: no such measurement file")
         text, source, eq_text = path.read_text(encoding="utf-8"), str(path), None
-    rows = _parse(text, source, sensors)
+    lines = _lines(text)
+    if not lines:
+        raise DescriptionError(f"{source}: the file is empty; expected the header {','.join(HEADER)}")
+    if is_series_header([c.strip() for c in lines[0][1]]):
+        rows = [Measurement(s.condition, s.quantity, s.unit, float(s.series.values[-1]), None, s.series)
+                for s in parse_series(lines, source, sensors=sensors, conditions=conditions, run_end=run_end)]
+    else:
+        rows = _parse(lines, source, sensors, conditions)
     return MeasurementSet(rows, source, _parse_equilibrium(eq_text) if eq_text else {})
 
 
-def _parse(text: str, source: str, sensors: list[str] | None) -> list[Measurement]:
-    lines = [row for row in csv.reader(text.splitlines()) if any(c.strip() for c in row)]
-    if not lines:
-        raise DescriptionError(f"{source}: the file is empty; expected the header {','.join(HEADER)}")
-    header = [c.strip() for c in lines[0]]
+def _lines(text: str) -> list[tuple[int, list[str]]]:
+    """The rows of a CSV text with their line numbers, without blank lines and ``#`` comment lines."""
+    reader = csv.reader(text.splitlines())
+    return [(reader.line_num, row) for row in reader
+            if any(c.strip() for c in row) and not row[0].lstrip().startswith("#")]
+
+
+def _parse(lines: list[tuple[int, list[str]]], source: str, sensors: list[str] | None,
+           conditions: Collection[str] | None) -> list[Measurement]:
+    header = [c.strip() for c in lines[0][1]]
     if header not in (HEADER, [*HEADER, OPTIONAL]):
-        raise DescriptionError(f"{source}: line 1: header must be {','.join(HEADER)}[,{OPTIONAL}], got {','.join(header)}")
+        raise DescriptionError(f"{source}: line {lines[0][0]}: header must be {','.join(HEADER)}[,{OPTIONAL}] "
+                               f"(final values) or {SERIES_HEADER} (time series), got {','.join(header)}")
     rows, seen = [], set()
-    for number, row in enumerate(lines[1:], start=2):
+    for number, row in lines[1:]:
         if len(row) != len(header):
             raise DescriptionError(f"{source}: line {number}: expected {len(header)} values, got {len(row)}")
         condition, quantity, unit = (c.strip() for c in row[:3])
+        if conditions is not None and condition not in conditions:
+            raise DescriptionError(f"{source}: line {number}: unknown condition {condition!r}; expected one of "
+                                   f"{', '.join(conditions)}")
         expected_unit = UNITS.get(quantity, "C")
         if sensors is not None and quantity not in sensors and quantity not in UNITS:
             raise DescriptionError(f"{source}: line {number}: unknown quantity {quantity!r}; expected one of {', '.join([*sensors, *UNITS])}")

@@ -12,7 +12,6 @@ from typing import Callable
 from ..benches import ReportNotes, bench, bench_name_of
 from ..boundary import boundary_conditions
 from ..constants import KELVIN_OFFSET, RPM_PER_RAD_S
-from ..errors import FeedthermError
 from ..simulate import provenance, simulate
 from ..system.checks import check_system
 from ..system.load import LoadedSystem
@@ -21,6 +20,7 @@ from .consistency import check_description_measurements
 from .inverse import Noise, infer_conditions
 from .measurements import MeasurementSet, measurement_spec, read_measurements
 from .sensitivity import sensitivities
+from .transient_scores import compare_series
 from .validation_types import ELONGATION_QUANTITY, Comparison, OperatingPointRow, Validation
 
 #: Ratio beyond which a printed value and the physics are reported as inconsistent.
@@ -31,12 +31,11 @@ def measurements_of(loaded: LoadedSystem, measured: str | None) -> MeasurementSe
     """The measurement file given, else the description's ``meta.measurements``, else its bench's own."""
     spec = measurement_spec(measured, loaded.system.meta.measurements, loaded.origin)
     sensors = [n for n in loaded.system.sensors]
-    # a file given on the command line is where the user says; one the description names is beside it
-    data = read_measurements(spec, relative_to=None if measured else loaded.origin, sensors=sensors)
-    missing = [c for c in data.conditions() if c not in loaded.system.conditions]
-    if missing:
-        raise FeedthermError(f"{data.source}: conditions {', '.join(missing)} are not in {loaded.origin}")
-    return data
+    conditions = loaded.system.conditions
+    # a file given on the command line is where the user says; one the description names is beside it.
+    # A series may not outlast its condition's run: validate simulates each condition's duration.
+    return read_measurements(spec, relative_to=None if measured else loaded.origin, sensors=sensors,
+                             conditions=list(conditions), run_end={n: c.duration for n, c in conditions.items()})
 
 
 def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = None,
@@ -53,6 +52,8 @@ def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = No
     :func:`~feedtherm.outputs.compensation_files.read_compensation_summary`) into its own section, and
     ``uncertainty`` (a ``feedtherm uncertainty`` folder as read by
     :func:`~feedtherm.outputs.uncertainty_files.read_uncertainty_summary`) into another.
+    Where the measurements are time series, each is scored against its run over the whole
+    transient (:mod:`~feedtherm.analysis.transient_scores`).
     """
     started = time.perf_counter()
     system = loaded.system
@@ -68,10 +69,11 @@ def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = No
         if progress is not None:
             progress(done / steps)
 
-    solutions, single, budget, comparisons = {}, {}, {}, []
+    solutions, single, budget, comparisons, transients = {}, {}, {}, [], []
     for condition in conditions:
         run = simulate(loaded, condition=condition, model=model, mesh=mesh)
         solutions[condition] = run
+        transients += compare_series(condition, run, data.for_condition(condition))
         tick()
         if dual:
             single[condition] = simulate(loaded, condition=condition, model=model, mesh=mesh, single_drive=True)
@@ -115,6 +117,7 @@ def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = No
         operating_points=operating_points(loaded),
         sensor_locations=sensor_locations(loaded),
         notes=report_notes(loaded),
+        transients=transients,
     )
 
 

@@ -9,6 +9,7 @@ from ..solution import Solution
 from .consistency import ConsistencyReport
 from .inverse import Inference
 from .measurements import ELONGATION_QUANTITY  # noqa: F401 (re-exported for the report and CLI)
+from .transient_scores import TransientComparison
 
 
 @dataclass(frozen=True)
@@ -81,6 +82,8 @@ class Validation:
     compensation: dict | None = None
     # a `feedtherm uncertainty` folder: {"summary": uncertainty.json, "figures": {png name: bytes}}
     uncertainty: dict | None = None
+    # every measured time series against its run (empty when the measurements are finals only)
+    transients: list[TransientComparison] = field(default_factory=list)
     # the bench's own content: its conditions, where its sensors are, what the report says of it
     operating_points: dict[str, OperatingPointRow] = field(default_factory=dict)
     sensor_locations: dict[str, str] = field(default_factory=dict)  # sensor -> where it is

@@ -1,4 +1,5 @@
-"""`feedtherm validate` outputs: validation.csv, validation.json, report.html, a console table."""
+"""`feedtherm validate` outputs: validation.csv, validation.json, report.html, a console table, and
+transients.csv with transient_samples.csv where the measurements are time series."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ from rich.table import Table
 
 from ..analysis.validation_types import Validation
 from .files import staged_directory, write_json
+from .transient_files import SAMPLES_CSV, TRANSIENTS_CSV, transient_lines, transient_summary, write_transient_files
 
 VALIDATION_HEADER = ["condition", "quantity", "unit", "simulated", "measured", "paper_simulated", "deviation"]
 
@@ -23,6 +25,7 @@ def write_validation(validation: Validation, out_dir: Path) -> list[Path]:
         write_validation_csv(validation, stage / "validation.csv")
         write_json(stage / "validation.json", validation_summary(validation))
         write_report(validation, stage / "report.html")
+        write_transient_files(validation.transients, stage)  # only with measured time series
         names = sorted(p.name for p in stage.iterdir())
     return [Path(out_dir) / name for name in names]
 
@@ -66,7 +69,7 @@ def validation_summary(validation: Validation) -> dict:
             "cross_validation": validation.calibration.get("cross_validation")},
         "wall_time_s": validation.wall_time_s,
         "provenance": validation.provenance,
-    }
+    } | ({"transients": transient_summary(validation.transients)} if validation.transients else {})
 
 
 def print_validation(validation: Validation, out_dir: Path, console: Console | None = None) -> None:
@@ -104,4 +107,7 @@ def print_validation(validation: Validation, out_dir: Path, console: Console | N
         console.print("measured values inside the " + f"{low}–{high} % band: " + ", ".join(
             f"{s['label']} {s['coverage']['inside']} of {s['coverage']['total']}"
             for s in validation.uncertainty["summary"]["sets"]))
-    console.print(f"wrote {out_dir}/validation.csv, validation.json, report.html ({validation.wall_time_s:.1f} s)")
+    for line in transient_lines(validation.transients):
+        console.print(line)
+    series = f", {TRANSIENTS_CSV}, {SAMPLES_CSV}" if validation.transients else ""
+    console.print(f"wrote {out_dir}/validation.csv, validation.json, report.html{series} ({validation.wall_time_s:.1f} s)")

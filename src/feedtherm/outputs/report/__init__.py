@@ -7,7 +7,8 @@ no JavaScript.  It reads only the Validation, which carries what the report says
 
 1. title and summary · 2. headline: predictive accuracy (physics mode, held out, leave-one-out,
 the reference model's in-sample) · 3. deviation tables · 4. the thermal error as a displacement (the
-measuring loop, the gain, the error along the stroke) · 5. sensor curves · 6. screw
+measuring loop, the gain, the error along the stroke) · 5. sensor curves, and measured
+time series against the runs where the measurements have them · 6. screw
 field · 7. equilibrium time · 8. final values against speed and ambient · 9. dual
 against single drive · 10. heat budget · 11. inferred heat per source · 12. measurement
 consistency · 13. sensitivity ranking · 14. inconsistencies in the data · 15. calibrated values ·
@@ -16,7 +17,7 @@ consistency · 13. sensitivity ranking · 14. inconsistencies in the data · 15.
 
 Modules: ``html`` (escaping builders and the page), ``figures`` (the PNGs), ``data`` (shared
 numbers), and one module per group of sections (``comparison``, ``fidelity``, ``transients``,
-``operating``, ``context``, ``compensation``, ``uncertainty``).
+``operating``, ``context``, ``compensation``, ``uncertainty``, ``measured_series``).
 """
 
 from __future__ import annotations
@@ -35,6 +36,7 @@ from .context import assumptions_section, calibrated_section, inconsistencies_se
 from .displacement import displacement_section
 from .fidelity import consistency_section, headline_section, inferred_heat_section
 from .html import page
+from .measured_series import measured_series_section
 from .operating import dual_single_section, heat_budget_section, trends_section
 from .transients import equilibrium_section, screw_field_section, sensor_curves_section
 from .uncertainty import uncertainty_section
@@ -46,6 +48,7 @@ _SECTIONS = (
     deviations_section,
     displacement_section,
     sensor_curves_section,
+    measured_series_section,  # only with measured time series
     screw_field_section,
     equilibrium_section,
     trends_section,

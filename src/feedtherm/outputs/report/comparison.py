@@ -34,7 +34,10 @@ def title_section(validation: Validation, generated: datetime | None = None) -> 
              f"generated {when}"]
     if version:
         facts.append(f"feedtherm {version}")
-    contents = "".join(f'<li><a href="#{anchor}">{esc(title)}</a></li>' for anchor, title in SECTIONS)
+    sections = list(SECTIONS)
+    if validation.transients:  # the measured time series' section follows the sensor curves
+        sections.insert(3, ("measured-series", "Measured time series"))
+    contents = "".join(f'<li><a href="#{anchor}">{esc(title)}</a></li>' for anchor, title in sections)
     return (f"<header><h1>Validation report — {esc(validation.system_name)}</h1>"
             f"{paragraph(' · '.join(facts), css_class='meta')}"
             f"{paragraph(summary_text(validation), css_class='summary')}"
