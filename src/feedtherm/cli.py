@@ -350,7 +350,7 @@ def cmd_validate(args: argparse.Namespace) -> int:
 
     uncertainty = read_uncertainty_summary(Path(args.uncertainty)) if args.uncertainty else None
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
-        validation = validate(loaded, model=args.model, mesh=args.mesh, measured=args.measured,
+        validation = validate(loaded, model=args.model, mesh=args.mesh, motion=args.motion, measured=args.measured,
                               progress=progress, calibration=calibration, compensation=compensation,
                               uncertainty=uncertainty)
     write_validation(validation, out_dir)
@@ -662,6 +662,10 @@ def build_parser() -> argparse.ArgumentParser:
     _system_argument(validate)
     validate.add_argument("--model", default="fast", help="a model of `feedtherm models` (default fast)")
     validate.add_argument("--mesh", choices=MESHES, default="coarse", help="FE mesh density (with --model fem)")
+    validate.add_argument("--motion", choices=["resolved", "averaged"], default="resolved",
+                          help="the table's motion in the runs: resolved stroke by stroke (default), or averaged "
+                               "over a stroke, for fast axes whose strokes are short against the thermal time "
+                               "constants (docs/fast-model.md)")
     _mode_argument(validate)
     _measured_argument(validate)
     validate.add_argument("--calibration", metavar="DIR",

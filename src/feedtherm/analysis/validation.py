@@ -38,12 +38,12 @@ def measurements_of(loaded: LoadedSystem, measured: str | None) -> MeasurementSe
                              conditions=list(conditions), run_end={n: c.duration for n, c in conditions.items()})
 
 
-def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = None,
+def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = None, motion: str | None = None,
              measured: str | None = None, progress: Callable[[float], None] | None = None,
              calibration: dict | None = None, compensation: dict | None = None,
              uncertainty: dict | None = None) -> Validation:
     """Run every measured condition of ``loaded`` (with the overlay it carries) and compare it with
-    its measurements.
+    its measurements (``motion``: the runs' table motion, see :func:`~feedtherm.simulate.simulate`).
 
     Also checks the measurements' own consistency, infers the heat of every source from each
     condition's measurements (the fast model's transfer matrix), and carries ``calibration``
@@ -71,12 +71,12 @@ def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = No
 
     solutions, single, budget, comparisons, transients = {}, {}, {}, [], []
     for condition in conditions:
-        run = simulate(loaded, condition=condition, model=model, mesh=mesh)
+        run = simulate(loaded, condition=condition, model=model, mesh=mesh, motion=motion)
         solutions[condition] = run
         transients += compare_series(condition, run, data.for_condition(condition))
         tick()
         if dual:
-            single[condition] = simulate(loaded, condition=condition, model=model, mesh=mesh, single_drive=True)
+            single[condition] = simulate(loaded, condition=condition, model=model, mesh=mesh, motion=motion, single_drive=True)
             tick()
         budget[condition] = {name: h.power for name, h in boundary_conditions(system, condition, loaded.overlay).heats.items()}
         final = run.summary_values("final")

@@ -22,6 +22,7 @@ from rich.table import Table
 from ..analysis.calibration import CalibrationResult, Prediction
 from ..errors import FeedthermError
 from ..system.load import LoadedSystem, read_text
+from ..system.overlay import overlay_spec
 from ..system.quantities import registry
 from ..system.variants import expand_path, split_path
 from .files import read_study_summary, staged_directory, write_json
