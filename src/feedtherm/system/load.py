@@ -121,6 +121,12 @@ def describe_error(exc: ValidationError) -> str:
         return f"unknown key {key!r}{where}{suggestion}"
     if kind == "missing":
         return f"{path}: missing (required)"
+    if kind == "literal_error":  # pydantic's "Input should be ..." does not say what was given
+        return f"{path}: {error['input']!r} is not allowed; allowed values: {error['ctx']['expected']}"
+    if kind == "union_tag_invalid":
+        key = error["ctx"]["discriminator"].strip("'")
+        return (f"{_dotted([*loc, key])}: {error['ctx']['tag']!r} is not allowed; "
+                f"allowed values: {error['ctx']['expected_tags']}")
     if message.startswith("Value error, "):
         message = message[len("Value error, "):]
     if not path:  # cross-reference errors carry their own path
