@@ -110,7 +110,7 @@ PROGRESS_DELAY_S = 1.0
 
 def cmd_run(args: argparse.Namespace) -> int:
     from .outputs.files import check_output_dir
-    from .outputs.run_files import default_out_dir, summary_line, write_run
+    from .outputs.run_files import default_out_dir, equilibrium_line, summary_line, write_run
     from .plan import plan_run
 
     loaded = _load(args.system)
@@ -126,6 +126,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         solution = execute(plan, progress)
     write_run(solution, out_dir, sample_interval=args.sample_interval, figures=not args.no_plots)
     print(summary_line(solution, out_dir))
+    print(equilibrium_line(solution))
     return 0
 
 
