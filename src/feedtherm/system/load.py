@@ -19,6 +19,7 @@ from pydantic import BaseModel, ValidationError
 
 from ..benches import ORIGIN_PREFIX, bench, bench_names, suggestion
 from ..errors import DescriptionError
+from .areas import with_joint_areas
 from .schema import FeedSystem
 
 
@@ -29,6 +30,7 @@ class LoadedSystem:
     system: FeedSystem
     origin: str  # file path or "bundled:<bench name>"
     sha256: str  # of the resolved description (canonical JSON of the validated data)
+    derived_joint_areas: tuple[int, ...] = ()  # joints whose area the geometry gave (none was stated)
 
 
 def read_text(spec: str) -> tuple[str, str]:
@@ -91,8 +93,12 @@ def validate_data(data: dict, origin: str) -> LoadedSystem:
         system = FeedSystem.model_validate(data)
     except ValidationError as exc:
         raise DescriptionError(f"{origin}: {describe_error(exc)}") from None
+    try:
+        system, derived = with_joint_areas(system)
+    except ValueError as exc:
+        raise DescriptionError(f"{origin}: {exc}") from None
     canonical = json.dumps(system.model_dump(mode="json"), sort_keys=True, separators=(",", ":"))
-    return LoadedSystem(system, origin, hashlib.sha256(canonical.encode()).hexdigest())
+    return LoadedSystem(system, origin, hashlib.sha256(canonical.encode()).hexdigest(), tuple(derived))
 
 
 #: Sections that descriptions of earlier versions had, and what replaced them.
