@@ -93,7 +93,8 @@ def _cylinder_planes(index: int, cyl: Cylinder) -> list[_Plane]:
 def disc_in_rectangle(cu: float, cv: float, r: float, rect) -> float:
     """Area [m^2] of the disc of radius ``r`` about ``(cu, cv)`` inside ``rect = ((u0, u1), (v0, v1))``.
 
-    The integral over u of the chord's overlap with [v0, v1] (midpoint rule), exact for a disc
+    The integral over u of the chord's overlap with [v0, v1], by the midpoint rule in the angle
+    theta (u = cu + r sin theta, which takes away the chord's square-root ends); exact for a disc
     wholly inside (pi r^2) or outside (0).
     """
     (u0, u1), (v0, v1) = rect
@@ -104,12 +105,13 @@ def disc_in_rectangle(cu: float, cv: float, r: float, rect) -> float:
     a, b = max(cu - r, u0), min(cu + r, u1)
     if b <= a:
         return 0.0
-    n = max(16, int(_DISC_SAMPLES * (b - a) / (2.0 * r)))
-    width = (b - a) / n
-    u = a + width * (np.arange(n) + 0.5)
-    half = np.sqrt(np.clip(r * r - (u - cu) ** 2, 0.0, None))
+    t0, t1 = math.asin(max(-1.0, (a - cu) / r)), math.asin(min(1.0, (b - cu) / r))
+    n = max(64, int(_DISC_SAMPLES * (t1 - t0) / math.pi))
+    step = (t1 - t0) / n
+    theta = t0 + step * (np.arange(n) + 0.5)
+    half = r * np.cos(theta)
     chord = np.clip(np.minimum(cv + half, v1) - np.maximum(cv - half, v0), 0.0, None)
-    return float(chord.sum() * width)
+    return float((chord * half).sum() * step)  # du = r cos(theta) dtheta
 
 
 def _plane_overlap(a: _Plane, b: _Plane) -> float:
