@@ -144,13 +144,14 @@ SECONDS_PER_STEP = {
     ("reduced", None): 3.5e-4,
 }
 #: Longest reciprocation cycle 2 stroke / |v| [s] for which `check` suggests --motion averaged.
-#: The cycle-averaged motion's deviation from the resolved one grows about linearly with the
-#: cycle (the FE verification's sliding contact: order 0.8-0.9 in the period, docs/fem-model.md).
-#: Measured with the fast model over 3 h (final cycle means, largest of T1-T5, and D): the paper
-#: bench's condition I, cycle 66.7 s: 0.06 K, 0.13 µm; the paper bench at 1500 rpm, 17.6 s:
-#: 0.02 K (issue 33, also the FE model, 13 s against 4 min 44 s); ballscrew_example v5, 9.6 s:
-#: under 0.005 K, 0.02 µm (2026-11-26).  Below 30 s the sensors' cycle means agree within about
-#: 0.03 K, a fifth of a class-A PT100's tolerance at 20 degC (0.15 K + 0.002 |t|, IEC 60751).
+#: The cycle-averaged motion's deviation from the resolved one grows with the cycle (the FE
+#: verification's sliding contact: order 0.8-0.9 in the period, docs/fem-model.md).  Measured
+#: over 3 h (final cycle means, the largest of T1-T5): the paper bench's condition I, cycle
+#: 66.7 s, fast model: 0.06 K (D 0.13 µm); the paper bench at 1500 rpm, 67,000 steps planned (a
+#: 6.4 s cycle), coarse FE model: 0.02 K (issue 33: 13 s against 4 min 44 s); ballscrew_example
+#: v5, 9.6 s, fast model: under 0.005 K (D 0.02 µm) (2026-11-26).  Interpolated, a 30 s cycle
+#: keeps the sensors' cycle means within about 0.04 K, a quarter of a class-A PT100's tolerance
+#: at 20 degC (0.15 K + 0.002 |t|, IEC 60751).
 AVERAGED_MOTION_MAX_CYCLE_S = 30.0
 
 

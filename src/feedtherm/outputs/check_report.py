@@ -48,7 +48,7 @@ def cost_lines(what: str, duration: float, cost: RunCost) -> list[str]:
     if cost.suggest_averaged:
         ratio = cost.steps["resolved"] / max(cost.steps["averaged"], 1)
         lines.append(f"  the reciprocation cycle ({cost.cycle_s:.3g} s) is under {AVERAGED_MOTION_MAX_CYCLE_S:g} s: "
-                     f"--motion averaged gives the same cycle means within about 0.03 K in 1/{ratio:.0f} of the steps")
+                     f"--motion averaged gives the same cycle means within about 0.04 K in 1/{ratio:.0f} of the steps")
     return lines
 
 
