@@ -82,3 +82,16 @@ def test_an_empty_folder_is_filled(tmp_path, capsys):
 
 def test_the_template_is_not_a_bench():
     assert "_template" not in bench_names()
+
+
+def test_heat_reports_the_derived_and_exposed_areas(folder, capsys):
+    import math
+
+    assert main(["heat", str(folder / "description.toml"), "--condition", "v10", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    # the table's underside less the nut housing and the four carriages (mm^2), not its whole face
+    assert data["surface_area_m2"]["table_bottom"] == pytest.approx((400 * 300 - 80 * 100 - 4 * 60 * 48) * 1e-6)
+    joints = {tuple(j["between"]): j for j in data["joints"]}
+    ring = joints[("front_bearing", "front_housing")]  # pi 47 mm x 30 mm, the ring in its seat
+    assert ring["area_m2"] == pytest.approx(math.pi * 47 * 30 * 1e-6, rel=1e-9)
+    assert ring["conductance_W_per_K"] == pytest.approx(ring["area_m2"] / 1.25e-3)

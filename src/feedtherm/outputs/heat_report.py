@@ -24,6 +24,10 @@ def heat_json(bc: BoundaryConditions) -> str:
         "heat_W": {name: h.power for name, h in bc.heats.items()},
         "chtc_W_per_m2K": {name: s.convection for name, s in bc.surfaces.items()},
         "radiation_W_per_m2K": {name: s.radiation for name, s in bc.surfaces.items()},
+        # the exposed areas (a surface without `area`: its faces less what joined parts cover)
+        "surface_area_m2": {name: s.area for name, s in bc.surfaces.items()},
+        "joints": [{"between": list(j.parts), "area_m2": j.area, "tcr_m2K_per_W": j.tcr,
+                    "conductance_W_per_K": j.conductance, "sliding": j.sliding} for j in bc.joints],
         "paper_table1_heat_W": bc.paper_heat,
         "paper_table2_chtc_W_per_m2K": bc.paper_chtc,
         "screw_rpm": bc.point.screw_rpm,
