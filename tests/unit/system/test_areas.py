@@ -127,3 +127,16 @@ def test_the_paper_bench_states_every_joint_area_and_they_match_its_geometry():
     system = loaded.system
     for index in (0, 2, 9, 10, 11, 12, 13, 14):
         assert joint_contact_area(system, index) == pytest.approx(system.joints[index].area, rel=1e-3)
+
+
+def test_a_derived_area_follows_a_change_of_the_geometry_and_a_stated_one_does_not(tmp_path):
+    from feedtherm.system.variants import with_values
+
+    loaded = load_text(tmp_path, template_text())
+    # the front housing's foot 50 mm -> 60 mm along x: its joint with the bed, 60 x 110 mm
+    box = loaded.system.parts["front_housing"].boxes[0]
+    wider = box.model_copy(update={"size": (0.060, box.size[1], box.size[2])})
+    variant = with_values(loaded, {"parts.front_housing.boxes": [wider]})
+    assert variant.system.joints[10].area == pytest.approx(60 * 110 * MM**2, rel=1e-12)
+    stated = with_values(loaded, {"joints[10].area": 4e-3, "parts.front_housing.boxes": [wider]})
+    assert stated.system.joints[10].area == 4e-3 and 10 not in stated.derived_joint_areas
