@@ -131,7 +131,9 @@ def cmd_run(args: argparse.Namespace) -> int:
         solution = execute(plan, progress)
     write_run(solution, out_dir, sample_interval=args.sample_interval, figures=not args.no_plots)
     print(summary_line(solution, out_dir))
-    print(equilibrium_line(solution))
+    equilibrium = equilibrium_line(solution)
+    if equilibrium:
+        print(equilibrium)
     return 0
 
 

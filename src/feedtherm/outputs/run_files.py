@@ -266,11 +266,14 @@ def summary_line(solution: Solution, out_dir: Path) -> str:
             f"energy balance error {error_percent:.2g} %")
 
 
-def equilibrium_line(solution: Solution) -> str:
-    """One line: each sensor's and D's own equilibrium time, or that the run ended first."""
+def equilibrium_line(solution: Solution) -> str | None:
+    """One line: each sensor's and D's own equilibrium time, or that the run ended first (None
+    for a Solution without them)."""
     each = equilibrium_by_quantity(solution)
+    if not each:
+        return None
     times = ", ".join(f"{name} {'not reached' if t is None else f'{t / 60.0:.0f} min'}" for name, t in each.items())
-    return f"equilibrium (95 % of the steady rise, then steady; solution/equilibrium.py): {times or 'none computed'}"
+    return f"equilibrium (95 % of the steady rise, then steady; solution/equilibrium.py): {times}"
 
 
 # --------------------------------------------------------------------------- where
