@@ -25,9 +25,10 @@ def test_a_declared_single_drive_is_reported_single(tmp_path):
 
 def test_a_dual_drive_is_single_only_with_the_option(tmp_path):
     summary = run_summary_of(tmp_path, "paper", "--condition", "I")
-    assert (summary["single_drive"], summary["declared_drive"], summary["single_drive_option"]) == (False, "dual", False)
+    keys = ("single_drive", "declared_drive", "single_drive_option")
+    assert tuple(summary[key] for key in keys) == (False, "dual", False)
     summary = run_summary_of(tmp_path / "single", "paper", "--condition", "I", "--single-drive")
-    assert (summary["single_drive"], summary["declared_drive"], summary["single_drive_option"]) == (True, "dual", True)
+    assert tuple(summary[key] for key in keys) == (True, "dual", True)
 
 
 def test_each_sensor_and_D_have_an_equilibrium_entry(tmp_path, capsys):

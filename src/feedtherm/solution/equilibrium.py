@@ -55,7 +55,8 @@ def equilibrium_time(times: np.ndarray, series: dict[str, np.ndarray], initial: 
 
 
 def equilibrium_times(times: np.ndarray, sensors: dict[str, np.ndarray], elongation: np.ndarray,
-                      initial: dict[str, float], steady: dict[str, float], elongation_key: str) -> dict[str, float | None]:
+                      initial: dict[str, float], steady: dict[str, float],
+                      elongation_key: str) -> dict[str, float | None]:
     """The equilibrium time [s] of each sensor on its own, and of D (under ``elongation_key``).
 
     ``sensors`` are cycle-averaged temperatures [K], ``elongation`` the cycle-averaged D [m];

@@ -28,7 +28,7 @@ from .schema import Box, Cylinder, FeedSystem, Part
 _AXES = {"x": 0, "y": 1, "z": 2}
 #: Two faces closer than this [m] touch (coordinates come from decimal strings in mm).
 TOUCH_TOL = 1e-7
-#: Points per unit length of the numerical disc-in-rectangle integral (relative error < 1e-6).
+#: Midpoints per half turn of the disc-in-rectangle integral over the angle (relative error ~1e-8).
 _DISC_SAMPLES = 4000
 
 
@@ -140,7 +140,8 @@ def _plane_overlap(a: _Plane, b: _Plane) -> float:
             r_in = max(r_in, r)
     if r_in >= end.r_out:
         return 0.0
-    return max(disc_in_rectangle(*end.centre, end.r_out, box.rect) - disc_in_rectangle(*end.centre, r_in, box.rect), 0.0)
+    ring = disc_in_rectangle(*end.centre, end.r_out, box.rect) - disc_in_rectangle(*end.centre, r_in, box.rect)
+    return max(ring, 0.0)
 
 
 # --------------------------------------------------------------------------- cylindrical faces
