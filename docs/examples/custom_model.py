@@ -5,8 +5,9 @@ in C dT/dt + G T + A (T − T_amb) = q: capacities C [J/K], conductances G [W/K]
 areas each surface exposes (the base class builds A from the boundary conditions'
 coefficients) and where each source's heat goes.  Registered under a name, it runs through
 ``simulate`` like the built-in models; the Solution's energy balance checks it.  Here each
-part is isothermal, joints conduct area/TCR, surfaces keep their whole declared area, and
-the moving group's position changes nothing (so the run uses the averaged motion).
+part is isothermal, joints conduct area/TCR, surfaces expose their faces less what joined
+parts cover (``exposed_area``, the area the boundary conditions report), and the moving
+group's position changes nothing (so the run uses the averaged motion).
 
 A model also says how its temperatures move the structure: ``displacement_rows()`` gives the
 rows that read the elongation D (the description's ``mechanics.elongation``, a displacement
@@ -29,7 +30,8 @@ from feedtherm.models.fast.bars import anchors
 from feedtherm.models.interface import ThermalModel
 from feedtherm.models.registry import ModelEntry, register_model
 from feedtherm.simulate import simulate, steady_solve
-from feedtherm.system.geometry import part_volume, screw_axis, surface_area
+from feedtherm.system.areas import exposed_area
+from feedtherm.system.geometry import part_volume, screw_axis
 from feedtherm.system.load import load_system
 from feedtherm.system.mechanics import GROUND
 
@@ -66,8 +68,8 @@ class PartLumped(ThermalModel):
         return self.G
 
     def surface_exposure(self, name, k):
-        surface = self.system.surfaces[name]
-        return np.array([self.node[surface.part]]), np.array([surface_area(surface, self.system.parts[surface.part])])
+        part = self.system.surfaces[name].part
+        return np.array([self.node[part]]), np.array([exposed_area(self.system, name)])
 
     def heat_distribution(self, heat, k):
         return np.eye(self.n_nodes)[self.node[heat.part]]  # all of it into its part's node

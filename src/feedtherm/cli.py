@@ -79,7 +79,8 @@ def cmd_modes(args: argparse.Namespace) -> int:
 
 
 def cmd_check(args: argparse.Namespace) -> int:
-    from .plan import plan_run
+    from .outputs.check_report import BASIS, area_lines, cost_lines
+    from .plan import plan_run, run_cost
     from .system.checks import check_system
     from .system.load import parse_toml, read_text, validate_data
 
@@ -94,13 +95,15 @@ def cmd_check(args: argparse.Namespace) -> int:
     system = loaded.system
     # What `heat` and `run` would meet: every condition's and duty cycle's heats and
     # coefficients evaluated, and its step count planned (a model is not built).
+    costs = []
     for kind, names in (("condition", system.conditions), ("cycle", system.duty_cycles)):
+        section = "conditions" if kind == "condition" else "duty_cycles"
         for name in names:
             try:
-                plan_run(loaded, **{kind: name})
+                plan = plan_run(loaded, **{kind: name})
             except FeedthermError as exc:
-                section = "conditions" if kind == "condition" else "duty_cycles"
                 raise FeedthermError(f"{loaded.origin}: {section}.{name}: {exc}") from None
+            costs.extend(cost_lines(f"{section}.{name}", plan.end - plan.segments[0].t0, run_cost(plan)))
     print(f"{loaded.origin}: valid description '{system.meta.name}' — {len(system.parts)} parts, "
           f"{len(system.joints)} joints, {len(system.sources)} heat sources, {len(system.surfaces)} surfaces, "
           f"{len(system.sensors)} sensors, {len(system.conditions)} conditions; sha256 {loaded.sha256[:12]}")
@@ -108,6 +111,8 @@ def cmd_check(args: argparse.Namespace) -> int:
         print("no inconsistencies found")
     for finding in findings:
         print(f"warning: {finding}")
+    for line in area_lines(loaded) + costs + ([BASIS] if costs else []):
+        print(line)
     return 0
 
 
@@ -119,7 +124,7 @@ PROGRESS_DELAY_S = 1.0
 
 def cmd_run(args: argparse.Namespace) -> int:
     from .outputs.files import check_output_dir
-    from .outputs.run_files import default_out_dir, summary_line, write_run
+    from .outputs.run_files import default_out_dir, equilibrium_line, summary_line, write_run
     from .plan import plan_run
 
     loaded = _load_in_mode(args)
@@ -135,6 +140,9 @@ def cmd_run(args: argparse.Namespace) -> int:
         solution = execute(plan, progress)
     write_run(solution, out_dir, sample_interval=args.sample_interval, figures=not args.no_plots)
     print(summary_line(solution, out_dir))
+    equilibrium = equilibrium_line(solution)
+    if equilibrium:
+        print(equilibrium)
     return 0
 
 
@@ -162,6 +170,15 @@ def cmd_calculix(args: argparse.Namespace) -> int:
                            duration=duration, output_interval=args.every)
     print(f"{files[0]}: {model.n_nodes:,} nodes, moving group at position {k} of 0..{last} "
           f"(offset {model.positions[k] * 1e3:+.1f} mm); run: cd {out_dir} && ccx -i feedtherm")
+    return 0
+
+
+def cmd_new(args: argparse.Namespace) -> int:
+    from .benches.template import new_bench
+
+    folder = new_bench(args.name, args.out)
+    print(f"{folder}: a new bench (a single-drive ball-screw axis to adapt; {folder / 'README.md'} says how). "
+          f"Next: feedtherm check {folder / 'description.toml'}")
     return 0
 
 
@@ -696,6 +713,12 @@ def build_parser() -> argparse.ArgumentParser:
                           help="interval of the printed nodal temperatures [s] (default 600)")
     _out_argument(calculix, "out/<system>_<condition>_calculix_<mode>")
     calculix.set_defaults(func=cmd_calculix)
+
+    new = sub.add_parser("new", help="write a commented bench folder to adapt to your machine (a single-drive "
+                                     "ball-screw axis that checks and runs as written)")
+    new.add_argument("name", metavar="NAME", help="the bench's name: the folder's and meta.name")
+    new.add_argument("--out", default=".", metavar="DIR", help="where to write the folder NAME (default: here)")
+    new.set_defaults(func=cmd_new)
 
     bench_list = sub.add_parser("benches", help="list the bundled and plugged-in benches SYSTEM may name")
     bench_list.set_defaults(func=cmd_benches)

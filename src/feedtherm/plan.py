@@ -163,6 +163,58 @@ def estimated_steps(stroke: float, segments: list[Segment], options: ModelOption
     return math.ceil(steps)
 
 
+#: Wall time per time step [s] of each model (and FE mesh), measured on the project's machine
+#: (x86-64, 2 cores); a step's cost grows with the model's unknowns, so these hold for benches
+#: the size of the bundled ones (1,300-1,500 fast-model nodes, the paper bench's meshes).
+SECONDS_PER_STEP = {
+    # ballscrew_example, v10, 1800 s resolved: 21,750 steps in 4.6 s (summary.json's wall_time_s,
+    # 2026-11-26); the paper bench's condition I, 6,480 steps in 0.73-0.87 s (docs/fast-model.md).
+    ("fast", None): 2.1e-4,
+    # the paper bench at 1500 rpm, resolved: 67,000 steps in 4 min 44 s (issue 33).
+    ("fem", "coarse"): 4.2e-3,
+    # the paper bench's condition I, 6,480 steps: 54 s (PARDISO) and 281-287 s (docs/fem-model.md).
+    ("fem", "medium"): 8.3e-3,
+    ("fem", "fine"): 4.4e-2,
+    # the paper bench's condition I on the fine mesh, basis cached: execute 2.24 s for 6,480 steps
+    # (benchmarks/README.md); the basis itself, once per mesh, takes 13-400 s.
+    ("reduced", None): 3.5e-4,
+}
+#: Longest reciprocation cycle 2 stroke / |v| [s] for which `check` suggests --motion averaged.
+#: The cycle-averaged motion's deviation from the resolved one grows with the cycle (the FE
+#: verification's sliding contact: order 0.8-0.9 in the period, docs/fem-model.md).  Measured
+#: over 3 h (final cycle means, the largest over its sensors): the paper bench at 396 rpm, cycle
+#: 66.7 s, fast model: 0.06 K (D 0.13 µm); the paper bench at 1500 rpm, 67,000 steps planned (a
+#: 6.4 s cycle), coarse FE model: 0.02 K (issue 33: 13 s against 4 min 44 s); ballscrew_example
+#: v5, 9.6 s, fast model: under 0.005 K (D 0.02 µm) (2026-11-26).  Interpolated, a 30 s cycle
+#: keeps the sensors' cycle means within about 0.04 K, a quarter of a class-A PT100's tolerance
+#: at 20 degC (0.15 K + 0.002 |t|, IEC 60751).
+AVERAGED_MOTION_MAX_CYCLE_S = 30.0
+
+
+@dataclass(frozen=True)
+class RunCost:
+    """What a run of one condition or duty cycle will cost, planned, before any model is built."""
+
+    steps: dict[str, int]  # motion ("resolved", "averaged") -> planned time steps
+    seconds: dict[tuple[str, str | None], dict[str, float]]  # (model, mesh) -> motion -> estimated wall time [s]
+    cycle_s: float | None  # the longest reciprocation cycle 2 stroke / |v| of a moving segment [s]; None at standstill
+
+    @property
+    def suggest_averaged(self) -> bool:
+        return self.cycle_s is not None and self.cycle_s <= AVERAGED_MOTION_MAX_CYCLE_S
+
+
+def run_cost(plan: RunPlan) -> RunCost:
+    """The planned steps of ``plan``'s segments by each motion, and the wall time each model would take."""
+    system = plan.loaded.system
+    steps = {motion: estimated_steps(system.kinematics.stroke, plan.segments, replace(plan.options, motion=motion))
+             for motion in MOTIONS}
+    seconds = {key: {motion: n * per_step for motion, n in steps.items()} for key, per_step in SECONDS_PER_STEP.items()}
+    moving = [seg.speed for seg in plan.segments if seg.speed > 0.0]
+    cycle = 2.0 * system.kinematics.stroke / min(moving) if moving else None  # the slowest cycle decides
+    return RunCost(steps, seconds, cycle)
+
+
 def _check_step_count(loaded: LoadedSystem, segments: list[Segment], options: ModelOptions) -> None:
     steps = estimated_steps(loaded.system.kinematics.stroke, segments, options)
     if steps > MAX_STEPS:

@@ -98,7 +98,10 @@ def execute(plan: RunPlan, progress: Callable[[float], None] | None = None,
         "condition": plan.label,
         "model": plan.model.name,
         "mode": plan.mode,
-        "single_drive": plan.single_drive,
+        # Whether the axis ran as a single drive: declared so, or a dual drive run with --single-drive
+        "single_drive": plan.single_drive or system.kinematics.drive == "single",
+        "declared_drive": system.kinematics.drive,
+        "single_drive_option": plan.single_drive,
         "motion": plan.options.motion,
         **({"mesh": plan.options.mesh, "mesh_statistics": stats} if plan.model.uses_mesh
            else {k: v for k, v in stats.items() if k != "unknowns"}),

@@ -47,3 +47,35 @@ def test_rise_time_is_the_slowest_sensor_and_ignores_flat_ones():
     initial = {"fast": 0.0, "slow": 0.0, "flat": 0.0}
     steady = {"fast": 1.0, "slow": 2.0, "flat": 0.01}
     assert rise_time(t, series, initial, steady) == pytest.approx(2000 * np.log(20), abs=2.0)
+
+
+def test_each_quantity_has_its_own_equilibrium_time_and_D_its_own_bounds():
+    from feedtherm.solution.equilibrium import equilibrium_times
+
+    # T1 = 10 K (1 - e^{-t/1800}) reaches 95 % at 1800 ln 20 = 5392 s (the first test's case);
+    # T2 = 4 K (1 - e^{-t/600}) at 600 ln 20 = 1797 s, its 600 s window then spans
+    # 4 (e^{-1197/600} - e^{-1797/600}) = 0.35 K < 0.5 K.
+    # D = 50 µm (1 - e^{-t/900}): 95 % at 900 ln 20 = 2696 s; its window then spans
+    # 50 (e^{-2096/900} - e^{-2696/900}) = 2.4 µm > 1 µm, quiet only from t with
+    # 50 e^{-t/900} (e^{600/900} - 1) < 1: t > 900 ln(50 * 0.9477) = 3477 s.
+    t = np.arange(0.0, 20000.0, 10.0)
+    sensors = {"T1": 10.0 * (1 - np.exp(-t / 1800.0)), "T2": 4.0 * (1 - np.exp(-t / 600.0))}
+    d = 50e-6 * (1 - np.exp(-t / 900.0))
+    initial = {"T1": 0.0, "T2": 0.0, "D": 0.0}
+    steady = {"T1": 10.0, "T2": 4.0, "D": 50e-6}
+    each = equilibrium_times(t, sensors, d, initial, steady, "D")
+    assert 5390.0 <= each["T1"] <= 5400.0
+    assert 1790.0 <= each["T2"] <= 1810.0
+    assert 3470.0 <= each["D"] <= 3490.0  # the 1 µm bound, not the 95 % rise, decides D
+    # Held to the temperatures' bounds, D in metres (a rise below 0.1, swings below 0.5) would
+    # count as settled from the first instant the 600 s window allows:
+    assert equilibrium_time(t, {"D": d}, initial, steady) == 600.0
+
+
+def test_a_quantity_that_never_settles_has_none():
+    from feedtherm.solution.equilibrium import equilibrium_times
+
+    t = np.arange(0.0, 3600.0, 10.0)
+    each = equilibrium_times(t, {"T1": t / 3600.0}, 20e-6 * t / 3600.0, {"T1": 0.0, "D": 0.0},
+                             {"T1": 10.0, "D": 50e-6}, "D")
+    assert each == {"T1": None, "D": None}

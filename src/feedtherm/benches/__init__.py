@@ -167,7 +167,9 @@ def bench_name_of(origin: str) -> str | None:
 
 
 def _shipped() -> dict[str, Path]:
-    return {folder.name: folder for folder in sorted(_SHIPPED.iterdir()) if (folder / DESCRIPTION).is_file()}
+    # "_template" is what `feedtherm new` copies, not a bench
+    return {folder.name: folder for folder in sorted(_SHIPPED.iterdir())
+            if not folder.name.startswith("_") and (folder / DESCRIPTION).is_file()}
 
 
 def _entry_points() -> list[metadata.EntryPoint]:

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 from ..physics import convection, radiation
 from ..physics.air import film_temperature
-from ..system.geometry import surface_area
+from ..system.areas import exposed_area
 from ..system.schema import FeedSystem
 from ..system.surfaces import (
     FixedConvection,
@@ -99,5 +99,5 @@ def surface_transfer(
     sink = point.ambient if surface.sink_temperature is None else surface.sink_temperature
     radiates = with_radiation and surface.emissivity > 0.0
     h_rad = radiation.h_radiation(surface.emissivity, t_surface, sink) if radiates else 0.0
-    area = surface_area(surface, system.parts[surface.part])
+    area = exposed_area(system, name)  # the faces less what joined parts cover, as the models take them
     return SurfaceTransfer(name, surface.part, area, h_conv, h_rad, surface.emissivity, how, sink)

@@ -26,6 +26,10 @@ def heat_json(bc: BoundaryConditions, printed: Overlay | None = None) -> str:
         "heat_W": {name: h.power for name, h in bc.heats.items()},
         "chtc_W_per_m2K": {name: s.convection for name, s in bc.surfaces.items()},
         "radiation_W_per_m2K": {name: s.radiation for name, s in bc.surfaces.items()},
+        # the exposed areas (a surface without `area`: its faces less what joined parts cover)
+        "surface_area_m2": {name: s.area for name, s in bc.surfaces.items()},
+        "joints": [{"between": list(j.parts), "area_m2": j.area, "tcr_m2K_per_W": j.tcr,
+                    "conductance_W_per_K": j.conductance, "sliding": j.sliding} for j in bc.joints],
         "printed": None if printed is None else {
             "overlay": printed.name, "title": printed.title, "condition": printed.reference_condition,
             "heat_W": printed.printed_heats(), "chtc_W_per_m2K": printed.printed_chtcs()},

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..constants import KELVIN_OFFSET
+from ..constants import ELONGATION_PROBE, KELVIN_OFFSET
 from ..solution import Solution
 from .field_images import (
     SCREW_AXIAL_DEFORMATION_PNG,
@@ -188,11 +188,14 @@ def run_summary(solution: Solution) -> dict:
         "condition": info.get("condition"),
         "model": info.get("model"),
         "mode": info.get("mode"),
-        "single_drive": info.get("single_drive", False),
+        "single_drive": info.get("single_drive", False),  # ran as a single drive (declared, or the option)
+        "declared_drive": info.get("declared_drive"),  # kinematics.drive of the description
+        "single_drive_option": info.get("single_drive_option", False),  # --single-drive given
         "final": final,
         "steady": steady,
         "positioning_error": final_positioning_error(solution),
         "equilibrium_time_s": solution.equilibrium_time,
+        "equilibrium_time_s_by_quantity": equilibrium_by_quantity(solution),
         "energy_balance_error": energy.relative_error,
         "energy_J": {"heat_in": energy.heat_in, "heat_lost": energy.heat_lost,
                      "heat_stored": energy.heat_stored, "residual": energy.residual},
@@ -206,6 +209,15 @@ def run_summary(solution: Solution) -> dict:
         "mesh": info.get("mesh_statistics"),  # FE runs: vertices, tetrahedra, per part, element size
         "provenance": info.get("provenance", {}),
     })
+
+
+def equilibrium_by_quantity(solution: Solution) -> dict[str, float | None]:
+    """Each sensor's and D's own equilibrium time [s] (None: not within the run), sensors in
+    output order, then ``D``; the ambient has none."""
+    each = solution.equilibrium_times
+    names = [name for name in ordered_sensor_names(solution) if name in each and name != solution.ambient_sensor]
+    names.append(ELONGATION_PROBE)
+    return {name: each.get(name) for name in names if name in each}
 
 
 def final_positioning_error(solution: Solution) -> dict:
@@ -252,6 +264,16 @@ def summary_line(solution: Solution, out_dir: Path) -> str:
     error_percent = 100.0 * solution.energy.relative_error
     return (f"{out_dir}: {temperatures}, D {final['D_um']:.2f} µm, "
             f"energy balance error {error_percent:.2g} %")
+
+
+def equilibrium_line(solution: Solution) -> str | None:
+    """One line: each sensor's and D's own equilibrium time, or that the run ended first (None
+    for a Solution without them)."""
+    each = equilibrium_by_quantity(solution)
+    if not each:
+        return None
+    times = ", ".join(f"{name} {'not reached' if t is None else f'{t / 60.0:.0f} min'}" for name, t in each.items())
+    return f"equilibrium (95 % of the steady rise, then steady; solution/equilibrium.py): {times}"
 
 
 # --------------------------------------------------------------------------- where

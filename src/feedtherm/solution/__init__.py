@@ -84,6 +84,9 @@ class Solution:
         Model, mode, condition, time step, unknowns, wall time, provenance (JSON-able).
     fields : FieldSeries or None
         Full temperature fields every ``snapshot_interval`` on the model's mesh (FE runs).
+    equilibrium_times : dict[str, float or None]
+        The equilibrium time [s] of each sensor on its own and of ``D`` (its own bounds:
+        :func:`feedtherm.solution.equilibrium.equilibrium_times`); None where the run ended first.
     """
 
     times: np.ndarray
@@ -105,6 +108,7 @@ class Solution:
     energy: EnergyBalance
     info: dict = field(default_factory=dict)
     fields: FieldSeries | None = None
+    equilibrium_times: dict[str, float | None] = field(default_factory=dict)
 
     @property
     def sensor_names(self) -> list[str]:

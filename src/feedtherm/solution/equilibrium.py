@@ -12,6 +12,12 @@ sensor series (each value the mean over the preceding full reciprocation cycle):
 2. the cycle-averaged value varied by less than 0.5 K over the 600 s ending at t.
 
 ``None`` when the run ends first.
+
+The same two criteria per quantity (:func:`equilibrium_times`) say which sensor settles last,
+and when the elongation D settles: for D the fluctuation bound is ``D_FLUCTUATION_M`` (1 µm)
+and rises below ``D_MIN_RISE_M`` (0.2 µm) are exempt.  1 µm is the paper's 0.5 K carried over
+to a length: 0.5 K on the 170 mm of steel screw (12e-6 1/K) between the paper bench's fixed
+bearing and its laser is 0.5 × 12e-6 × 0.17 m = 1.0 µm; 0.2 µm likewise stands for its 0.1 K.
 """
 
 from __future__ import annotations
@@ -22,11 +28,17 @@ RISE_FRACTION = 0.95
 FLUCTUATION_K = 0.5
 WINDOW_S = 600.0
 MIN_RISE_K = 0.1
+D_FLUCTUATION_M = 1e-6  # [m] D's counterpart of FLUCTUATION_K (module docstring)
+D_MIN_RISE_M = 0.2e-6  # [m] D's counterpart of MIN_RISE_K
 
 
 def equilibrium_time(times: np.ndarray, series: dict[str, np.ndarray], initial: dict[str, float],
-                     steady: dict[str, float]) -> float | None:
-    """First time [s] at which every series meets both criteria (see module docstring)."""
+                     steady: dict[str, float], *, fluctuation: float = FLUCTUATION_K,
+                     min_rise: float = MIN_RISE_K) -> float | None:
+    """First time [s] at which every series meets both criteria (see module docstring).
+
+    ``fluctuation`` and ``min_rise`` are in the series' unit (K for temperatures, m for D).
+    """
     times = np.asarray(times, dtype=float)
     if times.size == 0:
         return None
@@ -34,12 +46,27 @@ def equilibrium_time(times: np.ndarray, series: dict[str, np.ndarray], initial: 
     for name, values in series.items():
         values = np.asarray(values, dtype=float)
         rise_steady = steady[name] - initial[name]
-        if abs(rise_steady) >= MIN_RISE_K:
+        if abs(rise_steady) >= min_rise:
             ok &= (values - initial[name]) / rise_steady >= RISE_FRACTION
-        ok &= _trailing_range(times, values) < FLUCTUATION_K
+        ok &= _trailing_range(times, values) < fluctuation
     ok &= times >= times[0] + WINDOW_S
     hits = np.nonzero(ok)[0]
     return float(times[hits[0]]) if hits.size else None
+
+
+def equilibrium_times(times: np.ndarray, sensors: dict[str, np.ndarray], elongation: np.ndarray,
+                      initial: dict[str, float], steady: dict[str, float],
+                      elongation_key: str) -> dict[str, float | None]:
+    """The equilibrium time [s] of each sensor on its own, and of D (under ``elongation_key``).
+
+    ``sensors`` are cycle-averaged temperatures [K], ``elongation`` the cycle-averaged D [m];
+    ``initial`` and ``steady`` hold both, D under ``elongation_key``.  None where the run ends first.
+    """
+    out: dict[str, float | None] = {name: equilibrium_time(times, {name: values}, initial, steady)
+                                    for name, values in sensors.items()}
+    out[elongation_key] = equilibrium_time(times, {elongation_key: elongation}, initial, steady,
+                                           fluctuation=D_FLUCTUATION_M, min_rise=D_MIN_RISE_M)
+    return out
 
 
 def _trailing_range(times: np.ndarray, values: np.ndarray) -> np.ndarray:

@@ -16,7 +16,7 @@ from ..models.integrator import Integrator, Segment, Trace
 from ..system.geometry import nut_centre_x
 from ..system.schema import FeedSystem
 from . import EnergyBalance, Solution
-from .equilibrium import equilibrium_time
+from .equilibrium import equilibrium_time, equilibrium_times
 from .fields import field_series
 
 
@@ -63,6 +63,8 @@ def pack_solution(system: FeedSystem, integrator: Integrator, segments: list[Seg
     in_cycle = times >= times[0] + window - 1e-9
     cycle_sensors = {n: cycle_values[in_cycle, names.index(n)] for n in sensor_names}
     t_eq = equilibrium_time(times[in_cycle], cycle_sensors, initial, steady)
+    t_eq_each = equilibrium_times(times[in_cycle], cycle_sensors, cycle_values[in_cycle, d_index], initial, steady,
+                                  ELONGATION_PROBE)
     sensors = {n: samples[:, names.index(n)] for n in sensor_names}
     ambient = system.room.ambient_sensor
     sensors[ambient] = np.array([ambient_at(segments, t) for t in times])
@@ -108,6 +110,7 @@ def pack_solution(system: FeedSystem, integrator: Integrator, segments: list[Seg
         energy=energy,
         info=info,
         fields=fields,
+        equilibrium_times=t_eq_each,
     )
 
 

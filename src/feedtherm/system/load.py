@@ -19,6 +19,7 @@ from pydantic import BaseModel, ValidationError
 
 from ..benches import ORIGIN_PREFIX, bench, bench_names, suggestion
 from ..errors import DescriptionError
+from .areas import with_joint_areas
 from .schema import FeedSystem
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -32,6 +33,7 @@ class LoadedSystem:
     system: FeedSystem
     origin: str  # file path or "bundled:<bench name>"
     sha256: str  # of the resolved description (canonical JSON of the validated data)
+    derived_joint_areas: tuple[int, ...] = ()  # joints whose area the geometry gave (none was stated)
     overlay: "Overlay | None" = None  # printed values its runs lay over the physics (system/overlay.py)
 
 
@@ -95,8 +97,12 @@ def validate_data(data: dict, origin: str) -> LoadedSystem:
         system = FeedSystem.model_validate(data)
     except ValidationError as exc:
         raise DescriptionError(f"{origin}: {describe_error(exc)}") from None
+    try:
+        system, derived = with_joint_areas(system)
+    except ValueError as exc:
+        raise DescriptionError(f"{origin}: {exc}") from None
     canonical = json.dumps(system.model_dump(mode="json"), sort_keys=True, separators=(",", ":"))
-    return LoadedSystem(system, origin, hashlib.sha256(canonical.encode()).hexdigest())
+    return LoadedSystem(system, origin, hashlib.sha256(canonical.encode()).hexdigest(), tuple(derived))
 
 
 #: Sections that descriptions of earlier versions had, and what replaced them.
@@ -125,6 +131,12 @@ def describe_error(exc: ValidationError) -> str:
         return f"unknown key {key!r}{where}{suggestion}"
     if kind == "missing":
         return f"{path}: missing (required)"
+    if kind == "literal_error":  # pydantic's "Input should be ..." does not say what was given
+        return f"{path}: {error['input']!r} is not allowed; allowed values: {error['ctx']['expected']}"
+    if kind == "union_tag_invalid":
+        key = error["ctx"]["discriminator"].strip("'")
+        return (f"{_dotted([*loc, key])}: {error['ctx']['tag']!r} is not allowed; "
+                f"allowed values: {error['ctx']['expected_tags']}")
     if message.startswith("Value error, "):
         message = message[len("Value error, "):]
     if not path:  # cross-reference errors carry their own path

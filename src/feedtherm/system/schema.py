@@ -122,12 +122,14 @@ class Joint(Strict):
     """Contact between two parts: thermal conductance = area / tcr; mechanically a tie.
 
     ``release`` lists the machine axes along which the joint does not hold its parts together
-    (a floating bearing, a guide carriage: ``["x"]``); the other axes are tied.
+    (a floating bearing, a guide carriage: ``["x"]``); the other axes are tied.  ``area`` left
+    out is the contact area of the drawn geometry, filled in when the description is loaded
+    (:func:`feedtherm.system.areas.with_joint_areas`).
     """
 
     between: tuple[str, str]
     tcr: PosContactResistance
-    area: PosArea
+    area: PosArea | None = None
     sliding: bool = False  # the contact travels with the table (nut-screw, slider-rail)
     release: list[Axis] = []
     description: str = ""

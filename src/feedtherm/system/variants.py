@@ -17,6 +17,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from ..errors import DescriptionError
+from .areas import with_joint_areas
 from .load import LoadedSystem, describe_error
 from .quantities import SIUnit
 from .schema import Condition, FeedSystem
@@ -112,9 +113,18 @@ def with_values(loaded: LoadedSystem, changes: dict[str, Any], origin_suffix: st
         except (KeyError, IndexError, AttributeError, TypeError):
             raise DescriptionError(f"{path}: no such value in {loaded.origin}") from None
         system = _set(system, split_path(path), value)
+    # A joint area the geometry gave follows a change of the geometry; one set here is stated.
+    derived = tuple(i for i in loaded.derived_joint_areas
+                    if not any(path in ("joints", f"joints[{i}]", f"joints[{i}].area") for path in changes))
+    if derived and any(path == "parts" or path.startswith(("parts.", "parts[")) for path in changes):
+        joints = [j.model_copy(update={"area": None}) if i in derived else j for i, j in enumerate(system.joints)]
+        try:
+            system, _ = with_joint_areas(system.model_copy(update={"joints": joints}))
+        except ValueError as exc:
+            raise DescriptionError(f"{loaded.origin} ({origin_suffix}): {exc}") from None
     canonical = json.dumps(system.model_dump(mode="json"), sort_keys=True, separators=(",", ":"))
     return replace(loaded, system=system, origin=f"{loaded.origin} ({origin_suffix})",
-                   sha256=hashlib.sha256(canonical.encode()).hexdigest())
+                   sha256=hashlib.sha256(canonical.encode()).hexdigest(), derived_joint_areas=derived)
 
 
 def with_condition(loaded: LoadedSystem, name: str, screw_rpm: float, nut_rpm: float, ambient_c: float,

@@ -370,3 +370,11 @@ def test_summary_line_names_the_directory_and_final_values(solution, tmp_path):
     assert "T6" not in line  # the ambient is an input, not a result
     assert f"D {solution.final['D'] * 1e6:.2f} µm" in line
     assert "energy balance error 0.1 %" in line
+
+
+def test_summary_and_line_give_each_quantitys_equilibrium_time(tmp_path):
+    each = {"T2": 3000.0, "T1": None, "T6": None, "D": 4080.0}  # T6, the ambient, is left out
+    solution = dataclasses.replace(make_solution(), equilibrium_times=each)
+    assert run_summary(solution)["equilibrium_time_s_by_quantity"] == {"T1": None, "T2": 3000.0, "D": 4080.0}
+    line = run_files.equilibrium_line(solution)
+    assert "T1 not reached, T2 50 min, D 68 min" in line and "\n" not in line

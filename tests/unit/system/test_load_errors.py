@@ -112,3 +112,26 @@ def test_unknown_key_inside_a_tagged_source_suggests_from_that_source_type(tmp_p
     message = load_error(spec)
     assert "unknown key 'eficiency' in sources.screw_motor" in message
     assert "did you mean 'efficiency'" in message
+
+
+@pytest.mark.parametrize(
+    "old, new, fragments",
+    [
+        ('reversal = "both_reverse"', 'reversal = "nut_only"',
+         ["kinematics.reversal: 'nut_only' is not allowed", "allowed values: 'both_reverse'"]),
+        ('kind = "natural", orientation = "vertical_plate", length = "18 mm"',
+         'kind = "natural", orientation = "vertical", length = "18 mm"',
+         ["convection.orientation: 'vertical' is not allowed", "'horizontal_cylinder', 'vertical_plate', "
+          "'horizontal_plate_up' or 'horizontal_plate_down'"]),
+        ('faces = ["lateral"]', 'faces = ["side"]',
+         ["faces[0]: 'side' is not allowed", "'+x', '-x', '+y', '-y', '+z', '-z', 'lateral', 'ends' or 'bore'"]),
+        ('kind = "natural", orientation = "vertical_plate", length = "18 mm"',
+         'kind = "forced", orientation = "vertical_plate", length = "18 mm"',
+         ["convection.kind: 'forced' is not allowed", "'natural', 'rotating', 'moving_plate', 'moving_face', 'fixed'"]),
+    ],
+    ids=["reversal", "orientation", "faces", "convection kind"],
+)
+def test_a_value_outside_a_list_names_the_allowed_values(tmp_path, old, new, fragments):
+    message = load_error(write_variant(tmp_path, old, new))
+    for fragment in fragments:
+        assert fragment in message, message

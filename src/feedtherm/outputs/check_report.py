@@ -1,0 +1,58 @@
+"""The lines `feedtherm check` adds after its verdict: derived areas and what runs will cost."""
+
+from __future__ import annotations
+
+from ..plan import AVERAGED_MOTION_MAX_CYCLE_S, RunCost
+from ..system.areas import exposed_area
+from ..system.geometry import surface_area
+from ..system.load import LoadedSystem
+
+
+def area_lines(loaded: LoadedSystem) -> list[str]:
+    """The joints' areas the geometry gave, and the surfaces whose exposed area is less than their faces'."""
+    system = loaded.system
+    lines = []
+    for index in loaded.derived_joint_areas:
+        joint = system.joints[index]
+        lines.append(f"  joints[{index}] {' – '.join(joint.between)}: {joint.area:.4g} m² of contact")
+    for name, surface in system.surfaces.items():
+        if surface.area is not None:
+            continue
+        faces = surface_area(surface, system.parts[surface.part])
+        exposed = exposed_area(system, name)
+        if exposed < faces * (1.0 - 1e-9):
+            lines.append(f"  surfaces.{name}: {exposed:.4g} m² exposed of {faces:.4g} m² of faces "
+                         f"({100.0 * (faces - exposed) / faces:.0f} % covered by joined or fused parts)")
+    if not lines:
+        return []
+    return ["areas derived from the geometry (as drawn, the moving group mid-stroke; give `area` to override):",
+            *lines]
+
+
+def _duration(seconds: float) -> str:
+    if seconds < 60.0:
+        return f"{seconds:.2g} s" if seconds < 10.0 else f"{seconds:.0f} s"
+    if seconds < 3600.0:
+        return f"{seconds / 60.0:.1f} min"
+    return f"{seconds / 3600.0:.1f} h"
+
+
+def cost_lines(what: str, duration: float, cost: RunCost) -> list[str]:
+    """Planned steps and estimated wall time per model of one condition or duty cycle, and when
+    the cycle-averaged motion is advised."""
+    lines = [f"run cost of {what} ({_duration(duration)} simulated):"]
+    for motion, steps in cost.steps.items():
+        times = ", ".join(f"{model}{'' if mesh is None else ' ' + mesh} {_duration(by_motion[motion])}"
+                          for (model, mesh), by_motion in cost.seconds.items())
+        lines.append(f"  --motion {motion}: {steps:,} steps; about {times}")
+    if cost.suggest_averaged:
+        ratio = cost.steps["resolved"] / max(cost.steps["averaged"], 1)
+        lines.append(f"  the reciprocation cycle ({cost.cycle_s:.3g} s) is under {AVERAGED_MOTION_MAX_CYCLE_S:g} s: "
+                     f"--motion averaged gives the same cycle means within about 0.04 K in 1/{ratio:.0f} of the steps")
+    return lines
+
+
+#: How the times above are estimated, printed once under them.
+BASIS = ("estimated times: the planned steps × each model's measured wall time per step on a 2-core x86-64 "
+         "machine, for a bench the size of the bundled ones (feedtherm.plan.SECONDS_PER_STEP); FE and reduced "
+         "runs add their set-up (mesh, contacts; the reduced model's basis once per mesh)")
