@@ -23,6 +23,7 @@ from ..analysis.calibration import SERIES_STEP_S, CalibrationResult, Prediction
 from ..analysis.transient_scores import TransientComparison
 from ..errors import FeedthermError
 from ..system.load import LoadedSystem, read_text
+from ..system.overlay import overlay_spec
 from ..system.quantities import registry
 from ..system.variants import expand_path, split_path
 from .files import read_study_summary, staged_directory, write_json
