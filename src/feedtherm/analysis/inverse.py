@@ -393,9 +393,10 @@ def infer_conditions(loaded: LoadedSystem, data: MeasurementSet, conditions: lis
                                  f"measured: {', '.join(measured)}")
     grouping = parse_groups(groups, list(loaded.system.sources))
     ambient = loaded.system.room.ambient_sensor
+    observed = {c: _observed_series(data, c, ambient) for c in conditions}  # a bad series fails before any run
     out = []
     for c in conditions:
-        series = _observed_series(data, c, ambient)
+        series = observed[c]
         if series:  # every sample, each with its declared uncertainty (NaN: the uniform noise)
             response = transient_transfer(loaded, c, grouping, {n: t for n, (t, _, _) in series.items()}, model=model)
             values = np.concatenate([v for _, v, _ in series.values()])

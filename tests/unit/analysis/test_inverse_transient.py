@@ -13,6 +13,7 @@ from feedtherm.analysis.inverse import Noise, infer_conditions, parse_groups, tr
 from feedtherm.analysis.measurements import read_measurements
 from feedtherm.benches import bench
 from feedtherm.boundary import boundary_conditions
+from feedtherm.errors import FeedthermError
 from feedtherm.models.options import ModelOptions
 from feedtherm.simulate import simulate
 from feedtherm.system.load import load_system
@@ -81,3 +82,19 @@ def test_a_changed_heat_is_recovered_from_the_series_each_sample_weighted_by_its
     for e in result.estimates:  # the others the data resolve are found too
         if e.resolution > 0.5:
             assert e.low <= heats[e.group].power <= e.high, e
+
+
+def test_a_zero_uncertainty_fails_in_one_line_before_any_run(short, tmp_path, monkeypatch):
+    def no_runs(*args, **kwargs):
+        raise AssertionError("a run started")
+
+    monkeypatch.setattr("feedtherm.analysis.inverse.transient_transfer", no_runs)
+    monkeypatch.setattr("feedtherm.analysis.inverse.transfer", no_runs)
+    path = tmp_path / "zero.csv"
+    path.write_text("condition,time [min],quantity,value,unit,uncertainty\nv10,0,T1,20.0,degC,0.1\n"
+                    "v10,10,T1,21.0,degC,0\nv5,0,T1,20.0,degC,0.1\n")
+    data = read_measurements(str(path), sensors=list(short.system.sensors))
+    with pytest.raises(FeedthermError) as failure:
+        infer_conditions(short, data, ["v5", "v10"], noise=Noise(0.5, 2e-6))
+    message = str(failure.value)
+    assert "\n" not in message and str(path) in message and "v10 T1" in message and "600 s is 0" in message
