@@ -10,10 +10,10 @@ import pytest
 from rich.console import Console
 
 from feedtherm.analysis import calibration
-from feedtherm.analysis.calibration import RunCache, calibrate, series_key
+from feedtherm.analysis.calibration import RunCache, calibrate, cross_validate, series_key
 from feedtherm.analysis.measurements import read_measurements
 from feedtherm.errors import FeedthermError
-from feedtherm.outputs.calibration_files import calibration_summary, print_calibration
+from feedtherm.outputs.calibration_files import calibration_summary, cross_summary, print_calibration
 from feedtherm.system.variants import get_path, with_values
 
 PRELOAD, CHTC = "sources.screw_nut.preload", "surfaces.screw_shaft.chtc_factor"
@@ -164,3 +164,21 @@ def test_a_zero_uncertainty_fails_in_one_line_before_any_run(paper, runs, tmp_pa
     message = str(failure.value)
     assert "\n" not in message and "series.csv" in message and "I T1" in message and "600 s is 0" in message
     assert runs == []
+
+
+def test_cross_validation_scores_each_left_out_series(paper, runs, tmp_path):
+    truth = with_values(paper, {PRELOAD: 200.0, CHTC: 1.3})
+    rows = []
+    for c in GAINS:
+        clean = fake_transient(truth, c, np.arange(0.0, 3601.0, 600.0))
+        rows += [(c, m, q, float(v), 0.2) for q in SENSORS for m, v in zip(range(0, 61, 10), clean[q])]
+    data = write_series(tmp_path / "series.csv", rows)
+    cache = RunCache()
+    result = calibrate(paper, data, list(GAINS), ["screw_nut_preload"], equilibrium=False, cache=cache)
+    assert result.series_held_out == [] and result.series_conditions == list(GAINS)
+    folds = cross_validate(paper, data, ["screw_nut_preload"], equilibrium=False, start=result.fitted, cache=cache)
+    summary = cross_summary(folds)["held_out_series"]
+    assert sorted({(s["left_out"], s["condition"]) for s in summary}) == [(c, c) for c in sorted(GAINS)]
+    assert all(s["samples"] == 7 and s["weights"] == "declared uncertainties" for s in summary)
+    # one parameter cannot follow the CHTC's 1.3 instead of the description's 1: the folds miss
+    assert max(s["rms_deviation"] for s in summary) > 0.05
