@@ -521,6 +521,9 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
 
     ``consistency``: values it flags are left out of the fit (and reported with their reason).
     ``equilibrium``: also fit the stated equilibrium times of the fitted conditions.
+    Where ``data`` holds time series, every sample of a fitted condition's series is a residual,
+    over its own uncertainty where the file gives one (see the module's docstring); the result's
+    ``series_fit`` and ``series_held_out`` score each series against its run.
     ``start``: the parameter values to start from (default: the description's, clipped to the bounds).
     ``execution``: where the runs of one evaluation go, side by side (:mod:`.execution`; serial by
     default; pass one kept open, :func:`~feedtherm.analysis.execution.kept_open`, to start a
