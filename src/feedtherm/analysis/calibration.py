@@ -32,7 +32,6 @@ through the model's sensitivities, plus the measurement's own scatter), and
 from __future__ import annotations
 
 import contextlib
-import hashlib
 import math
 import re
 import time
@@ -217,13 +216,16 @@ SERIES_OPTIONS = ModelOptions(motion="averaged", averaged_step=SERIES_STEP_S, ma
 
 
 def series_key(quantity: str) -> tuple[str, str]:
-    """Where a run's values hold its series of ``quantity`` at the measured times (a tuple, so that
-    it cannot be taken for a quantity's name)."""
+    """Where a run's values hold its series of ``quantity`` (a tuple, so that it cannot be taken
+    for a quantity's name)."""
     return ("series", quantity)
 
 
-def _final_values(loaded: LoadedSystem, condition: str,
-                  times: Mapping[str, Sequence[float]] | None = None) -> dict:
+#: Where a run's values hold the times [s] of its series.
+SERIES_TIMES = ("series times",)
+
+
+def _final_values(loaded: LoadedSystem, condition: str, series: Sequence[str] | None = None) -> dict:
     """One condition's final values, its time to 95 % of the steady rise [min] and its series.
 
     Parameters
@@ -232,31 +234,31 @@ def _final_values(loaded: LoadedSystem, condition: str,
         The description (with the parameters applied) and the overlay it runs in.
     condition : str
         The condition to run over its duration.
-    times : mapping of str to sequence of float, optional
-        Measured quantity (a sensor, or ``D_um``) → sample times [s]: the run is stepped every
-        :data:`SERIES_STEP_S` and interpolated linearly to those times, its values under
-        :func:`series_key` (°C or µm).  Without it the run takes 60 s steps and returns finals only.
+    series : sequence of str, optional
+        Measured quantities (sensors, or ``D_um``) whose series to return: the run is then
+        stepped and sampled every :data:`SERIES_STEP_S`.  Without it the run takes 60 s steps and
+        returns finals only.
 
     Returns
     -------
     dict
-        Quantity → final value (°C, µm), :data:`EQUILIBRIUM_QUANTITY` → minutes, and
-        ``series_key(quantity)`` → ndarray for each quantity of ``times``.
+        Quantity → final value (°C, µm), :data:`EQUILIBRIUM_QUANTITY` → minutes and, for each
+        quantity of ``series``, ``series_key(quantity)`` → the run's series (°C, µm) at the times
+        under :data:`SERIES_TIMES` [s].  The series stay on the run's own samples, so what a run
+        returns and the cache holds grows with the run's duration, not with the number of
+        measured samples; the fit interpolates them to the measured times.
     """
-    step, options = (SERIES_STEP_S, SERIES_OPTIONS) if times else (CALIBRATION_STEP_S, CALIBRATION_OPTIONS)
+    step, options = (SERIES_STEP_S, SERIES_OPTIONS) if series else (CALIBRATION_STEP_S, CALIBRATION_OPTIONS)
     run = simulate(loaded, condition=condition, motion="averaged", options=options,
                    sample_interval=step, allow_overload=True)  # the fit reports overloads
     values: dict = {k: float(v) for k, v in run.summary_values("final").items()}
-    initial = {name: float(series[0]) for name, series in run.sensors.items()}
+    initial = {name: float(trace[0]) for name, trace in run.sensors.items()}
     sensors = {n: v for n, v in run.cycle_sensors.items() if n in initial}
     values[EQUILIBRIUM_QUANTITY] = rise_time(run.cycle_times, sensors, initial, run.steady) / 60.0
-    end = float(run.times[-1])
-    for quantity, at in (times or {}).items():
-        at = np.asarray(at, dtype=float)
-        if at[-1] > end * (1 + 1e-9):  # np.interp would hold the last value silently
-            raise FeedthermError(f"condition {condition}: the measured {quantity} ends at {at[-1]:g} s, "
-                                 f"after the run ({end:g} s)")
-        values[series_key(quantity)] = np.interp(at, run.times, simulated_series(run, quantity))
+    if series:
+        values[SERIES_TIMES] = np.array(run.times, dtype=float)
+        for quantity in series:
+            values[series_key(quantity)] = np.array(simulated_series(run, quantity), dtype=float)
     return values
 
 
@@ -266,9 +268,7 @@ class _CalibrationRun:
 
     loaded: LoadedSystem  # with the overlay the fit runs in
     condition: str
-    # (quantity, sample times [s]) of each measured series of the condition: plain tuples, so the
-    # request pickles to a worker and hashes like the rest
-    times: tuple[tuple[str, tuple[float, ...]], ...] = ()
+    series: tuple[str, ...] = ()  # the measured quantities whose series the run returns
 
     def describe(self) -> str:
         return f"condition {self.condition} of {self.loaded.origin}"
@@ -276,8 +276,8 @@ class _CalibrationRun:
 
 def _calibration_run(run: _CalibrationRun) -> dict:
     """One run, wherever it executes (a worker imports this by name)."""
-    if run.times:
-        return _final_values(run.loaded, run.condition, dict(run.times))
+    if run.series:
+        return _final_values(run.loaded, run.condition, run.series)
     return _final_values(run.loaded, run.condition)
 
 
@@ -324,19 +324,16 @@ class _Model:
     (:func:`~feedtherm.analysis.execution.kept_open`) to share it between calibrations.
     ``workers`` > 1 without ``execution`` is a local cluster of that many processes.  The values
     are the same wherever the runs go.  ``cache`` keeps every run's values for later requests of
-    the same point.  ``series_times``: condition → measured quantity → sample times [s]; those
-    conditions' runs also return their series at those times (:func:`_final_values`), and their
-    cache keys name the times, so a cache shared with other measurements never answers for them.
+    the same point.  ``series``: condition → the measured quantities whose series its runs also
+    return (:func:`_final_values`, in 10 s steps); their cache keys name them, so a finals-only
+    request never gets a series run's values, nor the reverse.
     """
 
     def __init__(self, loaded: LoadedSystem, parameters: list[FitParameter], workers: int = 1,
                  cache: RunCache | None = None, execution: Execution | None = None,
-                 series_times: Mapping[str, Mapping[str, Sequence[float]]] | None = None):
+                 series: Mapping[str, Sequence[str]] | None = None):
         self.loaded, self.parameters = loaded, parameters
-        self.series_times = {c: tuple((q, tuple(float(t) for t in times)) for q, times in by_quantity.items())
-                             for c, by_quantity in (series_times or {}).items() if by_quantity}
-        self._series_tags = {c: hashlib.sha256(repr(times).encode()).hexdigest()[:16]
-                             for c, times in self.series_times.items()}
+        self.series = {c: tuple(sorted(quantities)) for c, quantities in (series or {}).items() if quantities}
         self.runs = 0
         if execution is None:
             execution = Execution(workers=workers) if workers > 1 else Execution()
@@ -357,8 +354,8 @@ class _Model:
         # differs from itself in the last bit
         names = tuple(p.name for p in self.parameters)
         key = (mode_of(self.loaded), condition, names, tuple(float(f"{float(v):.12g}") for v in x))
-        tag = self._series_tags.get(condition)
-        return key if tag is None else (*key, tag)  # a finals-only run keys as it always did
+        quantities = self.series.get(condition)
+        return key if quantities is None else (*key, quantities)  # a finals-only run keys as it always did
 
     def finals(self, x, conditions: list[str]) -> dict[str, dict[str, float]]:
         return self.finals_many([x], conditions)[0]
@@ -371,7 +368,7 @@ class _Model:
         if missing:
             variants = {i: apply(self.loaded, self.parameters, points[i]) for i in {i for i, _ in missing}}
             self.runs += len(missing)
-            runs = [_CalibrationRun(variants[i], c, self.series_times.get(c, ())) for i, c in missing]
+            runs = [_CalibrationRun(variants[i], c, self.series.get(c, ())) for i, c in missing]
             if self.execution.serial or len(runs) == 1:
                 values = [_calibration_run(run) for run in runs]
             else:
@@ -436,13 +433,18 @@ def _data(data: MeasurementSet, conditions: list[str], consistency: ConsistencyR
 
 
 def _simulated(values: dict, r: _Datum):
-    """The run's counterpart of ``r``: its series at the measured times, or its final value."""
-    return values[series_key(r.quantity)] if r.series is not None else values[r.quantity]
+    """The run's counterpart of ``r``: its series interpolated linearly to the measured times
+    (as ``validate`` scores a series), or its final value."""
+    if r.series is None:
+        return values[r.quantity]
+    return np.interp(r.series.times, values[SERIES_TIMES], values[series_key(r.quantity)])
 
 
 def _point(values: dict, r: _Datum) -> float:
     """The run's counterpart of ``r``'s final value: at a series' last sample time, or the run's final value."""
-    return float(values[series_key(r.quantity)][-1]) if r.series is not None else values[r.quantity]
+    if r.series is None:
+        return values[r.quantity]
+    return float(np.interp(r.series.times[-1], values[SERIES_TIMES], values[series_key(r.quantity)]))
 
 
 def _weights(loaded: LoadedSystem, r: _Datum) -> np.ndarray:
@@ -460,18 +462,19 @@ def _point_sigma(loaded: LoadedSystem, r: _Datum) -> float:
     return float(_weights(loaded, r)[-1])
 
 
-def _series_times(rows: list[_Datum]) -> dict[str, dict[str, np.ndarray]]:
-    """Condition → quantity → sample times [s] of every measured series among ``rows``."""
-    out: dict[str, dict[str, np.ndarray]] = {}
+def _series_quantities(rows: list[_Datum]) -> dict[str, list[str]]:
+    """Condition → the quantities measured as series among ``rows``."""
+    out: dict[str, list[str]] = {}
     for r in rows:
         if r.series is not None:
-            out.setdefault(r.condition, {})[r.quantity] = r.series.times
+            out.setdefault(r.condition, []).append(r.quantity)
     return out
 
 
 def _check_series(loaded: LoadedSystem, rows: list[_Datum], source: str) -> None:
-    """A series the fit cannot use fails before any run: one that outlasts its condition's run,
-    or a sample whose uncertainty is 0 (its residual would weigh infinitely)."""
+    """A series the fit cannot use fails before any run: one that outlasts its condition's run
+    (interpolation would hold the run's last value), or a sample whose uncertainty is 0 (its
+    residual would weigh infinitely)."""
     for r in rows:
         if r.series is None:
             continue
@@ -552,7 +555,7 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
                              for r in rows]) if rows else np.zeros(0)
     if len(target) < len(parameters):
         raise FeedthermError(f"--fit: {len(target)} measured values cannot determine {len(parameters)} parameters")
-    with _Model(loaded, parameters, workers, cache, execution, series_times=_series_times(every)) as model:
+    with _Model(loaded, parameters, workers, cache, execution, series=_series_quantities(every)) as model:
         lower = np.array([p.lower for p in parameters])
         upper = np.array([p.upper for p in parameters])
         span = upper - lower

@@ -35,16 +35,19 @@ def fake_transient(loaded, condition: str, t: np.ndarray) -> dict[str, np.ndarra
 
 @pytest.fixture
 def runs(monkeypatch):
-    """The fake model in place of the thermal model; the list of (condition, times asked for)."""
+    """The fake model in place of the thermal model; the list of (condition, series asked for)."""
     made = []
 
-    def run(loaded, condition, times=None):
-        made.append((condition, times))
+    def run(loaded, condition, series=None):
+        made.append((condition, series))
         end = float(loaded.system.conditions[condition].duration)
         values = {q: float(v[0]) for q, v in fake_transient(loaded, condition, np.array([end])).items()}
         values[calibration.EQUILIBRIUM_QUANTITY] = 30.0
-        for quantity, at in (times or {}).items():
-            values[series_key(quantity)] = fake_transient(loaded, condition, np.asarray(at))[quantity]
+        if series:  # on a 10 s grid, as the model's runs: every measured time below lies on it
+            grid = np.arange(0.0, end + 1.0, 10.0)
+            values[calibration.SERIES_TIMES] = grid
+            for quantity in series:
+                values[series_key(quantity)] = fake_transient(loaded, condition, grid)[quantity]
         return values
 
     monkeypatch.setattr(calibration, "_final_values", run)
@@ -81,9 +84,8 @@ def test_each_sample_is_weighted_by_its_own_uncertainty_else_by_the_descriptions
     assert result.fitted[0] == pytest.approx(expected, abs=0.05)
     cost = 0.5 * np.sum(((expected * gain - rise) / sigma) ** 2)
     assert result.cost == pytest.approx(cost, rel=1e-4)
-    # every run of a fitted series was asked for the measured times (in seconds)
-    assert runs and all(times is not None and list(times) == SENSORS for _, times in runs)
-    np.testing.assert_allclose(runs[0][1]["T1"], [600.0, 1200.0])
+    # every run of a fitted series was asked for the measured quantities' series
+    assert runs and all(list(series) == SENSORS for _, series in runs)
 
     scores = {s.quantity: s for s in result.series_fit}
     assert result.series_conditions == ["I"] and set(scores) == set(SENSORS)
@@ -140,15 +142,15 @@ def test_a_finals_file_runs_as_before_and_matches_a_series_of_its_final_samples(
     finals = read_measurements(str(tmp_path / "finals.csv"), sensors=SENSORS)
     from_finals = calibrate(paper, finals, ["I"], ["screw_nut_preload", "chtc_screw"], equilibrium=False,
                             cache=RunCache())
-    # the finals take today's runs: no times asked for, no series scored or written
-    assert runs and all(times is None for _, times in runs)
+    # the finals take today's runs: no series asked for, none scored or written
+    assert runs and all(series is None for _, series in runs)
     assert from_finals.series_fit == [] and from_finals.series_held_out == []
     assert "series" not in calibration_summary(from_finals)
 
     runs.clear()
     one_sample = write_series(tmp_path / "series.csv", series_rows, uncertainty=False)
     from_series = calibrate(paper, one_sample, ["I"], ["screw_nut_preload", "chtc_screw"], equilibrium=False)
-    assert all(times is not None for _, times in runs)
+    assert all(series for _, series in runs)
     np.testing.assert_allclose(from_series.fitted, from_finals.fitted, rtol=1e-9)
     assert from_series.cost == pytest.approx(from_finals.cost, rel=1e-9)
     for a, b in zip(from_series.held_out, from_finals.held_out):
