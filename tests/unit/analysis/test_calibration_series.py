@@ -184,3 +184,21 @@ def test_cross_validation_scores_each_left_out_series(paper, runs, tmp_path):
     assert all(s["samples"] == 7 and s["weights"] == "declared uncertainties" for s in summary)
     # one parameter cannot follow the CHTC's 1.3 instead of the description's 1: the folds miss
     assert max(s["rms_deviation"] for s in summary) > 0.05
+
+
+def test_a_series_request_keys_and_travels_apart_from_a_finals_request(paper, runs):
+    import pickle
+
+    params = calibration.resolve_parameters(paper, ["screw_nut_preload"])
+    x = np.array([200.0])
+    with calibration._Model(paper, params, cache=RunCache(), series={"I": ["T2", "T1"]}) as model:
+        finals_key, series_key_ = model._key(x, "II"), model._key(x, "I")
+        assert len(finals_key) == 4  # as before: mode, condition, parameters, values
+        assert series_key_[4] == ("T1", "T2") and series_key_[:4] == (finals_key[0], "I", *finals_key[2:])
+        values = model.finals(x, ["I", "II"])
+    assert runs == [("I", ("T1", "T2")), ("II", None)]
+    assert calibration.SERIES_TIMES in values["I"] and calibration.SERIES_TIMES not in values["II"]
+    # what a Dask worker receives and runs: the request pickles whole, quantities included
+    request = pickle.loads(pickle.dumps(calibration._CalibrationRun(paper, "I", ("T1",))))
+    assert request.series == ("T1",)
+    assert set(calibration._calibration_run(request)) >= {series_key("T1"), calibration.SERIES_TIMES}
