@@ -259,7 +259,7 @@ def _series_table(rows: list[TransientComparison], title: str) -> Table:
         table.add_column(column)
     for s in rows:
         unit = UNIT_SYMBOLS[s.unit]
-        table.add_row(s.condition, s.quantity, str(len(s.times)), "own σ" if s.uncertainty is not None else "sigma",
+        table.add_row(s.condition, s.quantity, str(len(s.times)), "own σ" if s.uncertainty is not None else "description's σ",
                       f"{s.rms:.2f} {unit}", f"{s.max_abs:.2f} {unit}", f"{s.time_of_max / 60:.0f} min",
                       f"{s.mean:+.2f}")
     return table

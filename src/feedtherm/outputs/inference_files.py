@@ -10,10 +10,9 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
+import numpy as np
 from rich.console import Console
 from rich.table import Table
-
-import numpy as np
 
 from ..analysis.inverse import RESOLVED, TRANSIENT_STEP_S, Inference
 from ..constants import ELONGATION_PROBE, KELVIN_OFFSET
