@@ -9,6 +9,13 @@ too (the transient information; weight ``equilibrium_sigma``).  Each model evalu
 transient run of the fast model with the cycle-averaged motion (60 s steps, see
 ``CALIBRATION_OPTIONS``).
 
+Where a condition's measurements are time series (:mod:`.measurement_series`), every sample is a
+residual instead of the final value: the run, in 10 s steps (``SERIES_OPTIONS``), interpolated
+linearly to the measured times as ``validate`` does, minus the sample, over the sample's own
+standard uncertainty where the file gives one, else over the declared weight of its kind.
+Every sample is used, however long the series: the cost of a fit is in its runs (one per
+condition and point, whatever the number of samples), not in the residuals.
+
 Where a motor declares a continuous torque, the fit is held within it at every declared
 condition (their speeds, not their measurements) by a penalty residual (:data:`DUTY_LIMIT`);
 the cost and the standard errors are the data's.
@@ -29,7 +36,7 @@ import math
 import re
 import time
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 from scipy.optimize import least_squares, lsq_linear
@@ -48,7 +55,9 @@ from ..system.references import closest
 from ..system.variants import expand_path, get_path, with_values
 from .consistency import ConsistencyReport
 from .execution import Execution, TaskFailure, kept_open, run_ordered
+from .measurement_series import Series
 from .measurements import MeasurementSet
+from .transient_scores import TransientComparison, simulated_series
 from .validation_types import ELONGATION_QUANTITY
 
 #: The equilibrium time among the predicted quantities: time to 95 % of the steady rise [min].
@@ -128,6 +137,15 @@ class CalibrationResult:
     # condition -> motor -> torque over its declared continuous torque, at the fitted values (> 1:
     # the motor could not run there, so the fitted preloads are implausible)
     motor_duty: dict[str, dict[str, float]] = field(default_factory=dict)
+    # the measured series of the fitted conditions against the calibrated runs (their samples were
+    # the residuals), and those of the held-out conditions against their predictions
+    series_fit: list[TransientComparison] = field(default_factory=list)
+    series_held_out: list[TransientComparison] = field(default_factory=list)
+
+    @property
+    def series_conditions(self) -> list[str]:
+        """The fitted conditions whose residuals were series samples."""
+        return list(dict.fromkeys(s.condition for s in self.series_fit))
 
     def overloads(self) -> list[tuple[str, str, float]]:
         """(condition, motor, torque ratio) where the fitted machine needs more than a motor's rating."""
@@ -188,16 +206,59 @@ def apply(loaded: LoadedSystem, parameters: list[FitParameter], x) -> LoadedSyst
 CALIBRATION_STEP_S = 60.0
 CALIBRATION_OPTIONS = ModelOptions(motion="averaged", averaged_step=CALIBRATION_STEP_S,
                                    max_step=CALIBRATION_STEP_S)
+#: Time stepping of the runs of conditions fitted as series.  Implicit Euler lags a transient by
+#: about half a step: on ballscrew_example's v10 (tests/data/ballscrew_v10_series.csv) 60 s steps
+#: differ from 10 s steps by up to 0.16 K and 1.0 µm within the first 20 min, as much as the
+#: samples' own uncertainties (0.2 K, 1 µm), where the finals differ by hundredths.  10 s steps
+#: are what ``validate`` scores a series with; a run costs 1.3 to 2.5 times a 60 s one.
+SERIES_STEP_S = 10.0
+SERIES_OPTIONS = ModelOptions(motion="averaged", averaged_step=SERIES_STEP_S, max_step=SERIES_STEP_S)
 
 
-def _final_values(loaded: LoadedSystem, condition: str) -> dict[str, float]:
-    """One condition's final values and its time to 95 % of the steady rise [min]."""
-    run = simulate(loaded, condition=condition, motion="averaged", options=CALIBRATION_OPTIONS,
-                   sample_interval=CALIBRATION_STEP_S, allow_overload=True)  # the fit reports overloads
-    values = {k: float(v) for k, v in run.summary_values("final").items()}
-    initial = {name: float(series[0]) for name, series in run.sensors.items()}
+def series_key(quantity: str) -> tuple[str, str]:
+    """Where a run's values hold its series of ``quantity`` (a tuple, so that it cannot be taken
+    for a quantity's name)."""
+    return ("series", quantity)
+
+
+#: Where a run's values hold the times [s] of its series.
+SERIES_TIMES = ("series times",)
+
+
+def _final_values(loaded: LoadedSystem, condition: str, series: Sequence[str] | None = None) -> dict:
+    """One condition's final values, its time to 95 % of the steady rise [min] and its series.
+
+    Parameters
+    ----------
+    loaded : LoadedSystem
+        The description (with the parameters applied) and the overlay it runs in.
+    condition : str
+        The condition to run over its duration.
+    series : sequence of str, optional
+        Measured quantities (sensors, or ``D_um``) whose series to return: the run is then
+        stepped and sampled every :data:`SERIES_STEP_S`.  Without it the run takes 60 s steps and
+        returns finals only.
+
+    Returns
+    -------
+    dict
+        Quantity → final value (°C, µm), :data:`EQUILIBRIUM_QUANTITY` → minutes and, for each
+        quantity of ``series``, ``series_key(quantity)`` → the run's series (°C, µm) at the times
+        under :data:`SERIES_TIMES` [s].  The series stay on the run's own samples, so what a run
+        returns and the cache holds grows with the run's duration, not with the number of
+        measured samples; the fit interpolates them to the measured times.
+    """
+    step, options = (SERIES_STEP_S, SERIES_OPTIONS) if series else (CALIBRATION_STEP_S, CALIBRATION_OPTIONS)
+    run = simulate(loaded, condition=condition, motion="averaged", options=options,
+                   sample_interval=step, allow_overload=True)  # the fit reports overloads
+    values: dict = {k: float(v) for k, v in run.summary_values("final").items()}
+    initial = {name: float(trace[0]) for name, trace in run.sensors.items()}
     sensors = {n: v for n, v in run.cycle_sensors.items() if n in initial}
     values[EQUILIBRIUM_QUANTITY] = rise_time(run.cycle_times, sensors, initial, run.steady) / 60.0
+    if series:
+        values[SERIES_TIMES] = np.array(run.times, dtype=float)
+        for quantity in series:
+            values[series_key(quantity)] = np.array(simulated_series(run, quantity), dtype=float)
     return values
 
 
@@ -207,13 +268,16 @@ class _CalibrationRun:
 
     loaded: LoadedSystem  # with the overlay the fit runs in
     condition: str
+    series: tuple[str, ...] = ()  # the measured quantities whose series the run returns
 
     def describe(self) -> str:
         return f"condition {self.condition} of {self.loaded.origin}"
 
 
-def _calibration_run(run: _CalibrationRun) -> dict[str, float]:
+def _calibration_run(run: _CalibrationRun) -> dict:
     """One run, wherever it executes (a worker imports this by name)."""
+    if run.series:
+        return _final_values(run.loaded, run.condition, run.series)
     return _final_values(run.loaded, run.condition)
 
 
@@ -260,12 +324,16 @@ class _Model:
     (:func:`~feedtherm.analysis.execution.kept_open`) to share it between calibrations.
     ``workers`` > 1 without ``execution`` is a local cluster of that many processes.  The values
     are the same wherever the runs go.  ``cache`` keeps every run's values for later requests of
-    the same point.
+    the same point.  ``series``: condition → the measured quantities whose series its runs also
+    return (:func:`_final_values`, in 10 s steps); their cache keys name them, so a finals-only
+    request never gets a series run's values, nor the reverse.
     """
 
     def __init__(self, loaded: LoadedSystem, parameters: list[FitParameter], workers: int = 1,
-                 cache: RunCache | None = None, execution: Execution | None = None):
+                 cache: RunCache | None = None, execution: Execution | None = None,
+                 series: Mapping[str, Sequence[str]] | None = None):
         self.loaded, self.parameters = loaded, parameters
+        self.series = {c: tuple(sorted(quantities)) for c, quantities in (series or {}).items() if quantities}
         self.runs = 0
         if execution is None:
             execution = Execution(workers=workers) if workers > 1 else Execution()
@@ -285,7 +353,9 @@ class _Model:
         # 12 significant digits: a point that went through the fit's [0, 1] scaling and back
         # differs from itself in the last bit
         names = tuple(p.name for p in self.parameters)
-        return (mode_of(self.loaded), condition, names, tuple(float(f"{float(v):.12g}") for v in x))
+        key = (mode_of(self.loaded), condition, names, tuple(float(f"{float(v):.12g}") for v in x))
+        quantities = self.series.get(condition)
+        return key if quantities is None else (*key, quantities)  # a finals-only run keys as it always did
 
     def finals(self, x, conditions: list[str]) -> dict[str, dict[str, float]]:
         return self.finals_many([x], conditions)[0]
@@ -298,7 +368,7 @@ class _Model:
         if missing:
             variants = {i: apply(self.loaded, self.parameters, points[i]) for i in {i for i, _ in missing}}
             self.runs += len(missing)
-            runs = [_CalibrationRun(variants[i], c) for i, c in missing]
+            runs = [_CalibrationRun(variants[i], c, self.series.get(c, ())) for i, c in missing]
             if self.execution.serial or len(runs) == 1:
                 values = [_calibration_run(run) for run in runs]
             else:
@@ -334,15 +404,20 @@ class _Model:
         return values[0], steps, values[1:]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class _Datum:
-    """One fitted or predicted value: a measurement row, or a stated equilibrium time."""
+    """One fitted or predicted value: a measurement row, or a stated equilibrium time.
+
+    ``measured`` is the final value (a series' last sample); ``series``, where the file gives
+    one, holds every sample, and each of them is a residual of the fit.
+    """
 
     condition: str
     quantity: str
     unit: str
     measured: float
     flag: str = ""
+    series: Series | None = None
 
 
 def _data(data: MeasurementSet, conditions: list[str], consistency: ConsistencyReport | None,
@@ -351,16 +426,81 @@ def _data(data: MeasurementSet, conditions: list[str], consistency: ConsistencyR
     for c in conditions:
         for r in data.for_condition(c):
             flag = consistency.flag_for(c, r.quantity) if consistency else None
-            out.append(_Datum(c, r.quantity, r.unit, r.measured, flag.reason if flag else ""))
+            out.append(_Datum(c, r.quantity, r.unit, r.measured, flag.reason if flag else "", r.series))
         if equilibrium and c in data.equilibrium_min:
             out.append(_Datum(c, EQUILIBRIUM_QUANTITY, "min", data.equilibrium_min[c]))
     return out
 
 
+def _simulated(values: dict, r: _Datum):
+    """The run's counterpart of ``r``: its series interpolated linearly to the measured times
+    (as ``validate`` scores a series), or its final value."""
+    if r.series is None:
+        return values[r.quantity]
+    return np.interp(r.series.times, values[SERIES_TIMES], values[series_key(r.quantity)])
+
+
+def _point(values: dict, r: _Datum) -> float:
+    """The run's counterpart of ``r``'s final value: at a series' last sample time, or the run's final value."""
+    if r.series is None:
+        return values[r.quantity]
+    return float(np.interp(r.series.times[-1], values[SERIES_TIMES], values[series_key(r.quantity)]))
+
+
+def _weights(loaded: LoadedSystem, r: _Datum) -> np.ndarray:
+    """The standard uncertainty of each residual of ``r``: a sample's own where the file gives
+    it, else the description's weight of its kind (:func:`_sigma`)."""
+    if r.series is None:
+        return np.array([_sigma(loaded, r.unit)])
+    if r.series.uncertainties is not None:
+        return np.asarray(r.series.uncertainties, dtype=float)
+    return np.full(len(r.series.times), _sigma(loaded, r.unit))
+
+
+def _point_sigma(loaded: LoadedSystem, r: _Datum) -> float:
+    """The standard uncertainty of ``r``'s final value (a series' last sample's, where given)."""
+    return float(_weights(loaded, r)[-1])
+
+
+def _series_quantities(rows: list[_Datum]) -> dict[str, list[str]]:
+    """Condition → the quantities measured as series among ``rows``."""
+    out: dict[str, list[str]] = {}
+    for r in rows:
+        if r.series is not None:
+            out.setdefault(r.condition, []).append(r.quantity)
+    return out
+
+
+def _check_series(loaded: LoadedSystem, rows: list[_Datum], source: str) -> None:
+    """A series the fit cannot use fails before any run: one that outlasts its condition's run
+    (interpolation would hold the run's last value), or a sample whose uncertainty is 0 (its
+    residual would weigh infinitely)."""
+    for r in rows:
+        if r.series is None:
+            continue
+        duration = loaded.system.conditions[r.condition].duration
+        if r.series.times[-1] > duration * (1 + 1e-9):
+            raise FeedthermError(f"{source}: condition {r.condition} {r.quantity}: the series ends at "
+                                 f"{r.series.times[-1]:g} s, after the condition's run ({duration:g} s)")
+        u = r.series.uncertainties
+        if u is not None and np.any(u <= 0):
+            at = float(r.series.times[int(np.argmax(u <= 0))])
+            raise FeedthermError(f"{source}: condition {r.condition} {r.quantity}: the uncertainty at {at:g} s is 0, "
+                                 "which would weigh its residual infinitely; give the standard uncertainty, or no "
+                                 "uncertainty column (the description's calibration weights then apply)")
+
+
 def _predictions(finals, rows: list[_Datum], intervals: dict | None = None) -> list[Prediction]:
-    return [Prediction(r.condition, r.quantity, r.unit, finals[r.condition][r.quantity], r.measured,
+    return [Prediction(r.condition, r.quantity, r.unit, _point(finals[r.condition], r), r.measured,
                        None if intervals is None else intervals.get((r.condition, r.quantity)), r.flag)
             for r in rows]
+
+
+def _series_scores(finals, rows: list[_Datum]) -> list[TransientComparison]:
+    """Every unflagged measured series among ``rows`` against the runs ``finals`` hold."""
+    return [TransientComparison(r.condition, r.quantity, r.unit, r.series.times, r.series.values,
+                                np.asarray(_simulated(finals[r.condition], r)), r.series.uncertainties)
+            for r in rows if r.series is not None and not r.flag]
 
 
 def _sigma(loaded: LoadedSystem, unit: str) -> float:
@@ -384,6 +524,9 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
 
     ``consistency``: values it flags are left out of the fit (and reported with their reason).
     ``equilibrium``: also fit the stated equilibrium times of the fitted conditions.
+    Where ``data`` holds time series, every sample of a fitted condition's series is a residual,
+    over its own uncertainty where the file gives one (see the module's docstring); the result's
+    ``series_fit`` and ``series_held_out`` score each series against its run.
     ``start``: the parameter values to start from (default: the description's, clipped to the bounds).
     ``execution``: where the runs of one evaluation go, side by side (:mod:`.execution`; serial by
     default; pass one kept open, :func:`~feedtherm.analysis.execution.kept_open`, to start a
@@ -403,11 +546,16 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
     parameters = resolve_parameters(loaded, names)
     fitted_data = _data(data, fit, consistency, equilibrium)
     rows = [r for r in fitted_data if not r.flag]
-    if len(rows) < len(parameters):
-        raise FeedthermError(f"--fit: {len(rows)} measured values cannot determine {len(parameters)} parameters")
-    with _Model(loaded, parameters, workers, cache, execution) as model:
-        sigma = np.array([_sigma(loaded, r.unit) for r in rows])
-        target = np.array([r.measured for r in rows])
+    held_out = [c for c in measured if c not in fit and c in loaded.system.conditions]
+    every = _data(data, list(fit) + held_out, consistency, equilibrium)
+    _check_series(loaded, every, data.source)
+    # one residual per final value, and one per sample of a series
+    sigma = np.concatenate([_weights(loaded, r) for r in rows]) if rows else np.zeros(0)
+    target = np.concatenate([np.atleast_1d(r.series.values if r.series is not None else r.measured)
+                             for r in rows]) if rows else np.zeros(0)
+    if len(target) < len(parameters):
+        raise FeedthermError(f"--fit: {len(target)} measured values cannot determine {len(parameters)} parameters")
+    with _Model(loaded, parameters, workers, cache, execution, series=_series_quantities(every)) as model:
         lower = np.array([p.lower for p in parameters])
         upper = np.array([p.upper for p in parameters])
         span = upper - lower
@@ -416,7 +564,8 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
         duty = _DutyPenalty(loaded, parameters, list(loaded.system.conditions))
 
         def values(finals) -> np.ndarray:
-            return (np.array([finals[r.condition][r.quantity] for r in rows]) - target) / sigma
+            simulated = np.concatenate([np.atleast_1d(_simulated(finals[r.condition], r)) for r in rows])
+            return (simulated - target) / sigma
 
         def report_progress() -> None:
             if progress is not None:
@@ -450,7 +599,7 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
             if _converged(jac, result.fun, u):
                 break
         x = lower + u * span
-        n = len(rows)  # the data's residuals; the motors' duty penalties follow them
+        n = len(target)  # the data's residuals; the motors' duty penalties follow them
         se, corr, identifiable, cov, s2, dof = _uncertainty(jac[:n] / span[None, :], result.fun[:n], x, n)
         # scipy's trust-region reflective fit keeps its iterates strictly inside the bounds, so a
         # parameter the data push against one ends a little inside it: its active mask marks it
@@ -458,8 +607,6 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
         active = result.active_mask
         at_bound = ["lower" if ui <= 1e-6 or a < 0 else "upper" if ui >= 1 - 1e-6 or a > 0 else ""
                     for ui, a in zip(u, active)]
-        held_out = [c for c in measured if c not in fit and c in loaded.system.conditions]
-        every = _data(data, list(fit) + held_out, consistency, equilibrium)
         finals, intervals = _prediction_intervals(model, x, lower, upper, every, cov, s2, dof, loaded)
         calibrated = apply(loaded, parameters, x)
         if progress is not None:
@@ -475,6 +622,8 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
             measurement_source=data.source, calibrated=calibrated, status=result.message,
             excluded=_predictions(finals, [r for r in fitted_rows if r.flag], intervals),
             motor_duty=motor_duty(calibrated),
+            series_fit=_series_scores(finals, fitted_rows),
+            series_held_out=_series_scores(finals, [r for r in every if r.condition not in fit]),
         )
 
 
@@ -572,7 +721,9 @@ def _prediction_intervals(model: _Model, x, lower, upper, rows: list[_Datum], co
 
     Var = g·Cov·gᵀ + s²·σ²: ``g`` the value's sensitivity to the parameters (one-sided
     differences of :data:`SENSITIVITY_STEP` of each range, away from the nearer bound), ``Cov`` the parameter
-    covariance of the fit, ``σ`` the declared weight of a measurement of that kind and ``s²``
+    covariance of the fit, ``σ`` the declared weight of a measurement of that kind (a series' last
+    sample's own uncertainty where the file gives one; the value is then the run at that sample's
+    time) and ``s²``
     the residual variance per degree of freedom (1 when none is left), and the coverage factor
     Student's t with those degrees of freedom (s² is itself estimated from few residuals): the
     interval a new measurement at that condition should fall in if the model's misfit is like
@@ -580,15 +731,13 @@ def _prediction_intervals(model: _Model, x, lower, upper, rows: list[_Datum], co
     """
     conditions = list(dict.fromkeys(r.condition for r in rows))
     base, steps, moved = model.sensitivities(x, lower, upper, conditions)
-    gradients = {(r.condition, r.quantity): np.array([(m[r.condition][r.quantity] - base[r.condition][r.quantity]) / h
-                                                      for m, h in zip(moved, steps)])
-                 for r in rows}
     coverage = float(student_t.ppf(0.975, dof)) if dof > 0 else Z95
     intervals = {}
-    for key, g in gradients.items():
-        unit = next(r.unit for r in rows if (r.condition, r.quantity) == key)
-        variance = float(g @ cov @ g) + s2 * _sigma(loaded, unit) ** 2
-        intervals[key] = coverage * math.sqrt(max(variance, 0.0))
+    for r in rows:
+        c = r.condition
+        g = np.array([(_point(m[c], r) - _point(base[c], r)) / h for m, h in zip(moved, steps)])
+        variance = float(g @ cov @ g) + s2 * _point_sigma(loaded, r) ** 2
+        intervals[(c, r.quantity)] = coverage * math.sqrt(max(variance, 0.0))
     return base, intervals
 
 

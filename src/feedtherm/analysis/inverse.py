@@ -18,11 +18,22 @@ The posterior covariance ``(RᵀΣ⁻¹R + T⁻²)⁻¹`` gives each heat's inte
 ``(RᵀΣ⁻¹R + T⁻²)⁻¹ RᵀΣ⁻¹R``) and the correlations that say which groups the sensors cannot tell
 apart (only their sum or difference is measured).  An estimate that ends at its bound of 0 W
 is flagged; its interval is then the unconstrained one cut at zero.
+
+``Σ`` is diagonal: each observation's standard uncertainty is the one the measurement file
+declares (a series' ``uncertainty`` column) where it gives one, else the uniform ``Noise``
+(final values declare none).
+
+Where a condition's measurements are time series, the heats are fitted to every sample
+(:func:`transient_transfer`): at frozen coefficients the implicit-Euler run is linear in the
+heats as well, ``y(t) = y_0(t) + R(t) q`` with ``y_0(t)`` the run at zero heat from the initial
+state and the column ``R_g(t)`` the run with 1 W of group ``g`` less ``y_0(t)`` (superposition),
+each interpolated to the measured times; the same estimator then takes one row per sample.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Mapping
 
 import numpy as np
 from scipy.optimize import lsq_linear
@@ -30,15 +41,25 @@ from scipy.stats import norm
 
 from ..constants import ELONGATION_PROBE, KELVIN_OFFSET
 from ..errors import FeedthermError
+from ..models.integrator import Integrator
 from ..models.interface import cycle_weights, weighted_sum
+from ..models.options import ModelOptions
+from ..plan import plan_run
 from ..simulate import steady_solve
+from ..solution.pack import sample_times
 from ..system.load import LoadedSystem
+from ..system.variants import with_values
+from .measurement_series import ELONGATION_QUANTITY
 from .measurements import MeasurementSet
 
 #: Groups whose estimates correlate beyond this are reported as not told apart.
 CORRELATION_LIMIT = 0.8
 #: Below this resolution an estimate is said to come from the prior, not the measurements.
 RESOLVED = 0.5
+#: Time step of the transient responses [s]: the step ``validate`` scores a series with, and
+#: calibration's runs of series (60 s steps lag a transient by up to 0.16 K, 1 µm on the
+#: synthetic ballscrew series; docs/calibration.md).
+TRANSIENT_STEP_S = 10.0
 
 
 @dataclass(frozen=True)
@@ -64,6 +85,25 @@ class Transfer:
     groups: dict[str, tuple[str, ...]]  # group -> its sources
     matrix: np.ndarray  # (observations, groups): [K/W], and [m/W] for D
     baseline: np.ndarray  # observations at zero heat [K], [m]
+    prior: np.ndarray  # the loss models' heat of each group [W]
+
+    def predict(self, heats: np.ndarray) -> np.ndarray:
+        return self.baseline + self.matrix @ heats
+
+
+@dataclass(frozen=True, eq=False)
+class TransientTransfer:
+    """The linear transient response of one condition at its measured samples: ``y = baseline + matrix @ q``.
+
+    One row per sample: ``observations[i]`` (a sensor, or ``"D"``) at ``times[i]`` [s].
+    """
+
+    condition: str
+    observations: list[str]
+    times: np.ndarray
+    groups: dict[str, tuple[str, ...]]
+    matrix: np.ndarray  # (samples, groups): [K/W], and [m/W] for D
+    baseline: np.ndarray  # the run at zero heat at each sample [K], [m]
     prior: np.ndarray  # the loss models' heat of each group [W]
 
     def predict(self, heats: np.ndarray) -> np.ndarray:
@@ -98,6 +138,14 @@ class Inference:
     chi2: float  # Σ (residual/σ)² of the fit to the measurements
     noise: Noise
     prior_width: float
+    sigma: np.ndarray | None = None  # each observation's standard uncertainty [K], [m]
+    declared: np.ndarray | None = None  # per observation: True where ``sigma`` is the file's, not ``noise``
+    times: np.ndarray | None = None  # per observation, for a transient inference [s]; None: steady
+
+    @property
+    def transient(self) -> bool:
+        """Whether the heats were fitted to the samples of measured series (else to final values)."""
+        return self.times is not None
 
     @property
     def groups(self) -> list[str]:
@@ -167,22 +215,113 @@ def transfer(loaded: LoadedSystem, condition: str, groups: dict[str, tuple[str, 
     return Transfer(condition, list(names), dict(groups), np.column_stack(columns), baseline, np.array(prior))
 
 
+def transient_transfer(loaded: LoadedSystem, condition: str, groups: dict[str, tuple[str, ...]],
+                       times: Mapping[str, np.ndarray], *, model: str = "fast") -> TransientTransfer:
+    """The response of ``condition``'s measured series to 1 W of each group, at the measured times.
+
+    Parameters
+    ----------
+    loaded : LoadedSystem
+        The description and the overlay it runs in.
+    condition : str
+        The condition, run from its initial state over its duration with the cycle-averaged
+        motion in :data:`TRANSIENT_STEP_S` steps.
+    groups : dict of str to tuple of str
+        Group → its sources; within a group the watt is shared as the loss models share the
+        group's heat (equally if they give none), as in :func:`transfer`.
+    times : mapping of str to ndarray
+        Observation (a sensor, or ``"D"``) → its sample times [s].
+    model : str
+        The model of the registry to run.
+
+    Notes
+    -----
+    The coefficients (CHTCs, radiation, contact) are held at the run's first evaluation, so
+    that the run is linear in the heats; under ``temperatures.coupling = "nonlinear"`` that is
+    the frozen evaluation (the ambient plus ``convection_delta_t``), a linearisation.  The cost
+    is one run per group and one at zero heat.
+    """
+    frozen = loaded if loaded.system.temperatures.coupling == "frozen" else \
+        with_values(loaded, {"temperatures.coupling": "frozen"}, origin_suffix="frozen coefficients")
+    options = ModelOptions(motion="averaged", averaged_step=TRANSIENT_STEP_S, max_step=TRANSIENT_STEP_S)
+    plan = plan_run(frozen, condition=condition, model=model, motion="averaged", options=options,
+                    sample_interval=TRANSIENT_STEP_S, allow_overload=True)  # heats are what is asked
+    disc = plan.model.build(frozen.system, plan.options)
+    grid = sample_times(plan.end, TRANSIENT_STEP_S)
+    initial = frozen.system.temperatures.initial
+    T0 = disc.uniform_state(plan.segments[0].bc.point.ambient if initial == "ambient" else initial)
+    names = list(disc.probe_names)
+    for name, at in times.items():
+        if name not in names:
+            raise FeedthermError(f"condition {condition}: the model has no observation {name!r} ({', '.join(names)})")
+        if at[-1] > grid[-1] * (1 + 1e-9):
+            raise FeedthermError(f"condition {condition}: the measured {name} ends at {at[-1]:g} s, after the run "
+                                 f"({grid[-1]:g} s)")
+
+    def response(power) -> np.ndarray:
+        """Every observation at every measured sample, each source's heat set to ``power(source)`` [W]."""
+        segments = [replace(seg, bc=replace(seg.bc, heats={s: replace(h, power=float(power(s)))
+                                                           for s, h in seg.bc.heats.items()}))
+                    for seg in plan.segments]
+        # a fresh integrator: its caches are keyed by the boundary conditions' identity
+        probes = np.array(Integrator(disc, plan.options, None).run(segments, T0, grid).sample_probe)
+        return np.concatenate([np.interp(at, grid, probes[:, names.index(name)]) for name, at in times.items()])
+
+    baseline = response(lambda source: 0.0)
+    heats = plan.segments[0].bc.heats
+    columns, prior = [], []
+    for members in groups.values():
+        powers = np.array([heats[s].power for s in members])
+        total = float(powers.sum())
+        shares = dict(zip(members, powers / total if total > 0 else np.full(len(members), 1.0 / len(members))))
+        columns.append(response(lambda source: shares.get(source, 0.0)) - baseline)
+        prior.append(total)
+    observations = [name for name, at in times.items() for _ in at]
+    return TransientTransfer(condition, observations, np.concatenate([np.asarray(at, dtype=float) for at in times.values()]),
+                             dict(groups), np.column_stack(columns), baseline, np.array(prior))
+
+
+def _default_sigma(name: str, noise: Noise) -> float:
+    return noise.elongation if name == ELONGATION_PROBE else noise.temperature
+
+
 def infer(transfer_: Transfer, measured: dict[str, float], noise: Noise, prior_width: float = 1.0) -> Inference:
     """Heats of ``transfer_``'s groups from the measured observations (sensors [K], ``D`` [m]).
 
     ``prior_width`` is the prior's standard deviation relative to each group's loss-model heat
     (with a floor of 1 W, so that a source the loss models put at zero can still be found).
+    Final values declare no uncertainty: each takes ``noise``.
     """
-    if not (np.isfinite(prior_width) and prior_width > 0):
-        raise FeedthermError(f"--prior-width: must be a positive number, got {prior_width!r}")
     used = [i for i, name in enumerate(transfer_.observations) if name in measured]
     if not used:
         raise FeedthermError(f"condition {transfer_.condition}: no measurement of {', '.join(transfer_.observations)}")
     names = [transfer_.observations[i] for i in used]
-    y = np.array([measured[n] for n in names])
-    R = transfer_.matrix[used]
-    y0 = transfer_.baseline[used]
-    sigma = np.array([noise.elongation if n == ELONGATION_PROBE else noise.temperature for n in names])
+    sigma = np.array([_default_sigma(n, noise) for n in names])
+    return _estimate(transfer_, names, np.array([measured[n] for n in names]), transfer_.baseline[used],
+                     transfer_.matrix[used], sigma, np.zeros(len(names), dtype=bool), noise, prior_width)
+
+
+def infer_transient(transfer_: TransientTransfer, measured: np.ndarray, noise: Noise, prior_width: float = 1.0,
+                    uncertainties: np.ndarray | None = None) -> Inference:
+    """Heats of ``transfer_``'s groups from every measured sample (``measured`` in its row order, [K], [m]).
+
+    ``uncertainties``: each sample's standard uncertainty, NaN where the file declares none
+    (``noise`` then applies).  Otherwise as :func:`infer`.
+    """
+    names = transfer_.observations
+    default = np.array([_default_sigma(n, noise) for n in names])
+    given = np.full(len(names), np.nan) if uncertainties is None else np.asarray(uncertainties, dtype=float)
+    declared = np.isfinite(given)
+    return _estimate(transfer_, list(names), np.asarray(measured, dtype=float), transfer_.baseline, transfer_.matrix,
+                     np.where(declared, given, default), declared, noise, prior_width, times=transfer_.times)
+
+
+def _estimate(transfer_: Transfer | TransientTransfer, names: list[str], y: np.ndarray, y0: np.ndarray, R: np.ndarray,
+              sigma: np.ndarray, declared: np.ndarray, noise: Noise, prior_width: float,
+              times: np.ndarray | None = None) -> Inference:
+    """The regularised non-negative estimate of the module's docstring, one row per observation."""
+    if not (np.isfinite(prior_width) and prior_width > 0):
+        raise FeedthermError(f"--prior-width: must be a positive number, got {prior_width!r}")
     prior = transfer_.prior
     tau = np.maximum(prior_width * prior, prior_width * 1.0)
     A = np.vstack([R / sigma[:, None], np.diag(1.0 / tau)])
@@ -203,7 +342,8 @@ def infer(transfer_: Transfer, measured: dict[str, float], noise: Noise, prior_w
              if abs(correlation[i, j]) > CORRELATION_LIMIT]
     fitted = y0 + R @ q
     return Inference(transfer_.condition, estimates, names, y, fitted, y0 + R @ prior, covariance, correlation, pairs,
-                     float(np.sum(((y - fitted) / sigma) ** 2)), noise, prior_width)
+                     float(np.sum(((y - fitted) / sigma) ** 2)), noise, prior_width, sigma, np.asarray(declared, bool),
+                     times)
 
 
 def measured_observations(data: MeasurementSet, condition: str, ambient: str) -> dict[str, float]:
@@ -212,23 +352,57 @@ def measured_observations(data: MeasurementSet, condition: str, ambient: str) ->
     for row in data.for_condition(condition):
         if row.quantity == ambient:
             continue
-        if row.quantity == "D_um":
+        if row.quantity == ELONGATION_QUANTITY:
             out[ELONGATION_PROBE] = row.measured * 1e-6
         elif row.unit == "C":
             out[row.quantity] = row.measured + KELVIN_OFFSET
     return out
 
 
+def _observed_series(data: MeasurementSet, condition: str, ambient: str):
+    """A condition's measured series by observation name (``ambient`` left out), in SI:
+    name → (times [s], values [K] or [m], standard uncertainties [K] or [m], or None)."""
+    out = {}
+    for row in data.for_condition(condition):
+        if row.series is None or row.quantity == ambient:
+            continue
+        u = row.series.uncertainties
+        if u is not None and np.any(u <= 0):
+            at = float(row.series.times[int(np.argmax(u <= 0))])
+            raise FeedthermError(f"{data.source}: condition {condition} {row.quantity}: the uncertainty at {at:g} s "
+                                 "is 0, which would weigh it infinitely; give the standard uncertainty, or no "
+                                 "uncertainty column (--sigma-temperature and --sigma-elongation then apply)")
+        if row.quantity == ELONGATION_QUANTITY:
+            out[ELONGATION_PROBE] = (row.series.times, row.series.values * 1e-6, None if u is None else u * 1e-6)
+        else:
+            out[row.quantity] = (row.series.times, row.series.values + KELVIN_OFFSET, u)
+    return out
+
+
+
 def infer_conditions(loaded: LoadedSystem, data: MeasurementSet, conditions: list[str], *, groups: str | None = None,
                      noise: Noise, prior_width: float = 1.0,
                      model: str = "fast") -> list[Inference]:
-    """:func:`infer` at each of ``conditions`` from ``data``."""
+    """The heats of each of ``conditions`` from ``data``: from the final values (:func:`infer`), or,
+    where the condition's measurements are time series, from every sample (:func:`infer_transient`),
+    each weighted by its declared uncertainty where the file gives one, else by ``noise``."""
     measured = data.conditions()
     for condition in conditions:
         if condition not in measured:
             raise FeedthermError(f"--conditions: no measurements of condition {condition!r} in {data.source}; "
                                  f"measured: {', '.join(measured)}")
     grouping = parse_groups(groups, list(loaded.system.sources))
-    return [infer(transfer(loaded, c, grouping, model=model), measured_observations(data, c, loaded.system.room.ambient_sensor), noise,
-                  prior_width)
-            for c in conditions]
+    ambient = loaded.system.room.ambient_sensor
+    observed = {c: _observed_series(data, c, ambient) for c in conditions}  # a bad series fails before any run
+    out = []
+    for c in conditions:
+        series = observed[c]
+        if series:  # every sample, each with its declared uncertainty (NaN: the uniform noise)
+            response = transient_transfer(loaded, c, grouping, {n: t for n, (t, _, _) in series.items()}, model=model)
+            values = np.concatenate([v for _, v, _ in series.values()])
+            u = np.concatenate([np.full(len(t), np.nan) if u is None else u for t, _, u in series.values()])
+            out.append(infer_transient(response, values, noise, prior_width, u))
+        else:
+            out.append(infer(transfer(loaded, c, grouping, model=model), measured_observations(data, c, ambient),
+                             noise, prior_width))
+    return out

@@ -19,7 +19,8 @@ import tomlkit
 from rich.console import Console
 from rich.table import Table
 
-from ..analysis.calibration import CalibrationResult, Prediction
+from ..analysis.calibration import SERIES_STEP_S, CalibrationResult, Prediction
+from ..analysis.transient_scores import TransientComparison
 from ..errors import FeedthermError
 from ..system.load import LoadedSystem, read_text
 from ..system.overlay import overlay_spec
@@ -147,6 +148,29 @@ def calibration_summary(result: CalibrationResult) -> dict:
         "optimizer_status": result.status,
         "measurements": result.measurement_source,
         "model": "fast, cycle-averaged motion",
+        **({"series": series_summary(result)} if result.series_fit or result.series_held_out else {}),
+    }
+
+
+#: How a series' samples were weighted in the fit, as calibration.json says it.
+WEIGHTS = {True: "declared uncertainties", False: "calibration sigma of the description"}
+
+
+def _series_entry(s: TransientComparison) -> dict:
+    return {"condition": s.condition, "quantity": s.quantity, "unit": s.unit, "samples": len(s.times),
+            "start_s": float(s.times[0]), "end_s": float(s.times[-1]), "weights": WEIGHTS[s.uncertainty is not None],
+            "rms_deviation": s.rms, "max_abs_deviation": s.max_abs, "time_of_max_s": s.time_of_max,
+            "mean_deviation": s.mean, "inside_two_sigma": s.inside_two_sigma}
+
+
+def series_summary(result: CalibrationResult) -> dict:
+    """The measured series: those fitted sample by sample and those of held-out conditions, each
+    scored against its run (deviations in K or µm, simulated − measured)."""
+    return {
+        "fitted_conditions": result.series_conditions,
+        "step_s": SERIES_STEP_S,
+        "fitted": [_series_entry(s) for s in result.series_fit],
+        "held_out": [_series_entry(s) for s in result.series_held_out],
     }
 
 
@@ -190,6 +214,9 @@ def cross_summary(cross: list[tuple[str, CalibrationResult]]) -> dict:
         "largest_elongation_deviation_um": _worst_entry(worst(rows, "um")),
         "largest_equilibrium_deviation_min": _worst_entry(worst(rows, "min")),
         "flagged": [_worst_entry(r) for r in rows if r.flag],
+        **({"held_out_series": [{"left_out": left, **_series_entry(s)} for left, res in cross
+                                 for s in res.series_held_out]}
+           if any(res.series_held_out for _, res in cross) else {}),
         "fits": {left: {p.name: x for p, x in zip(res.parameters, res.fitted)} for left, res in cross},
         "at_bound": {left: {p.name: b for p, b in zip(res.parameters, res.at_bound) if b} for left, res in cross},
         "model_runs": sum(res.model_runs for _, res in cross),
@@ -226,6 +253,18 @@ def _prediction_table(rows: list[Prediction], title: str) -> Table:
     return table
 
 
+def _series_table(rows: list[TransientComparison], title: str) -> Table:
+    table = Table(title=title, title_justify="left")
+    for column in ("condition", "quantity", "samples", "weights", "RMS", "max |dev|", "at", "mean"):
+        table.add_column(column)
+    for s in rows:
+        unit = UNIT_SYMBOLS[s.unit]
+        table.add_row(s.condition, s.quantity, str(len(s.times)), "own σ" if s.uncertainty is not None else "description's σ",
+                      f"{s.rms:.2f} {unit}", f"{s.max_abs:.2f} {unit}", f"{s.time_of_max / 60:.0f} min",
+                      f"{s.mean:+.2f}")
+    return table
+
+
 def print_calibration(result: CalibrationResult, out_dir: Path, cross=None, console: Console | None = None) -> None:
     console = console or Console(width=None if sys.stdout.isatty() else 120)
     table = Table(title=f"fitted on {', '.join(result.fit_conditions)} ({result.model_runs} model runs, {result.wall_time_s:.0f} s)",
@@ -244,6 +283,12 @@ def print_calibration(result: CalibrationResult, out_dir: Path, cross=None, cons
     for title, rows in (("fit residuals", result.residuals), ("held-out predictions", result.held_out)):
         if rows:
             console.print(f"{title}: " + _largest(rows))
+    if result.series_fit:
+        console.print(f"fitted as series (every sample a residual over its own σ, else the description's): "
+                      f"{', '.join(result.series_conditions)}")
+        console.print(_series_table(result.series_fit, "fitted series: calibrated run − measured"))
+    if result.series_held_out:
+        console.print(_series_table(result.series_held_out, "held-out series: prediction − measured"))
     if result.held_out:
         console.print(_prediction_table(result.held_out, "held-out predictions (95 % prediction intervals)"))
     for row in [*result.excluded, *(r for r in result.held_out if r.flag)]:
