@@ -9,8 +9,9 @@ that calibration and inference find what they should, its measurements are made 
    through the description's own transfer (its CHTCs and contacts), so a perturbed CHTC would be
    read as heat (x0.8 on the screw's shows as +10 % ball-nut heat, outside its interval);
    calibration fits the factor all the same and must find it at 1;
-2. every condition run with the fast model (cycle-averaged motion, the calibration's 60 s steps)
-   over its 8 h, sampled every :data:`EVERY_MIN` minutes;
+2. every condition run with the fast model (cycle-averaged motion in the 10 s steps calibration
+   takes for a series; 60 s steps lag the transient by up to 0.16 K, more than the noise) over
+   its 8 h, sampled every :data:`EVERY_MIN` minutes;
 3. seeded Gaussian noise of the sensors' standard uncertainties (:data:`NOISE`), which the file
    also states per sample: class-A PT100s 0.1 K, the infrared reading of the screw 0.3 K, the
    laser 0.5 µm.
@@ -53,7 +54,7 @@ def truth():
 
 def measurements() -> str:
     """The file's text: comments naming what it is, then the long-format series."""
-    from feedtherm.analysis.calibration import CALIBRATION_OPTIONS
+    from feedtherm.analysis.calibration import SERIES_OPTIONS, SERIES_STEP_S
     from feedtherm.constants import KELVIN_OFFSET
     from feedtherm.simulate import simulate
 
@@ -68,8 +69,8 @@ def measurements() -> str:
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow(["condition", "time [min]", "quantity", "value", "unit", "uncertainty"])
     for condition in system.conditions:
-        run = simulate(loaded, condition=condition, motion="averaged", options=CALIBRATION_OPTIONS,
-                       sample_interval=60.0)
+        run = simulate(loaded, condition=condition, motion="averaged", options=SERIES_OPTIONS,
+                       sample_interval=SERIES_STEP_S)
         keep = np.flatnonzero(np.isclose(np.mod(run.times, EVERY_MIN * 60.0), 0.0))
         for i in keep:
             minutes = run.times[i] / 60.0

@@ -168,14 +168,14 @@ def estimated_steps(stroke: float, segments: list[Segment], options: ModelOption
 #: the size of the bundled ones (1,300-1,500 fast-model nodes, the paper bench's meshes).
 SECONDS_PER_STEP = {
     # ballscrew_example, v10, 1800 s resolved: 21,750 steps in 4.6 s (summary.json's wall_time_s,
-    # 2026-11-26); the paper bench's condition I, 6,480 steps in 0.73-0.87 s (docs/fast-model.md).
+    # 2026-11-26); the paper bench at 396 rpm, 6,480 steps in 0.73-0.87 s (docs/fast-model.md).
     ("fast", None): 2.1e-4,
     # the paper bench at 1500 rpm, resolved: 67,000 steps in 4 min 44 s (issue 33).
     ("fem", "coarse"): 4.2e-3,
-    # the paper bench's condition I, 6,480 steps: 54 s (PARDISO) and 281-287 s (docs/fem-model.md).
+    # the paper bench at 396 rpm, 6,480 steps: 54 s (PARDISO) and 281-287 s (docs/fem-model.md).
     ("fem", "medium"): 8.3e-3,
     ("fem", "fine"): 4.4e-2,
-    # the paper bench's condition I on the fine mesh, basis cached: execute 2.24 s for 6,480 steps
+    # the paper bench at 396 rpm on the fine mesh, basis cached: execute 2.24 s for 6,480 steps
     # (benchmarks/README.md); the basis itself, once per mesh, takes 13-400 s.
     ("reduced", None): 3.5e-4,
 }

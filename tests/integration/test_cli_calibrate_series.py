@@ -19,10 +19,6 @@ SERIES = Path(__file__).parents[1] / "data" / "ballscrew_v10_series.csv"
 TRUE_FACTOR = 2.0  # the series' torque over the description's
 
 CALIBRATION = """
-[calibration]
-temperature_sigma = "0.5 K"
-elongation_sigma = "2 um"
-
 [calibration.parameters.nut_drag]
 kind = "scale"
 paths = ["sources.ball_nut.torque"]
@@ -34,10 +30,13 @@ description = "multiplier on the ball nut's preload drag torque"
 def halved_drag_description(tmp_path: Path) -> Path:
     """ballscrew_example with v10 lasting the series' 20 min, half the nut's drag and a calibration section."""
     text = (bench("ballscrew_example").folder / "description.toml").read_text(encoding="utf-8")
-    for old, new in (("[conditions.v10]\n", '[conditions.v10]\nduration = "20 min"\n'),
+    for old, new in (('duration = "8 h"\ndescription = "10 m/min"\n', 'duration = "20 min"\ndescription = "10 m/min"\n'),
                      ('torque = "0.291 N*m"', 'torque = "0.1455 N*m"')):
         assert text.count(old) == 1
         text = text.replace(old, new)
+    # the bench's declared prior of the drag excludes half of it: this machine is another one
+    start = text.index("[uncertainty.parameters.ball_nut_torque]")
+    text = text[:start] + text[text.index("[uncertainty.parameters.", start + 1):]
     path = tmp_path / "halved.toml"
     path.write_text(text + CALIBRATION, encoding="utf-8")
     return path

@@ -25,13 +25,16 @@ HEADER = "condition,time [min],quantity,value,unit,uncertainty\n"
 GOOD = "v10,0,T1,20.0,degC,0.2\n"
 
 
+#: v10's duration in the bench's description, the line that a 20-min copy shortens.
+V10_DURATION = 'duration = "8 h"\ndescription = "10 m/min"\n'
+
+
 def short_description(tmp_path: Path) -> Path:
     """ballscrew_example with its condition v10 lasting 20 min, the span of the synthetic series."""
     text = (bench("ballscrew_example").folder / "description.toml").read_text(encoding="utf-8")
-    marker = "[conditions.v10]\n"
-    assert marker in text
+    assert V10_DURATION in text
     path = tmp_path / "short.toml"
-    path.write_text(text.replace(marker, marker + 'duration = "20 min"\n', 1), encoding="utf-8")
+    path.write_text(text.replace(V10_DURATION, V10_DURATION.replace('"8 h"', '"20 min"'), 1), encoding="utf-8")
     return path
 
 
@@ -61,7 +64,7 @@ def assert_fails_in_one_line(capsys, system, bad: Path, out: Path, *fragments):
         ("v10,5,T1,20.0,degC,0.2\nv10,2,T1,21.0,degC,0.2\n", ["line 3", "out of order"]),
         (GOOD + "v10,2,T1,,degC,0.2\n", ["line 3", "the value is missing"]),
         (GOOD + "v10,2,T1,21.0,degC,-0.2\n", ["line 3", "must not be negative"]),
-        (GOOD + "v10,200,T1,21.0,degC,0.2\n", ["line 3", "after the end of condition v10's run (10800 s)"]),
+        (GOOD + "v10,500,T1,21.0,degC,0.2\n", ["line 3", "after the end of condition v10's run (28800 s)"]),
     ],
 )
 def test_a_bad_series_file_fails_before_any_run(tmp_path, capsys, body, fragments):

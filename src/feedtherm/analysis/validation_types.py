@@ -112,10 +112,10 @@ class Validation:
         """The overlay the runs took, by name, or ``"physics"`` (from the provenance)."""
         return self.provenance.get("mode", "physics")
 
-    def largest(self, kind: str) -> Comparison:
-        """The comparison with the largest |deviation| among temperatures or elongations."""
+    def largest(self, kind: str) -> Comparison | None:
+        """The comparison with the largest |deviation| among temperatures or elongations (None: none measured)."""
         rows = [c for c in self.comparisons if (c.unit == "C") == (kind == "temperature")]
-        return max(rows, key=lambda c: abs(c.deviation))
+        return max(rows, key=lambda c: abs(c.deviation), default=None)
 
     def largest_per_condition(self) -> dict[str, dict[str, Comparison]]:
         out: dict[str, dict[str, Comparison]] = {}

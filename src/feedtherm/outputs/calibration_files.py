@@ -298,5 +298,5 @@ def print_calibration(result: CalibrationResult, out_dir: Path, cross=None, cons
         rows = [r for _, res in cross for r in res.held_out]
         console.print("leave-one-condition-out, held-out: " + _largest(rows)
                       + f" ({sum(res.model_runs for _, res in cross)} model runs, "
-                        f"{sum(res.wall_time_s for _, res in cross):.0f} s); the paper's in-sample figures: 2.1 K, 6.2 µm")
+                        f"{sum(res.wall_time_s for _, res in cross):.0f} s)")
     console.print(f"wrote {out_dir}")

@@ -50,8 +50,9 @@ def validation_summary(validation: Validation) -> dict:
         "system": validation.system_name,
         "mode": validation.mode,
         "model": validation.model,
-        "largest_temperature_deviation_C": {"condition": t.condition, "quantity": t.quantity, "deviation": t.deviation},
-        "largest_elongation_deviation_um": {"condition": d.condition, "deviation": d.deviation},
+        "largest_temperature_deviation_C": None if t is None else {"condition": t.condition, "quantity": t.quantity,
+                                                                   "deviation": t.deviation},
+        "largest_elongation_deviation_um": None if d is None else {"condition": d.condition, "deviation": d.deviation},
         "largest_per_condition": per_condition,
         "equilibrium_time_min": {c: (None if s.equilibrium_time is None else s.equilibrium_time / 60.0)
                                  for c, s in validation.solutions.items()},
@@ -92,8 +93,9 @@ def print_validation(validation: Validation, out_dir: Path, console: Console | N
     said = (f"; {validation.notes.reference_model or 'the reference model'} is off by up to "
             + " and ".join(f"{value:.1f} {symbol}" for value, symbol in reference if value is not None)
             if any(value is not None for value, _ in reference) else "")
-    console.print(f"largest |deviation|: temperature {abs(t.deviation):.1f} K ({t.condition} {t.quantity}), "
-                  f"elongation {abs(d.deviation):.1f} µm ({d.condition})" + said)
+    largest = ([f"temperature {abs(t.deviation):.1f} K ({t.condition} {t.quantity})"] if t else []) \
+        + ([f"elongation {abs(d.deviation):.1f} µm ({d.condition})"] if d else [])
+    console.print("largest |deviation|: " + (", ".join(largest) or "none compared") + said)
     for flag in (validation.consistency.flags if validation.consistency else []):
         console.print(f"flagged measurement {flag.condition} {flag.quantity}: {flag.reason}")
     if validation.calibration and validation.calibration.get("cross_validation"):
