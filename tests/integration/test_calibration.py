@@ -241,7 +241,7 @@ def test_calibration_runs_with_60_s_steps_agree_with_the_default_steps(paper, co
 
 def test_a_value_left_at_its_default_is_calibrated_and_written_in_its_bounds_unit(paper, tmp_path):
     """room.air_speed is absent from the bench (still air): a draught of 0.3 m/s is recovered from
-    measurements the model made with it, and the calibrated description gains a [room] table."""
+    measurements the model made with it, and the calibrated description's [room] table gains it."""
     names = ["room_air_speed"]
     params = resolve_parameters(paper, names)
     from feedtherm.analysis.calibration import apply
@@ -251,6 +251,7 @@ def test_a_value_left_at_its_default_is_calibrated_and_written_in_its_bounds_uni
     assert abs(result.fitted[0] - 0.3) <= 2.0 * result.standard_errors[0] < 0.3
     write_calibration(paper, result, tmp_path / "cal")
     text = (tmp_path / "cal" / "calibrated.toml").read_text(encoding="utf-8")
-    assert "[room]" in text and " m/s" in text.split("[room]")[1].splitlines()[1]
+    room = text.split("[room]")[1].split("\n[")[0]
+    assert next(line for line in room.splitlines() if line.startswith("air_speed")).endswith(" m/s")
     reloaded = load_system(str(tmp_path / "cal" / "calibrated.toml"))
     assert reloaded.system.room.air_speed == pytest.approx(result.fitted[0], rel=1e-5)
