@@ -252,6 +252,6 @@ def test_a_value_left_at_its_default_is_calibrated_and_written_in_its_bounds_uni
     write_calibration(paper, result, tmp_path / "cal")
     text = (tmp_path / "cal" / "calibrated.toml").read_text(encoding="utf-8")
     room = text.split("[room]")[1].split("\n[")[0]
-    assert next(line for line in room.splitlines() if line.startswith("air_speed")).endswith(" m/s")
+    assert next(line for line in room.splitlines() if line.startswith("air_speed")).endswith(" m/s\"")
     reloaded = load_system(str(tmp_path / "cal" / "calibrated.toml"))
     assert reloaded.system.room.air_speed == pytest.approx(result.fitted[0], rel=1e-5)
