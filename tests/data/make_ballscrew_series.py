@@ -1,6 +1,6 @@
 """Write ballscrew_v10_series.csv: a SYNTHETIC measured time series, not a measurement.
 
-The bundled ``ballscrew_example`` bench has no measurements. This script runs its condition
+The bundled ``ballscrew_example`` bench has its own (8 h) series; this one is shorter. It runs its condition
 ``v10`` for 20 min with the fast model, takes T1, T3, T4 and the elongation D every 2 min, adds
 seeded Gaussian noise (0.1 K, 0.5 µm) and writes them in the long format of
 ``feedtherm.analysis.measurement_series`` with standard uncertainties of 0.2 K and 1 µm, in

@@ -4,6 +4,7 @@ parameter cannot act, a failed run, the calibrated set and the command's bad inp
 
 import json
 import shutil
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -19,6 +20,9 @@ from feedtherm.errors import FeedthermError
 from feedtherm.outputs.calibration_files import calibrated_toml
 from feedtherm.benches import bench
 from feedtherm.system.load import load_system, parse_toml, validate_description
+
+#: A description that declares no uncertainties: what `feedtherm new` writes.
+TEMPLATE = Path(cli.__file__).parent / "benches" / "_template" / "description.toml"
 
 TINY = {"samples": 2, "sobol_base": None, "conditions": ["I"]}
 
@@ -182,7 +186,7 @@ def exit_code(args):
 
 
 @pytest.mark.parametrize("args, fragments", [
-    (["ballscrew_example"], ["ballscrew_example: declares no uncertainties", "[uncertainty.parameters"]),
+    ([str(TEMPLATE)], ["declares no uncertainties", "[uncertainty.parameters"]),
     (["--samples", "100"], ["--samples", "power of 2", "'100'"]),
     (["--sobol-base", "0"], ["--sobol-base", "'0'"]),
     (["--condition", "IX"], ["--condition: no condition 'IX'"]),

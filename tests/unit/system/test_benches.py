@@ -131,10 +131,12 @@ def test_measured_on_the_command_line_is_relative_to_the_working_directory(tmp_p
     assert data.source == "runs.csv" and len(data.rows) == 3
 
 
-def test_a_bench_without_measurements_says_so_in_one_line(capsys):
-    message = one_line_error(measurement_spec, None, "", "bundled:ballscrew_example")
-    assert "bench 'ballscrew_example' has no measurements" in message and "--measured FILE" in message
-    assert main(["validate", "ballscrew_example"]) == 2
+def test_a_bench_without_measurements_says_so_in_one_line(tmp_path, register, capsys):
+    folder = axis_folder(tmp_path, measurements=None)
+    register("my_axis", "my_axis_plugin:FOLDER", f"FOLDER = {str(folder)!r}\n")
+    message = one_line_error(measurement_spec, None, "", "bundled:my_axis")
+    assert "bench 'my_axis' has no measurements" in message and "--measured FILE" in message
+    assert main(["validate", "my_axis"]) == 2
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and "has no measurements" in err
 
