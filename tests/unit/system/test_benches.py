@@ -67,7 +67,7 @@ def test_both_shipped_benches_are_listed_with_their_files():
     assert paper.measurements == paper.folder / "measurements.csv"
     assert paper.title == load_system("paper").system.meta.title
     example = bench("ballscrew_example")
-    assert example.measurements is None and example.equilibrium_times is None
+    assert example.measurements == example.folder / "measurements.csv" and example.equilibrium_times is None
     assert [b.name for b in benches.benches()] == bench_names()
 
 
@@ -133,7 +133,7 @@ def test_measured_on_the_command_line_is_relative_to_the_working_directory(tmp_p
 
 def test_a_bench_without_measurements_says_so_in_one_line(tmp_path, register, capsys):
     folder = axis_folder(tmp_path, measurements=None)
-    register("my_axis", "my_axis_plugin:FOLDER", f"FOLDER = {str(folder)!r}\n")
+    register("my_axis", "my_bare_axis_plugin:FOLDER", f"FOLDER = {str(folder)!r}\n")  # a module of its own
     message = one_line_error(measurement_spec, None, "", "bundled:my_axis")
     assert "bench 'my_axis' has no measurements" in message and "--measured FILE" in message
     assert main(["validate", "my_axis"]) == 2
