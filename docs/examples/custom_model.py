@@ -25,7 +25,7 @@ D = α (T − T_ref) (x_target − x_mount), as for one lumped body.
 import numpy as np
 import scipy.sparse as sp
 
-from feedtherm.constants import AMBIENT_SENSOR, ELONGATION_PROBE, KELVIN_OFFSET
+from feedtherm.constants import ELONGATION_PROBE, KELVIN_OFFSET
 from feedtherm.models.fast.bars import anchors
 from feedtherm.models.interface import ThermalModel
 from feedtherm.models.registry import ModelEntry, register_model
@@ -56,7 +56,7 @@ class PartLumped(ThermalModel):
         stroke = system.kinematics.stroke
         self.positions = np.array([-stroke / 2, stroke / 2])  # offsets from mid-stroke: the two ends
         self.dx = stroke
-        self.probe_names = [n for n in system.sensors if n != AMBIENT_SENSOR] + [ELONGATION_PROBE]
+        self.probe_names = [n for n in system.sensors if n != system.room.ambient_sensor] + [ELONGATION_PROBE]
         screw = system.parts[system.kinematics.screw]
         self.screw_edges = np.array([screw_axis(screw).start, screw_axis(screw).end])  # one axial section
         self.screw_centres = self.screw_edges.mean(keepdims=True)
@@ -115,11 +115,11 @@ def main(duration: float = 7200.0) -> dict:
     loaded = load_system("paper")
     run = simulate(loaded, condition="I", model=MODEL.name, duration=duration, motion="averaged")
     final, steady = run.summary_values("final"), run.summary_values("steady")
-    sensors = [n for n in run.sensor_names if n != AMBIENT_SENSOR]
+    sensors = [n for n in run.sensor_names if n != run.ambient_sensor]
     # the steady state itself (the model and its state), for the parts' temperatures
     solve = steady_solve(loaded, "I", model=MODEL.name)
     parts = {name: float(t) - KELVIN_OFFSET for name, t in solve.model.part_means(solve.state).items()}
-    return {"model": run.info["model"], "ambient_C": final[AMBIENT_SENSOR],
+    return {"model": run.info["model"], "ambient_C": final[run.ambient_sensor],
             "final_C": {n: final[n] for n in sensors}, "steady_C": {n: steady[n] for n in sensors},
             "steady_D_um": steady["D_um"], "steady_parts_C": parts,
             "energy_relative_error": run.energy.relative_error}

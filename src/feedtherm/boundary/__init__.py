@@ -81,6 +81,9 @@ def boundary_conditions_at(
     ``temperatures``: the surfaces' and sources' own temperatures; None takes them all at the
     frozen temperature (:func:`frozen_surface_temperature`).
     """
+    if overlay is not None and not isinstance(overlay, Overlay):
+        raise TypeError(f"overlay must be a feedtherm.system.overlay.Overlay or None, got {overlay!r}; a mode "
+                        f"becomes an overlay in feedtherm.plan.with_mode")
     caught: list[str] = []
     heats, surfaces = _physics(system, point, with_radiation=overlay is None, caught=caught,
                                temperatures=temperatures)
