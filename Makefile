@@ -44,8 +44,13 @@ setup-test: $(STAMP)
 	$(BIN)/python -c "import gmsh" 2>/dev/null || (apt-get update -qq && apt-get install -y -qq $(GMSH_LIBS) >/dev/null)
 	command -v ccx >/dev/null || (apt-get update -qq && apt-get install -y -qq calculix-ccx >/dev/null)
 
+# The suite on TEST_WORKERS pytest-xdist processes (2: this project's machines have two cores), each
+# module whole on one of them and the modules that start Dask clusters one after another
+# (tests/conftest.py); TEST_WORKERS=0 runs it in this process.  benchmarks/README.md, *Test suite time*.
+TEST_WORKERS ?= 2
+
 test: $(STAMP) setup-test
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n $(TEST_WORKERS) --dist loadscope
 
 clean:
 	rm -rf $(VENV) build src/*.egg-info

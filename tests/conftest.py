@@ -1,5 +1,7 @@
 """Fixtures shared by the test layers."""
 
+import os
+
 import pytest
 
 from feedtherm.system.load import LoadedSystem, load_system, parse_toml, read_text, validate_data
@@ -19,6 +21,64 @@ PAPER_EQUATION_MODELS = {
 # §5), more than the declared servos' continuous torque: the variant's motors are the paper's unnamed ones.
 _REPLACED = ("losses", "friction_model", "bore_diameter", "outer_diameter", "series", "bearings_in_set", "lubricant",
              "continuous_torque")
+
+
+#: The modules whose tests start Dask clusters (a local one of two worker processes, or a scheduler
+#: and two workers): under pytest-xdist they run one after another on one worker, never two
+#: clusters at once on this project's two cores.  A new module that starts a cluster goes here.
+DASK_CLUSTER_MODULES = frozenset(f"tests/{m}.py" for m in (
+    "integration/test_calibration", "integration/test_cli_calibrate_parallel", "integration/test_cli_compensate",
+    "integration/test_cli_sweep_parallel", "integration/test_cli_sweep_resume",
+    "integration/test_sweep_on_a_cluster", "integration/test_uncertainty_study",
+    "integration/test_uncertainty_update", "unit/analysis/test_execution"))
+
+
+def pytest_configure(config):
+    """Under pytest-xdist (``make test`` runs ``-n 2``) each worker process gets a cache of its own,
+    ``$FEEDTHERM_CACHE/xdist-gwN``: two workers never write the same mesh, basis or pint file, and
+    the commands the tests start in child processes inherit it.  A serial run keeps the user's cache."""
+    worker = os.environ.get("PYTEST_XDIST_WORKER")
+    if worker:
+        from feedtherm.constants import cache_root
+
+        os.environ["FEEDTHERM_CACHE"] = str(cache_root() / f"xdist-{worker}")
+
+
+def _work_unit(nodeid: str) -> str:
+    module = nodeid.split("::", 1)[0]
+    return "dask_cluster" if module in DASK_CLUSTER_MODULES else module
+
+
+def _rank(unit: str) -> int:
+    """The longest units first, the many short unit tests last to fill the workers' ends: the Dask
+    modules, then the FE verification cases and the validation, then the rest of the integration tests."""
+    if unit == "dask_cluster":
+        return 0
+    if unit.startswith(("tests/verification/", "tests/validation/")):
+        return 1
+    return 2 if unit.startswith("tests/integration/") else 3
+
+
+@pytest.hookimpl(optionalhook=True, tryfirst=True)  # before pytest-xdist's own
+def pytest_xdist_make_scheduler(config, log):
+    """pytest-xdist's work units (``make test``): each module whole on one worker (its module-scoped
+    fixtures made once, its tests in their order), the :data:`DASK_CLUSTER_MODULES` together as one
+    unit, handed out longest first (:func:`_rank`)."""
+    from xdist.scheduler import LoadScopeScheduling
+
+    class ModuleScheduling(LoadScopeScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            return _work_unit(nodeid)
+
+        def _assign_work_unit(self, node) -> None:
+            if not getattr(self, "_ranked", False):
+                order = sorted(self.workqueue, key=_rank)  # stable: collection order within a rank
+                for unit in order:
+                    self.workqueue.move_to_end(unit)
+                self._ranked = True
+            super()._assign_work_unit(node)
+
+    return ModuleScheduling(config, log)
 
 
 def paper_with_equation_models() -> LoadedSystem:
