@@ -482,9 +482,8 @@ def _check_series(loaded: LoadedSystem, rows: list[_Datum], source: str) -> None
         if r.series.times[-1] > duration * (1 + 1e-9):
             raise FeedthermError(f"{source}: condition {r.condition} {r.quantity}: the series ends at "
                                  f"{r.series.times[-1]:g} s, after the condition's run ({duration:g} s)")
-        u = r.series.uncertainties
-        if u is not None and np.any(u <= 0):
-            at = float(r.series.times[int(np.argmax(u <= 0))])
+        at = r.series.zero_uncertainty_at()
+        if at is not None:
             raise FeedthermError(f"{source}: condition {r.condition} {r.quantity}: the uncertainty at {at:g} s is 0, "
                                  "which would weigh its residual infinitely; give the standard uncertainty, or no "
                                  "uncertainty column (the description's calibration weights then apply)")

@@ -367,8 +367,8 @@ def _observed_series(data: MeasurementSet, condition: str, ambient: str):
         if row.series is None or row.quantity == ambient:
             continue
         u = row.series.uncertainties
-        if u is not None and np.any(u <= 0):
-            at = float(row.series.times[int(np.argmax(u <= 0))])
+        at = row.series.zero_uncertainty_at()
+        if at is not None:
             raise FeedthermError(f"{data.source}: condition {condition} {row.quantity}: the uncertainty at {at:g} s "
                                  "is 0, which would weigh it infinitely; give the standard uncertainty, or no "
                                  "uncertainty column (--sigma-temperature and --sigma-elongation then apply)")

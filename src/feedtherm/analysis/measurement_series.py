@@ -63,6 +63,13 @@ class Series:
     values: np.ndarray
     uncertainties: np.ndarray | None = None
 
+    def zero_uncertainty_at(self) -> float | None:
+        """The first time [s] whose stated uncertainty is not positive (a weight a fit cannot use), else None."""
+        u = self.uncertainties
+        if u is None or not np.any(u <= 0):
+            return None
+        return float(self.times[int(np.argmax(u <= 0))])
+
 
 @dataclass(frozen=True)
 class SeriesRow:

@@ -20,6 +20,7 @@ from .consistency import check_description_measurements
 from .inverse import Noise, infer_conditions
 from .measurements import MeasurementSet, measurement_spec, read_measurements
 from .sensitivity import sensitivities
+from .sweep import sensor_labels
 from .transient_scores import compare_series
 from .validation_types import ELONGATION_QUANTITY, Comparison, OperatingPointRow, Validation
 
@@ -130,8 +131,7 @@ def operating_points(loaded: LoadedSystem) -> dict[str, OperatingPointRow]:
 
 def sensor_locations(loaded: LoadedSystem) -> dict[str, str]:
     """Sensor -> where it is: its description up to the first colon (``"front bearing"``), else its part."""
-    return {name: sensor.description.split(":")[0].strip() or sensor.part
-            for name, sensor in loaded.system.sensors.items()}
+    return sensor_labels(loaded)
 
 
 def report_notes(loaded: LoadedSystem) -> ReportNotes:

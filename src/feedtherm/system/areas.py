@@ -233,20 +233,14 @@ def _touching(a: Part, b: Part) -> list[tuple[str, int, str, float, str, int, st
     """(kind, index, face) on ``a``, the area, (kind, index, face) on ``b``, per touching pair of faces."""
     same = a is b
     patches = []
-    for pa in _planes(a):
-        for pb in _planes(b):
-            if same and (pa.kind, pa.index) == (pb.kind, pb.index):
-                continue
-            area = _plane_overlap(pa, pb)
-            if area > 0.0:
-                patches.append((pa.kind, pa.index, pa.face, area, pb.kind, pb.index, pb.face))
-    for ra in _rounds(a):
-        for rb in _rounds(b):
-            if same and (ra.kind, ra.index) == (rb.kind, rb.index):
-                continue
-            area = _round_overlap(ra, rb)
-            if area > 0.0:
-                patches.append((ra.kind, ra.index, ra.face, area, rb.kind, rb.index, rb.face))
+    for faces, overlap in ((_planes, _plane_overlap), (_rounds, _round_overlap)):
+        for fa in faces(a):
+            for fb in faces(b):
+                if same and (fa.kind, fa.index) == (fb.kind, fb.index):
+                    continue
+                area = overlap(fa, fb)
+                if area > 0.0:
+                    patches.append((fa.kind, fa.index, fa.face, area, fb.kind, fb.index, fb.face))
     return patches
 
 
