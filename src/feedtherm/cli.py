@@ -244,12 +244,13 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     from .outputs.run_files import default_out_dir
     from .outputs.sweep_partial import PARTIAL_DIR, PartialSweep
     from .plan import with_mode
-    from .system.schema import DEFAULT_DURATION_S
+    from .system.schema import DEFAULT_DURATION_S, feed_drive
 
     started = time.perf_counter()
     execution = resolve_execution(args.workers, args.scheduler)
     loaded = _load(args.system)
-    grid = parse_grid(args.screw_rpm, args.nut_rpm, args.ambient, drive=loaded.system.kinematics.drive)
+    grid = parse_grid(args.screw_rpm, args.nut_rpm, args.ambient,
+                      drive=feed_drive(loaded.system, "feedtherm sweep").drive)
     loaded = with_mode(loaded, args.mode)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "sweep", args.mode)
     check_output_dir(out_dir)
@@ -458,12 +459,14 @@ def cmd_compensate(args: argparse.Namespace) -> int:
     from .models.registry import model_entry
     from .outputs.files import check_output_dir
     from .outputs.run_files import default_out_dir
+    from .system.schema import feed_drive
 
     from .analysis.execution import resolve_execution
 
     started = time.perf_counter()
     execution = resolve_execution(args.workers, args.scheduler)
     loaded = _load_in_mode(args)
+    feed_drive(loaded.system, "feedtherm compensate")
     model_entry(args.model)
     request = parse_sensors(args.sensors, candidate_sensors(loaded.system))
     ranges = CycleRanges() if args.duration is None else CycleRanges(duration=args.duration)

@@ -207,16 +207,22 @@ class RunCost:
 def run_cost(plan: RunPlan) -> RunCost:
     """The planned steps of ``plan``'s segments by each motion, and the wall time each model would take."""
     system = plan.loaded.system
-    steps = {motion: estimated_steps(system.kinematics.stroke, plan.segments, replace(plan.options, motion=motion))
+    stroke = _stroke(system)
+    steps = {motion: estimated_steps(stroke, plan.segments, replace(plan.options, motion=motion))
              for motion in MOTIONS}
     seconds = {key: {motion: n * per_step for motion, n in steps.items()} for key, per_step in SECONDS_PER_STEP.items()}
     moving = [seg.speed for seg in plan.segments if seg.speed > 0.0]
-    cycle = 2.0 * system.kinematics.stroke / min(moving) if moving else None  # the slowest cycle decides
+    cycle = 2.0 * stroke / min(moving) if moving else None  # the slowest cycle decides
     return RunCost(steps, seconds, cycle)
 
 
+def _stroke(system) -> float:
+    """The table's stroke [m]; 0 for a system without a feed drive (nothing moves)."""
+    return 0.0 if system.kinematics is None else system.kinematics.stroke
+
+
 def _check_step_count(loaded: LoadedSystem, segments: list[Segment], options: ModelOptions) -> None:
-    steps = estimated_steps(loaded.system.kinematics.stroke, segments, options)
+    steps = estimated_steps(_stroke(loaded.system), segments, options)
     if steps > MAX_STEPS:
         fastest = max(seg.speed for seg in segments) * 60.0
         raise FeedthermError(f"the run would take about {steps:,} time steps, more than the {MAX_STEPS:,} a run may "
@@ -273,8 +279,11 @@ def _segments(loaded: LoadedSystem, duty: list[DutySegment], end: float, single_
     out = []
     starts = [s.start for s in duty] + [end]
     for seg, t1 in zip(duty, starts[1:]):
+        if system.kinematics is None and (seg.screw_speed != 0.0 or seg.nut_speed != 0.0):
+            raise FeedthermError(f"--cycle: a segment from {seg.start:g} s turns a motor, but {loaded.origin} has no "
+                                 "feed drive ([kinematics] is left out); give its speeds as 0 rpm")
         point = OperatingPoint(seg.screw_speed * RPM_PER_RAD_S, seg.nut_speed * RPM_PER_RAD_S, seg.ambient,
-                               system.kinematics.lead)
+                               0.0 if system.kinematics is None else system.kinematics.lead)
         if single_drive:
             point = replace(point, screw_rpm=point.relative_rpm, nut_rpm=0.0, nut_motor_off=True)
         if point not in cache:

@@ -94,13 +94,14 @@ def execute(plan: RunPlan, progress: Callable[[float], None] | None = None,
     trace = integrator.run(segments, T0, times, progress)
     last = segments[-1].bc.point
     stats = disc.stats
+    kin = system.kinematics
     info = {
         "condition": plan.label,
         "model": plan.model.name,
         "mode": plan.mode,
         # Whether the axis ran as a single drive: declared so, or a dual drive run with --single-drive
-        "single_drive": plan.single_drive or system.kinematics.drive == "single",
-        "declared_drive": system.kinematics.drive,
+        "single_drive": plan.single_drive or (kin is not None and kin.drive == "single"),
+        "declared_drive": None if kin is None else kin.drive,  # None: the system has no feed drive
         "single_drive_option": plan.single_drive,
         "motion": plan.options.motion,
         **({"mesh": plan.options.mesh, "mesh_statistics": stats} if plan.model.uses_mesh
@@ -110,7 +111,7 @@ def execute(plan: RunPlan, progress: Callable[[float], None] | None = None,
         "ambient_C": last.ambient - KELVIN_OFFSET,
         "warnings": sorted({w for seg in segments for w in seg.bc.warnings}),
         "coupling": system.temperatures.coupling,
-        "screw_part": system.kinematics.screw,  # which part of the field series the screw image shows
+        "screw_part": None if kin is None else kin.screw,  # which part of the field series the screw image shows
         "measuring_loop": loop_summary(system.mechanics),
         "provenance": provenance(plan.loaded),
     }

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from feedtherm.boundary import BoundaryConditions
+from feedtherm.models.fem.readout import slab_matrix
 from feedtherm.models.interface import ThermalModel, cycle_weights
 from feedtherm.models.options import ModelOptions
 from feedtherm.simulate import steady_solve
@@ -49,6 +50,17 @@ class SteadyState:
             nodes, areas = self.model.surface_exposure(name, k)
             total += w * transfer.total * float(areas @ (self.state[nodes] - transfer.sink))
         return total
+
+
+def section_means(mesh, temperatures: np.ndarray, part: str, edges: np.ndarray) -> np.ndarray:
+    """Volume means [K] of nodal ``temperatures`` over ``part``'s slabs ``edges[i] ≤ x < edges[i+1]``.
+
+    ``mesh`` is a field mesh or field series (points (n, 3), tets (m, 4), part_id, part_names);
+    the means are the FE model's own section readout (``models/fem/readout.py::slab_matrix``),
+    what its screw profile is read with.
+    """
+    tets = mesh.tets[np.asarray(mesh.part_id) == list(mesh.part_names).index(part)].T
+    return slab_matrix(np.asarray(mesh.points).T, tets, np.asarray(edges, dtype=float), len(mesh.points)) @ temperatures
 
 
 def solve_steady(loaded: LoadedSystem, condition: str, mesh: str, options: ModelOptions | None = None) -> SteadyState:

@@ -60,7 +60,7 @@ def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = No
     system = loaded.system
     data = measurements_of(loaded, measured)
     conditions = data.conditions()
-    dual = system.kinematics.drive == "dual"
+    dual = system.kinematics is not None and system.kinematics.drive == "dual"
     steps = len(conditions) * (2 if dual else 1) + 2
     done = 0
 

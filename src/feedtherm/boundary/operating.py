@@ -47,5 +47,5 @@ def operating_point(system: FeedSystem, condition: Condition) -> OperatingPoint:
         screw_rpm=condition.screw_speed * _RAD_PER_S_TO_RPM,
         nut_rpm=condition.nut_speed * _RAD_PER_S_TO_RPM,
         ambient=condition.ambient,
-        lead=system.kinematics.lead,
+        lead=0.0 if system.kinematics is None else system.kinematics.lead,  # no drive: no table motion
     )

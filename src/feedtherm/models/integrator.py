@@ -94,6 +94,8 @@ class PositionPath:
 
     @property
     def k(self) -> int:
+        if self.K == 0:  # one position: a system without a feed drive
+            return 0
         period = 2 * self.K
         tri = math.fmod(self.u, period)
         pos = tri if tri <= self.K else period - tri

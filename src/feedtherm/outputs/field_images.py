@@ -77,15 +77,17 @@ def write_field_images(series: FieldSeries, out_dir: Path, snapshot: int = -1, w
     Returns
     -------
     list of Path
-        ``temperature_field.png``, ``screw_deformation.png`` and, if drawn,
-        ``screw_axial_deformation.png``.
+        ``temperature_field.png``, ``screw_deformation.png`` (not for a system without a feed
+        drive, whose series has no screw) and, if drawn, ``screw_axial_deformation.png``.
     """
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     field, screw = out_dir / TEMPERATURE_FIELD_PNG, out_dir / SCREW_DEFORMATION_PNG
     plot_temperature_field(series, field, snapshot=snapshot, width_px=width_px)
-    plot_screw_deformation(series, screw)
-    paths = [field, screw]
+    paths = [field]
+    if np.size(series.screw_x):
+        plot_screw_deformation(series, screw)
+        paths.append(screw)
     if series.displacements is not None and screw_part is not None:
         paths.append(out_dir / SCREW_AXIAL_DEFORMATION_PNG)
         plot_screw_axial_deformation(series, paths[-1], screw_part)

@@ -44,9 +44,12 @@ def write_run_plots(solution: Solution, out_dir: Path) -> list[Path]:
 
 
 def draw_run_plots(solution: Solution, directory: Path) -> list[str]:
-    """Draw the four plots straight into ``directory`` (no staging); return their names."""
+    """Draw the four plots straight into ``directory`` (no staging); return their names.  A system
+    without a feed drive has no screw map and no positioning error: two plots."""
     plot_sensors(solution, directory / SENSORS_PNG)
     plot_elongation(solution, directory / ELONGATION_PNG)
+    if not solution.screw_x.size:
+        return [SENSORS_PNG, ELONGATION_PNG]
     plot_screw_heatmap(solution, directory / SCREW_HEATMAP_PNG)
     plot_positioning_error(solution, directory / POSITIONING_ERROR_PNG)
     return list(PLOT_NAMES)

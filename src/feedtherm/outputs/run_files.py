@@ -109,15 +109,18 @@ def write_tables(solution: Solution, directory: Path, *, sample_interval: float)
     """Write the CSV and JSON files straight into ``directory`` (no staging); return their names."""
     rows = sample_rows(solution.times, sample_interval)
     write_sensors_csv(solution, directory / SENSORS_CSV, rows)
-    write_screw_csv(solution.times[rows], solution.screw_x, solution.screw_temperature[rows] - KELVIN_OFFSET,
-                    directory / SCREW_CSV)
-    write_screw_csv(solution.times[rows], solution.screw_x, solution.screw_displacement[rows] * 1e6,
-                    directory / SCREW_DISPLACEMENT_CSV)
-    # the same wide layout: its columns are table positions, the nut's centre on the same x axis
-    write_screw_csv(solution.times[rows], solution.table_x, solution.positioning_error[rows] * 1e6,
-                    directory / POSITIONING_ERROR_CSV)
+    names = [SENSORS_CSV]
+    if solution.screw_x.size:  # a system without a feed drive has no screw and no stroke
+        write_screw_csv(solution.times[rows], solution.screw_x, solution.screw_temperature[rows] - KELVIN_OFFSET,
+                        directory / SCREW_CSV)
+        write_screw_csv(solution.times[rows], solution.screw_x, solution.screw_displacement[rows] * 1e6,
+                        directory / SCREW_DISPLACEMENT_CSV)
+        # the same wide layout: its columns are table positions, the nut's centre on the same x axis
+        write_screw_csv(solution.times[rows], solution.table_x, solution.positioning_error[rows] * 1e6,
+                        directory / POSITIONING_ERROR_CSV)
+        names += [SCREW_CSV, SCREW_DISPLACEMENT_CSV, POSITIONING_ERROR_CSV]
     write_summary_json(solution, directory / SUMMARY_JSON)
-    return list(TABLES)
+    return [*names, SUMMARY_JSON]
 
 
 # --------------------------------------------------------------------------- rows

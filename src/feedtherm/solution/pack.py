@@ -30,7 +30,7 @@ def sample_times(t_end: float, interval: float) -> np.ndarray:
 
 def cycle_window(system: FeedSystem, segments: list[Segment], standstill_step: float) -> float:
     """Length [s] of one reciprocation cycle (the longest among moving segments)."""
-    periods = [2.0 * system.kinematics.stroke / s.speed for s in segments if s.speed > 0]
+    periods = [2.0 * system.kinematics.stroke / s.speed for s in segments if s.speed > 0]  # speed 0 without a drive
     return max(periods) if periods else standstill_step
 
 
@@ -72,8 +72,12 @@ def pack_solution(system: FeedSystem, integrator: Integrator, segments: list[Seg
     steady[ambient] = last.bc.point.ambient
     screw_T = np.array(trace.sample_screw)
     displacement = np.array(trace.sample_displacement)[:, 1:]
-    table_x = nut_centre_x(system) + model.positions
-    positioning = along_stroke(model.screw_centres, displacement, table_x)
+    if system.kinematics is None:  # no table: no positions along a stroke, no positioning error
+        table_x = np.zeros(0)
+        positioning = np.zeros((len(times), 0))
+    else:
+        table_x = nut_centre_x(system) + model.positions
+        positioning = along_stroke(model.screw_centres, displacement, table_x)
     info = {**info, "ambient_sensor": ambient, "time_step_s": trace.time_step, "steps": len(step_end), "solver": integrator.solver_name,
             **({"cg_iterations": integrator.cg_iterations} if integrator.cg_iterations else {}),
             "unknowns": model.n_nodes, "cycle_window_s": window}

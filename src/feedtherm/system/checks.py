@@ -80,6 +80,8 @@ def check_errors(system: FeedSystem) -> list[Finding]:
 
 def _feed_speeds(system: FeedSystem) -> list[Finding]:
     findings = []
+    if system.kinematics is None:
+        return findings
     lead = system.kinematics.lead
     for name, cond in system.conditions.items():
         if cond.feed_speed is None:
@@ -126,8 +128,9 @@ def _mechanics_points(system: FeedSystem) -> list[Finding]:
     named.append(("mechanics.elongation.target.point", mech.elongation.target.part, mech.elongation.target.point))
     if not isinstance(mech.elongation.mount, str):
         named.append(("mechanics.elongation.mount.point", mech.elongation.mount.part, mech.elongation.mount.point))
-    named.append(("mechanics.positioning.reference.point", mech.positioning.reference.part,
-                  mech.positioning.reference.point))
+    if mech.positioning is not None:
+        named.append(("mechanics.positioning.reference.point", mech.positioning.reference.part,
+                      mech.positioning.reference.point))
     findings = []
     for path, part, point in named:
         if not contains(parts[part], point):
@@ -166,6 +169,8 @@ def _ambient_sensor(system: FeedSystem) -> list[Finding]:
 def turning_parts(system: FeedSystem) -> set[str]:
     """The parts that turn in some declared condition or duty cycle: the screw, the dual drive's
     nut, and every part with a surface cooled as a body rotating with one of them (a belt)."""
+    if system.kinematics is None:
+        return set()
     runs = [*system.conditions.values(),
             *(segment for cycle in system.duty_cycles.values() for segment in cycle.segments)]
     shaft_turns = {"screw": any(run.screw_speed != 0.0 for run in runs),
@@ -216,6 +221,8 @@ def _joints_unique(system: FeedSystem) -> list[Finding]:
 def _stroke(system: FeedSystem) -> list[Finding]:
     """The nut must travel its stroke on the screw (where any condition moves the table)."""
     kin = system.kinematics
+    if kin is None:
+        return []
     screw, nut = system.parts[kin.screw], system.parts[kin.nut]
     points = [*system.conditions.values(), *(s for cycle in system.duty_cycles.values() for s in cycle.segments)]
     if not (screw.cylinders and (nut.cylinders or nut.boxes)) or all(p.screw_speed == p.nut_speed for p in points):

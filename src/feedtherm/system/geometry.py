@@ -139,7 +139,10 @@ def nut_centre_x(system) -> float:
 def drive_point(system) -> tuple[float, float, float] | None:
     """Where the thread holds the nut to the screw along the axis [m]: on the screw's surface
     (its top), at the nut's centre along x (the moving group at the middle of the stroke); None
-    when the nut does not sit on the screw there (a description without a thread)."""
+    when the nut does not sit on the screw there (a description without a thread), or without a
+    feed drive."""
+    if system.kinematics is None:
+        return None
     screw = system.parts[system.kinematics.screw].cylinders[0]
     point = (nut_centre_x(system), screw.origin[1], screw.origin[2] + screw.outer_diameter / 2.0)
     if not contains(system.parts[system.kinematics.nut], point, tol=1e-6):

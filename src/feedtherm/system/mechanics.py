@@ -28,7 +28,7 @@ from __future__ import annotations
 import math
 from typing import Literal
 
-from pydantic import Field, field_validator, model_validator
+from pydantic import Field, field_validator, model_serializer, model_validator
 
 from .base import Strict
 from .quantities import Length
@@ -103,7 +103,8 @@ class Positioning(Strict):
 class Mechanics(Strict):
     supports: list[Support] = Field(min_length=1)
     elongation: DisplacementSensor
-    positioning: Positioning
+    #: Required with a feed drive and refused without one (the screw under the nut is what it reads).
+    positioning: Positioning | None = None
     #: Tie stiffness of a joint per unit area, as a multiple of the stiffer side's Young's
     #: modulus over the integrating side's element size (FE model; docs/fem-model.md).
     tie_penalty: float = Field(default=100.0, gt=1.0, le=1e6)
@@ -111,6 +112,13 @@ class Mechanics(Strict):
     #: own space) or "quadratic" (10 nodes: bending converges an order faster, for about seven
     #: times the unknowns; docs/fem-model.md). The fast and reduced models' bars do not use it.
     elements: Literal["linear", "quadratic"] = "linear"
+
+    @model_serializer(mode="wrap")
+    def _omit_no_positioning(self, handler):
+        data = handler(self)  # TOML has no null: a system without a feed drive leaves it out
+        if isinstance(data, dict) and data.get("positioning", 0) is None:
+            del data["positioning"]
+        return data
 
     @model_validator(mode="after")
     def _supports_once(self) -> "Mechanics":
@@ -135,7 +143,7 @@ def loop_summary(mechanics: Mechanics) -> dict:
     sensor = mechanics.elongation
     return {"elongation": {"target": _where(sensor.target), "mount": _where(sensor.mount),
                            "direction": [round(c, 6) for c in sensor.direction], "description": sensor.description},
-            "positioning_reference": _where(mechanics.positioning.reference)}
+            "positioning_reference": None if mechanics.positioning is None else _where(mechanics.positioning.reference)}
 
 
 def joint_holds(release: list[str]) -> list[int]:

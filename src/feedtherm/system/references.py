@@ -53,17 +53,20 @@ def check_references(system: "FeedSystem") -> None:
     for name, sensor in system.sensors.items():
         _require("part", sensor.part, parts, f"sensors.{name}.part")
     kin = system.kinematics
-    _require("part", kin.screw, parts, "kinematics.screw")
-    _require("part", kin.nut, parts, "kinematics.nut")
-    screw = parts[kin.screw]
-    if screw.boxes or len(screw.cylinders) != 1 or screw.cylinders[0].axis != "x":
-        raise ValueError("kinematics.screw: the screw must be a single cylinder along x")
-    if screw.moving:
-        raise ValueError(f"parts.{kin.screw}.moving: the screw is axially fixed; it cannot move with the table")
-    if not parts[kin.nut].moving:
-        raise ValueError(f"parts.{kin.nut}.moving: the nut travels with the table; set moving = true")
-    if kin.drive == "single":
-        _check_single_drive(system)
+    if kin is None:
+        _check_without_feed_drive(system)
+    else:
+        _require("part", kin.screw, parts, "kinematics.screw")
+        _require("part", kin.nut, parts, "kinematics.nut")
+        screw = parts[kin.screw]
+        if screw.boxes or len(screw.cylinders) != 1 or screw.cylinders[0].axis != "x":
+            raise ValueError("kinematics.screw: the screw must be a single cylinder along x")
+        if screw.moving:
+            raise ValueError(f"parts.{kin.screw}.moving: the screw is axially fixed; it cannot move with the table")
+        if not parts[kin.nut].moving:
+            raise ValueError(f"parts.{kin.nut}.moving: the nut travels with the table; set moving = true")
+        if kin.drive == "single":
+            _check_single_drive(system)
     _check_mechanics(system)
 
 
@@ -75,7 +78,48 @@ def _check_mechanics(system: "FeedSystem") -> None:
     _require("part", sensor.target.part, parts, "mechanics.elongation.target.part")
     if not isinstance(sensor.mount, str):
         _require("part", sensor.mount.part, parts, "mechanics.elongation.mount.part")
-    _require("part", mech.positioning.reference.part, parts, "mechanics.positioning.reference.part")
+    if system.kinematics is None:
+        if mech.positioning is not None:
+            raise ValueError(f"mechanics.positioning: {_NO_DRIVE}; the positioning error is the screw's displacement "
+                             "under the nut, so leave it out")
+    elif mech.positioning is None:
+        raise ValueError("mechanics.positioning: a feed drive needs the positioning error's reference point "
+                         "(the position encoder's; docs/system-description.md)")
+    else:
+        _require("part", mech.positioning.reference.part, parts, "mechanics.positioning.reference.part")
+
+
+#: How the errors below name a description without [kinematics].
+_NO_DRIVE = "the system has no feed drive ([kinematics] is left out)"
+
+
+def _check_without_feed_drive(system: "FeedSystem") -> None:
+    """Without a feed drive nothing moves or turns: no moving part, sliding joint, turning
+    source or speed; only ``fixed`` sources and still or natural convection."""
+    for name, part in system.parts.items():
+        if part.moving:
+            raise ValueError(f"parts.{name}.moving: {_NO_DRIVE}, so no part can move with a table")
+    for i, joint in enumerate(system.joints):
+        if joint.sliding:
+            raise ValueError(f"joints[{i}].sliding: {_NO_DRIVE}, so no contact slides")
+    for name, source in system.sources.items():
+        if source.model != "fixed":
+            raise ValueError(f"sources.{name}.model: a {source.model!r} source runs with a feed drive and {_NO_DRIVE}; "
+                             "give its heat as a 'fixed' source")
+    for name, surface in system.surfaces.items():
+        kind = surface.convection.kind
+        if kind in ("rotating", "moving_plate", "moving_face"):
+            raise ValueError(f"surfaces.{name}.convection.kind: {kind!r} convection needs a turning or moving part and "
+                             f"{_NO_DRIVE}")
+    for name, condition in system.conditions.items():
+        for field in ("screw_speed", "nut_speed"):
+            if getattr(condition, field) != 0.0:
+                raise ValueError(f"conditions.{name}.{field}: {_NO_DRIVE}; leave the speed out")
+    for name, cycle in system.duty_cycles.items():
+        for i, segment in enumerate(cycle.segments):
+            for field in ("screw_speed", "nut_speed"):
+                if getattr(segment, field) != 0.0:
+                    raise ValueError(f"duty_cycles.{name}.segments[{i}].{field}: {_NO_DRIVE}; leave the speed out")
 
 
 def _check_single_drive(system: "FeedSystem") -> None:

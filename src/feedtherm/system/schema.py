@@ -106,7 +106,20 @@ class Part(Strict):
     cylinders: list[Cylinder] = []
     holes: list[Cylinder] = []  # bores cut out of the boxes (e.g. a bearing seat)
     moving: bool = False
+    #: The FE mesh puts this many times more elements across the part than its density's rule
+    #: (models/fem/geometry.py; the screw's own factor comes on top): a part whose field a study
+    #: resolves finely.  The fast model does not use it.
+    mesh_refinement: float = Field(default=1.0, ge=0.25, le=8.0)
     description: str = ""
+
+    @model_serializer(mode="wrap")
+    def _omit_the_default_refinement(self, handler):
+        # Left out at its default, so that descriptions written before it existed keep their
+        # serialised form and hash (the benches' frozen provenance).
+        data = handler(self)
+        if isinstance(data, dict) and data.get("mesh_refinement") == 1.0:
+            del data["mesh_refinement"]
+        return data
 
     @model_validator(mode="after")
     def _has_geometry(self) -> "Part":
@@ -171,6 +184,17 @@ class Kinematics(Strict):
     reversal: Literal["both_reverse"] = "both_reverse"
 
 
+def feed_drive(system: "FeedSystem", needed_by: str) -> Kinematics:
+    """The system's feed drive; a one-line :class:`~feedtherm.errors.FeedthermError` naming
+    ``needed_by`` (a command or study) for a system without one."""
+    if system.kinematics is None:
+        from ..errors import FeedthermError
+
+        raise FeedthermError(f"{needed_by} needs a feed drive, and {system.meta.name!r} has none ([kinematics] is "
+                             "left out): it varies motor speeds and reads the screw")
+    return system.kinematics
+
+
 class Temperatures(Strict):
     """Initial and reference temperatures, and how temperature-dependent values are taken.
 
@@ -204,7 +228,7 @@ class Room(Strict):
 
 
 class Condition(Strict):
-    screw_speed: AngularSpeed  # signed
+    screw_speed: AngularSpeed = 0.0  # signed; a system without a feed drive leaves it out
     nut_speed: AngularSpeed = 0.0
     ambient: Temperature
     feed_speed: Speed | None = None  # as stated by the source; checked, never used
@@ -216,7 +240,7 @@ class DutySegment(Strict):
     """From ``start`` until the next segment's start, constant motor speeds and ambient."""
 
     start: NonNegDuration
-    screw_speed: AngularSpeed  # signed; 0 = standstill
+    screw_speed: AngularSpeed = 0.0  # signed; 0 = standstill
     nut_speed: AngularSpeed = 0.0
     ambient: Temperature
 
@@ -314,7 +338,10 @@ class FeedSystem(Strict):
     sources: dict[str, HeatSource]
     surfaces: dict[str, Surface]
     sensors: dict[str, Sensor]
-    kinematics: Kinematics
+    #: The feed drive: which part is the screw, which the nut, lead and stroke.  Left out, the
+    #: system has none: nothing moves or turns, every source is ``fixed`` (a test piece, a
+    #: housing on its own; docs/system-description.md, *A system without a feed drive*).
+    kinematics: Kinematics | None = None
     mechanics: Mechanics
     temperatures: Temperatures
     room: Room = Room()
@@ -334,6 +361,8 @@ class FeedSystem(Strict):
             data.pop("room", None)
         if isinstance(data, dict) and self.uncertainty is None:
             data.pop("uncertainty", None)  # likewise: descriptions without declared uncertainties
+        if isinstance(data, dict) and self.kinematics is None:
+            data.pop("kinematics", None)  # TOML has no null: a system without a feed drive leaves it out
         if isinstance(data, dict) and isinstance(data.get("sources"), dict):
             for name, source in data["sources"].items():
                 if isinstance(source, dict) and source.get("heat_factor") == 1.0 and self.sources[name].heat_factor == 1.0:

@@ -70,11 +70,20 @@ def test_missing_part_section_is_named(tmp_path):
 
 
 def test_missing_required_section(tmp_path):
+    start = BENCH.index("[temperatures]")
+    end = BENCH.index("\n[", start + 1)
+    path = tmp_path / "no_temperatures.toml"
+    path.write_text(BENCH[:start] + BENCH[end + 1:])
+    assert "temperatures: missing (required)" in load_error(str(path))
+
+
+def test_a_bench_without_its_kinematics_is_told_what_needs_a_feed_drive(tmp_path):
     start = BENCH.index("[kinematics]")
     end = BENCH.index("[[mechanics.supports]]")
     path = tmp_path / "no_kinematics.toml"
     path.write_text(BENCH[:start] + BENCH[end:])
-    assert "kinematics: missing (required)" in load_error(str(path))
+    message = load_error(str(path))
+    assert ".moving: the system has no feed drive ([kinematics] is left out)" in message, message
 
 
 def test_broken_toml(tmp_path):

@@ -172,9 +172,12 @@ def displacement_rows(layout: Layout) -> tuple[np.ndarray, np.ndarray]:
     if sensor.mount != GROUND:
         d = d - bars.at(sensor.mount.part, [sensor.mount.point[0]], "mechanics.elongation.mount")
     d = d * sensor.direction[0]  # ±1: the sensor's sense along x
-    reference = mech.positioning.reference
-    profile = (bars.at(system.kinematics.screw, layout.screw.centres, "kinematics.screw")
-               - bars.at(reference.part, [reference.point[0]], "mechanics.positioning.reference"))
+    if mech.positioning is None:  # no feed drive: D alone
+        profile = np.zeros((0, layout.n_nodes))
+    else:
+        reference = mech.positioning.reference
+        profile = (bars.at(system.kinematics.screw, layout.screw.centres, "kinematics.screw")
+                   - bars.at(reference.part, [reference.point[0]], "mechanics.positioning.reference"))
     rows = np.vstack([d, profile])
     # every displacement is zero with every node at the reference temperature
     return rows, -system.temperatures.reference * rows.sum(axis=1)

@@ -75,9 +75,14 @@ class FastDiscretization(ThermalModel):
             rows.append(row)
         self.probe_names = [*names, ELONGATION_PROBE]
         screw = layout.screw
-        self.screw_edges = screw.edges
-        self.screw_centres = screw.centres
-        self._ring_share = screw.ring_areas() / screw.ring_areas().sum()
+        if screw is None:  # no feed drive: no screw field
+            self.screw_edges, self.screw_centres = np.zeros(0), np.zeros(0)
+            self._screw_nodes, self._ring_share = np.zeros((0, 1), dtype=np.intp), np.zeros(1)
+        else:
+            self.screw_edges = screw.edges
+            self.screw_centres = screw.centres
+            self._screw_nodes = screw.nodes
+            self._ring_share = screw.ring_areas() / screw.ring_areas().sum()
         self._displacement = displacement_rows(layout)
         # one dense matrix reads every sensor and D (a probe is taken at every time step);
         # D is the displacements' first row, so the two readings cannot differ
@@ -93,7 +98,7 @@ class FastDiscretization(ThermalModel):
         self._means = means
 
     def screw_mean(self, states: np.ndarray) -> np.ndarray:
-        return states[..., self.layout.screw.nodes] @ self._ring_share
+        return states[..., self._screw_nodes] @ self._ring_share
 
     def probe(self, T: np.ndarray, k: int = 0) -> np.ndarray:
         return self._probe @ T + self._probe_offset
@@ -113,6 +118,7 @@ class FastDiscretization(ThermalModel):
     @property
     def stats(self) -> dict:
         screw = self.layout.screw
-        return {"unknowns": self.n_nodes, "screw_cells": len(screw.centres), "screw_rings": screw.n_rings,
+        return {"unknowns": self.n_nodes, "screw_cells": len(self.screw_centres),
+                "screw_rings": 0 if screw is None else screw.n_rings,
                 "part_cells": sum(c.nodes.size for c in self.layout.cells.values()),
                 "cell_size_mm": round(self.layout.cell_size * 1e3, 3)}

@@ -80,8 +80,10 @@ class Layout:
     cell_size: float = 0.0  # [m] target size of the sub-volumes
 
     @property
-    def screw(self) -> AxialBody:
-        return self.bodies[self.system.kinematics.screw]
+    def screw(self) -> AxialBody | None:
+        """The screw's body; None for a system without a feed drive."""
+        kin = self.system.kinematics
+        return None if kin is None else self.bodies[kin.screw]
 
     def part_nodes(self, part: str) -> np.ndarray:
         if part in self.cells:
@@ -94,7 +96,7 @@ class Layout:
 
 def axial_parts(system: FeedSystem) -> list[str]:
     """The screw, then every fixed part that a sliding joint connects to a moving part."""
-    names = [system.kinematics.screw]
+    names = [] if system.kinematics is None else [system.kinematics.screw]
     for joint in system.joints:
         if joint.sliding:
             for name in joint.between:
@@ -106,20 +108,23 @@ def axial_parts(system: FeedSystem) -> list[str]:
 def build_layout(system: FeedSystem, *, axial_cells: int = 100, radial_rings: int = 2,
                  min_positions: int = 20, cell_size: float = 0.04) -> Layout:
     """Node layout: axial bodies on a grid whose cell size divides the stroke, then the
-    other parts' sub-volumes of about ``cell_size`` [m]."""
-    screw_part = system.parts[system.kinematics.screw]
-    lo, hi = bounds(screw_part)
-    length = hi[0] - lo[0]
-    stroke = system.kinematics.stroke
-    positions_count = max(min_positions, math.ceil(stroke / (length / axial_cells)))
-    dx = stroke / positions_count
+    other parts' sub-volumes of about ``cell_size`` [m].  Without a feed drive nothing moves:
+    one position, no axial body."""
+    if system.kinematics is None:
+        positions_count, dx, stroke = 0, cell_size, 0.0
+    else:
+        lo, hi = bounds(system.parts[system.kinematics.screw])
+        length = hi[0] - lo[0]
+        stroke = system.kinematics.stroke
+        positions_count = max(min_positions, math.ceil(stroke / (length / axial_cells)))
+        dx = stroke / positions_count
     capacity: list[float] = []
     bodies: dict[str, AxialBody] = {}
     next_node = 0
     for name in axial_parts(system):
         part = system.parts[name]
         material = system.materials[part.material]
-        rings = radial_rings if name == system.kinematics.screw else 1
+        rings = radial_rings if system.kinematics is not None and name == system.kinematics.screw else 1
         body = _axial_body(name, part, dx, rings, next_node)
         bodies[name] = body
         next_node += body.nodes.size

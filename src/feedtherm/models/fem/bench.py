@@ -132,6 +132,10 @@ class FemDiscretization(ThermalModel):
     # ------------------------------------------------------------------ set-up
     def _setup_positions(self, axial_cells: int, min_positions: int) -> None:
         kin = self.system.kinematics
+        if kin is None:  # no feed drive: one position, no screw sections
+            self.dx, self.positions = 1.0, np.zeros(1)
+            self.screw_edges, self.screw_centres = np.zeros(0), np.zeros(0)
+            return
         lo, hi = bounds(self.system.parts[kin.screw])
         length = hi[0] - lo[0]
         count = max(min_positions, math.ceil(kin.stroke / (length / axial_cells)))
@@ -213,13 +217,7 @@ class FemDiscretization(ThermalModel):
                 raise ModelError(f"sensors.{name}.position: {exc} ({sensor.part})") from None
         self.probe_names = [*names, ELONGATION_PROBE]
         self._probe = sp.vstack(rows).tocsr() if rows else sp.csr_matrix((0, self.n_nodes))
-        screw = system.kinematics.screw
-        try:
-            self._screw_bins = slab_matrix(mesh.points, mesh.tets[:, mesh.part_tets(screw)], self.screw_edges,
-                                           self.n_nodes)
-        except ValueError as exc:  # a screw shorter than a few of its elements: a section without a tetrahedron
-            raise ModelError(f"parts.{screw}: the mesh cannot resolve the screw's {len(self.screw_edges) - 1} "
-                             f"axial sections of {self.dx * 1e3:.3g} mm ({exc}); use a finer mesh or a longer screw") from None
+        self._screw_bins = self._screw_sections()
         self.deformation = Deformation(self)
         self._probe_rows = None
         self._part_weights = {}
@@ -227,6 +225,17 @@ class FemDiscretization(ThermalModel):
             nodes = mesh.part_nodes(name)
             v = self.node_volume[nodes]
             self._part_weights[name] = (nodes, v / v.sum())
+
+    def _screw_sections(self) -> sp.csr_matrix:
+        """(sections, nodes): the volume-mean of each axial section of the screw; no rows without a feed drive."""
+        if self.system.kinematics is None:
+            return sp.csr_matrix((0, self.n_nodes))
+        screw, mesh = self.system.kinematics.screw, self.mesh
+        try:
+            return slab_matrix(mesh.points, mesh.tets[:, mesh.part_tets(screw)], self.screw_edges, self.n_nodes)
+        except ValueError as exc:  # a screw shorter than a few of its elements: a section without a tetrahedron
+            raise ModelError(f"parts.{screw}: the mesh cannot resolve the screw's {len(self.screw_edges) - 1} "
+                             f"axial sections of {self.dx * 1e3:.3g} mm ({exc}); use a finer mesh or a longer screw") from None
 
     # ------------------------------------------------------------------ joints
     def _cq(self, j: _Joint, k: int) -> ContactQuadrature:

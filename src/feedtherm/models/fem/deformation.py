@@ -162,6 +162,8 @@ class Deformation:
         if sensor.mount != GROUND:
             d = d - self._along(self._point(sensor.mount.part, sensor.mount.point, "mechanics.elongation.mount.point"),
                                 sensor.direction)
+        if mech.positioning is None:  # no feed drive: D alone
+            return sp.csr_matrix(d)
         reference = mech.positioning.reference
         ref = self._point(reference.part, reference.point, "mechanics.positioning.reference.point")
         bins = self.space.on_nodes(fem._screw_bins)

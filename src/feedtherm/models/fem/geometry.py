@@ -8,7 +8,8 @@ with linear tetrahedra of a size chosen per part:
 ``t`` the part's thinnest dimension (a box's smallest side, a tube's wall, a solid
 cylinder's radius), ``h_max`` and ``n_across`` set by the density (:data:`DENSITIES`). The
 screw (a solid rod: ``t`` is its radius; the friction heat and the sliding contact are on it)
-gets ``screw_factor`` times more elements across. Curved faces also get at least ``per_circle`` elements around.
+gets ``screw_factor`` times more elements across, and a part's ``mesh_refinement`` (the
+description's) multiplies its ``n_across``. Curved faces also get at least ``per_circle`` elements around.
 
 The parts' meshes are put side by side without merging nodes: a
 joint between two parts is a non-conforming interface (:mod:`.coupling`). Moving parts are
@@ -74,8 +75,8 @@ def thickness(part: Part) -> float:
 def mesh_size(system: FeedSystem, name: str, density: str) -> float:
     """Target element size [m] of part ``name`` at ``density``."""
     rule = _density(density)
-    across = rule.n_across
-    if name == system.kinematics.screw:
+    across = rule.n_across * system.parts[name].mesh_refinement
+    if system.kinematics is not None and name == system.kinematics.screw:
         across *= rule.screw_factor
     return min(rule.h_max, thickness(system.parts[name]) / across)
 
