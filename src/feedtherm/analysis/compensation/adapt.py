@@ -135,6 +135,8 @@ class AdaptedLaw:
     width_at_bound : bool
         True when the evidence's maximum lies at the search's edge (at the lower one: the data are
         within their noise of the prior, the posterior is the prior).
+    scale : ndarray, shape (p,), or None
+        The features' scale s [K] of the prior's coordinates.
     """
 
     law: RegressionLaw
@@ -146,6 +148,7 @@ class AdaptedLaw:
     log_evidence: float
     samples: int
     width_at_bound: bool = False
+    scale: np.ndarray | None = None
 
     def sd(self, feature_rows: np.ndarray) -> np.ndarray:
         """Predictive standard deviation [m] of a measured D at each row of features ``(n, p)`` [K]."""
@@ -281,7 +284,7 @@ def adapt_law(law: RegressionLaw, pairs: Pairs, scale: np.ndarray | None = None,
     weights = coefficients[1:]
     mean = RegressionLaw(law.sensors, law.lags, weights.reshape(law.weights.shape), float(coefficients[0] - m @ weights))
     return AdaptedLaw(mean, law, m, covariance, float(np.median(pairs.sigma)), float(width),
-                      log_evidence(phi, pairs.elongation, pairs.sigma, theta0, prior), len(x), at_bound)
+                      log_evidence(phi, pairs.elongation, pairs.sigma, theta0, prior), len(x), at_bound, s)
 
 
 def minimum_norm_fit(law: RegressionLaw, pairs: Pairs, scale: np.ndarray | None = None) -> RegressionLaw:
