@@ -3,7 +3,7 @@
 The law :math:`D = b + \\mathbf f^{\\mathsf T}\\mathbf w` (:mod:`.regression`; features
 :math:`\\mathbf f` [K]: each input's reading, then its lags) carries the model's relation between
 temperatures and elongation.  A measured machine differs from its model (on the paper's bench the
-T1–T5 law misses the measured D by −14 … +45 µm, docs/compensation.md §4), and a few measured
+law on the declared sensors misses the measured D by −14 … +45 µm, docs/compensation.md §4), and a few measured
 pairs (temperatures, D) can correct it.  Few: a bench measures a handful of conditions, fewer than
 the law's coefficients, so a least-squares fit on them alone is underdetermined.  The simulated
 law is the prior and the measurements update it, the conjugate Gaussian linear model [1]_ §3.3.
@@ -24,7 +24,7 @@ feature, and :math:`c` the level of D: all in metres, comparable.
 and each feature's contribution are those of the model, give or take :math:`\\tau` [m], one width
 for all, because nothing says beforehand which coefficient the mismatch sits in.
 
-**Width** :math:`\\tau`: maximum marginal likelihood (type-II maximum likelihood, the evidence
+**Width** :math:`\\tau`: maximum marginal likelihood (type-2 maximum likelihood, the evidence
 [1]_ §3.5) on the adaptation data only,
 
 .. math:: \\hat\\tau = \\arg\\max_\\tau\\; \\log \\mathcal N\\big(\\mathbf y;\\ \\Phi\\boldsymbol\\theta_0,\\
@@ -39,8 +39,10 @@ residuals widen it.  Nothing of a held-out condition enters (leave-one-condition
 file's ``uncertainty`` column where it gives one, else the description's
 ``calibration.elongation_sigma``, else :data:`DEFAULT_ELONGATION_SIGMA` (2 µm, the value calibration
 and inference use, :mod:`~feedtherm.analysis.calibration`).  The measured temperatures' own
-uncertainty is not propagated (errors in variables): at 0.5 K and the laws' weights of a few
-µm/K it would add a few µm, and it is part of what :math:`\\tau` absorbs.
+uncertainty is not propagated (errors in variables): at 0.5 K through weights of norm
+11 µm/K (the paper bench's static law on its declared sensors) it would add about 6 µm in
+quadrature; left out, it is part of what :math:`\\tau` absorbs, and the predictive standard
+deviation below is short of it.
 
 **Posterior** ([1]_ eqs. 3.49–3.51, with :math:`\\Lambda = \\operatorname{diag}\\boldsymbol\\sigma^{-2}`):
 
