@@ -148,3 +148,27 @@ def test_pairs_refuse_a_file_without_d_or_an_input(tmp_path, text, message):
     path.write_text(text)
     with pytest.raises(FeedthermError, match=message):
         measured_pairs(one_input_law(), read_measurements(str(path)), ambient_sensor="T6", ambients={}, sigma=2e-6)
+
+
+def test_leave_one_condition_out_corrects_an_offset_the_model_got_wrong(tmp_path):
+    """Five conditions on the line D = 10 µm + 2 µm/K (T − 293.15 K); the prior law is right in slope
+    but 30 µm high.  Held out in turn: the prior misses by +30 µm, the adapted law (τ by evidence on
+    the other four) and the least-squares line on them by far less; no reference column, no reference."""
+    from feedtherm.analysis.compensation.leave_one_out import leave_one_condition_out
+
+    temperatures = [22.0, 25.0, 28.0, 31.0, 35.0]
+    lines = ["condition,quantity,unit,measured"]
+    for i, t in enumerate(temperatures):
+        lines += [f"c{i},a,C,{t}", f"c{i},D_um,um,{10 + 2 * (t - 20):.6f}"]
+    path = tmp_path / "m.csv"
+    path.write_text("\n".join(lines) + "\n")
+    data = read_measurements(str(path))
+    prior = RegressionLaw(("a",), (), np.array([[2e-6]]), 40e-6 - 2e-6 * 293.15)
+    pairs = measured_pairs(prior, data, ambient_sensor="T6", ambients={}, sigma=2e-6)
+    loco = leave_one_condition_out(prior, pairs, data, np.array([4.0]))
+    assert [h.condition for h in loco.held_out] == ["c0", "c1", "c2", "c3", "c4"]
+    assert loco.summary("model_only")["rms_um"] == pytest.approx(30.0)
+    assert loco.summary("regression")["max_um"] < 1e-6
+    assert loco.summary("adapted")["max_um"] < 3.0
+    assert loco.summary("reference_model") is None
+    assert loco.as_dict()["within_2sd"] == 5
