@@ -124,7 +124,8 @@ def test_the_study_reads_back_as_a_report_section(study):
 def test_the_adapted_laws_are_the_posterior_and_the_evaluator_gives_their_mean_and_sd(study):
     """law_adapted*.json: the posterior of law*.json on the file, recomputed here from the prior, the
     file's pairs and the stated scale and width; the evaluator's mean and sd are the posterior's."""
-    from feedtherm.analysis.compensation.adapt import Pairs, adapt_law
+    from feedtherm.analysis.compensation.adapt import adapt_law
+    from feedtherm.analysis.compensation.pairs import Pairs
     from feedtherm.analysis.compensation.regression import RegressionLaw
 
     cwd, result = study

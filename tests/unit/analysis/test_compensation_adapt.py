@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from feedtherm.analysis.compensation.adapt import (
-    Pairs, adapt_law, evidence_width, gaussian_posterior, log_evidence, measured_pairs, minimum_norm_fit)
+    adapt_law, evidence_width, gaussian_posterior, log_evidence, minimum_norm_fit)
+from feedtherm.analysis.compensation.pairs import Pairs, measured_pairs
 from feedtherm.analysis.compensation.evaluator import CompensationLaw
 from feedtherm.analysis.compensation.law import adapted_law_document
 from feedtherm.analysis.compensation.regression import RegressionLaw

@@ -2,7 +2,7 @@
 (``feedtherm compensate --adapt``) and the leave-one-condition-out check on the bench's own.
 
 - :func:`check_adaptation_file`: before the long run, the file holds D and, where the sensors were
-  named, every one of them (one-line errors, :func:`.adapt.measured_pairs`);
+  named, every one of them (one-line errors, :func:`.pairs.measured_pairs`);
 - :func:`adapt_study`: the chosen regression laws (static and with lags, the ``law*.json`` a
   controller reads) updated on the file (:func:`.adapt.adapt_law`), each feature scaled by its
   spread over the study's training cycles;
@@ -20,8 +20,9 @@ import numpy as np
 
 from ...system.load import LoadedSystem
 from ..measurements import ELONGATION_QUANTITY, MeasurementSet
-from .adapt import AdaptedLaw, adapt_law, elongation_sigma, feature_scale, measured_pairs
+from .adapt import AdaptedLaw, adapt_law, feature_scale
 from .leave_one_out import LeaveOneOut, leave_one_condition_out
+from .pairs import elongation_sigma, measured_pairs
 from .regression import RegressionLaw
 
 #: Laws adapted by ``--adapt`` (kinds of :data:`.study.LAWS`) and the file each is written to.
@@ -37,7 +38,7 @@ def _ambients(loaded: LoadedSystem) -> dict[str, float]:
 
 
 def pairs_of(law: RegressionLaw, loaded: LoadedSystem, data: MeasurementSet, series: bool = True):
-    """The measured pairs of ``law`` in ``data`` (:func:`.adapt.measured_pairs`) with the description's
+    """The measured pairs of ``law`` in ``data`` (:func:`.pairs.measured_pairs`) with the description's
     ambient sensor, conditions' ambients and σ of D."""
     return measured_pairs(law, data, ambient_sensor=loaded.system.room.ambient_sensor, ambients=_ambients(loaded),
                           sigma=elongation_sigma(loaded.system), series=series)

@@ -1,7 +1,7 @@
 """Leave-one-condition-out: does a simulation-trained law, updated on a bench's other conditions,
 predict the measured D of the one left out?
 
-For each measured condition, with the pairs of every other condition (:func:`.adapt.measured_pairs`),
+For each measured condition, with the pairs of every other condition (:func:`.pairs.measured_pairs`),
 the held-out condition's D − measured D [m] of four predictors:
 
 - ``model_only``: the simulation-trained law alone (no measurement enters);
@@ -24,7 +24,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..measurements import ELONGATION_QUANTITY, MeasurementSet
-from .adapt import Pairs, adapt_law, minimum_norm_fit
+from .adapt import adapt_law, minimum_norm_fit
+from .pairs import Pairs
 from .regression import RegressionLaw
 
 #: The predictors compared, in the order they are shown.
