@@ -479,6 +479,13 @@ def cmd_compensate(args: argparse.Namespace) -> int:
     from .analysis.validation import measurements_of
     from .outputs.compensation_files import summary_line, write_compensation
 
+    from .analysis.compensation.adaptation import adapt_study, check_adaptation_file, loco_study
+    from .analysis.measurements import read_measurements
+
+    adapt_data = None
+    if args.adapt:  # read and checked before the long run; sensors chosen by the study are checked after it
+        adapt_data = read_measurements(args.adapt)
+        check_adaptation_file(loaded, adapt_data, None if isinstance(request, int) else request)
     try:  # the measured bench, where the description has measurements (read before the long run)
         data = measurements_of(loaded, None)
     except FeedthermError:
@@ -487,7 +494,9 @@ def cmd_compensate(args: argparse.Namespace) -> int:
         result = run_study(loaded, settings, request, progress, execution)
     measured = {} if data is None else {kind: predict_measured(r.law, loaded, data)
                                          for kind, r in result.declared.items()}
-    write_compensation(result, loaded, out_dir, measured=measured)
+    adapted = None if adapt_data is None else adapt_study(result, loaded, adapt_data)
+    write_compensation(result, loaded, out_dir, measured=measured, adapted=adapted, adapt_data=adapt_data,
+                       loco=loco_study(result, loaded, data))
     print(summary_line(out_dir, result, time.perf_counter() - started))
     return 0
 
@@ -777,6 +786,9 @@ def build_parser() -> argparse.ArgumentParser:
                             help="length of every cycle [s] (default 28800, one shift)")
     compensate.add_argument("--model", default="fast", help="a model of `feedtherm models` (default fast)")
     compensate.add_argument("--mesh", choices=MESHES, default="coarse", help="FE mesh density (with --model fem)")
+    compensate.add_argument("--adapt", metavar="MEASURED.csv",
+                            help="measurements of the machine (final values or time series, docs/measurements.md; "
+                                 "bundled:<bench>): update the regression laws on them (law_adapted*.json)")
     _mode_argument(compensate)
     _execution_arguments(compensate)
     _out_argument(compensate, "out/<system>_compensation_<mode>")

@@ -17,11 +17,34 @@ def run(cwd, *args):
                           timeout=300, cwd=cwd)
 
 
+#: D [µm] of the made-up measurements the study is adapted to (one per condition).
+ADAPT_D_UM = {"a": 12.0, "b": 25.0, "c": 31.0, "d": 47.0}
+
+
+def adaptation_file(path):
+    """Final values of every candidate (the sensors the study will choose are not known before it
+    runs) and D, at four made-up conditions: a file in the format the measurement readers accept."""
+    from feedtherm.analysis.candidates import candidate_sensors
+    from feedtherm.system.load import load_system
+
+    names = list(candidate_sensors(load_system("paper").system))
+    rng = np.random.default_rng(11)
+    lines = ["condition,quantity,unit,measured"]
+    for i, (condition, d) in enumerate(ADAPT_D_UM.items()):
+        lines += [f"{condition},{name},C,{20 + 4 * i + rng.uniform(0, 8):.2f}" for name in names]
+        lines.append(f"{condition},D_um,um,{d}")
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
 @pytest.fixture(scope="module")
 def study(tmp_path_factory):
-    """One 1-hour cycle per set: the whole path, not the figures of docs/compensation.md."""
+    """One 1-hour cycle per set: the whole path, not the figures of docs/compensation.md; the laws
+    adapted to a made-up measurement file (``--adapt``)."""
     cwd = tmp_path_factory.mktemp("compensate")
-    return cwd, run(cwd, "--cycles", "1", "--duration", "3600", "--seed", "4", "--sensors", "2")
+    adaptation_file(cwd / "measured.csv")
+    return cwd, run(cwd, "--cycles", "1", "--duration", "3600", "--seed", "4", "--sensors", "2",
+                    "--adapt", "measured.csv")
 
 
 def test_two_workers_give_the_serial_study(study, tmp_path):
@@ -33,6 +56,7 @@ def test_two_workers_give_the_serial_study(study, tmp_path):
     for name in ("law.json", "law_static.json", "compensation.csv"):
         assert (tmp_path / "out" / "paper_compensation_physics" / name).read_bytes() == \
             (cwd / "out" / "paper_compensation_physics" / name).read_bytes(), name
+    assert not list((tmp_path / "out" / "paper_compensation_physics").glob("law_adapted*"))  # no --adapt, none
 
 
 def test_a_study_writes_its_files_and_one_line(study):
@@ -42,7 +66,8 @@ def test_a_study_writes_its_files_and_one_line(study):
     assert len(lines) == 1 and lines[0].startswith("out/paper_compensation_physics: law on "), lines
     out = cwd / "out" / "paper_compensation_physics"
     assert sorted(p.name for p in out.iterdir()) == sorted(
-        ["law.json", "law_static.json", "law_kalman.json", "compensation.json", "compensation.csv", "error_vs_k.png",
+        ["law.json", "law_static.json", "law_kalman.json", "law_adapted.json", "law_adapted_static.json",
+         "compensation.json", "compensation.csv", "error_vs_k.png",
          "sensor_map.png", "test_cycle.png", "compensation.html"])
     for name in ("error_vs_k.png", "sensor_map.png", "test_cycle.png"):
         assert (out / name).read_bytes()[:8] == PNG_MAGIC
@@ -94,3 +119,72 @@ def test_the_study_reads_back_as_a_report_section(study):
     assert sorted(read["figures"]) == ["error_vs_k.png", "sensor_map.png", "test_cycle.png"]
     html = compensation_section(read["summary"], read["figures"])
     assert html.count("data:image/png;base64") == 3 and "Kalman filter" in html
+
+
+def test_the_adapted_laws_are_the_posterior_and_the_evaluator_gives_their_mean_and_sd(study):
+    """law_adapted*.json: the posterior of law*.json on the file, recomputed here from the prior, the
+    file's pairs and the stated scale and width; the evaluator's mean and sd are the posterior's."""
+    from feedtherm.analysis.compensation.adapt import adapt_law
+    from feedtherm.analysis.compensation.pairs import Pairs
+    from feedtherm.analysis.compensation.regression import RegressionLaw
+
+    cwd, result = study
+    assert result.returncode == 0, result.stderr
+    out = cwd / "out" / "paper_compensation_physics"
+    summary = json.loads((out / "compensation.json").read_text())
+    block = summary["adaptation"]
+    assert block["file"] == "measured.csv" and "not adapted" in block["kalman"]
+    rows = [line.split(",") for line in (cwd / "measured.csv").read_text().splitlines()[1:]]
+    finals = {(c, q): float(v) for c, q, _, v in rows}
+    for prior_file, adapted_file, kind in (("law_static.json", "law_adapted_static.json", "regression"),
+                                           ("law.json", "law_adapted.json", "regression_lags")):
+        prior, adapted = (json.loads((out / name).read_text()) for name in (prior_file, adapted_file))
+        assert block["laws"][kind]["file"] == adapted_file and block["laws"][kind]["samples"] == 4
+        posterior = adapted["posterior"]
+        law = RegressionLaw(tuple(i["name"] for i in prior["inputs"]), tuple(prior["lags_s"]),
+                            np.array(prior["weights_m_per_K"]), prior["bias_m"])
+        readings = np.array([[finals[(c, n)] + 273.15 for n in law.sensors] for c in ADAPT_D_UM])
+        features = np.repeat(readings, 1 + len(law.lags), axis=1).reshape(4, -1)  # settled lags: the reading
+        pairs = Pairs(features, np.array(list(ADAPT_D_UM.values())) * 1e-6, np.full(4, 2e-6), tuple(ADAPT_D_UM))
+        expected = adapt_law(law, pairs, np.array(posterior["scale_K"]), width=posterior["prior_width_m"])
+        np.testing.assert_allclose(adapted["weights_m_per_K"], expected.law.weights, rtol=1e-6, atol=1e-12)
+        evaluator = CompensationLaw(adapted)
+        d, sd = evaluator.update_with_sd(0.0, dict(zip(law.sensors, readings[1])))
+        mean, sd_expected = expected.predict_features(features[1:2])
+        assert d == pytest.approx(mean[0], rel=1e-6, abs=1e-12) and sd == pytest.approx(sd_expected[0], rel=1e-6)
+        # the measured pairs are fitted far better than by the simulation-trained law
+        assert d == pytest.approx(ADAPT_D_UM["b"] * 1e-6, abs=3 * sd)
+
+
+def test_leave_one_condition_out_on_the_measured_bench(study):
+    cwd, _ = study
+    summary = json.loads((cwd / "out" / "paper_compensation_physics" / "compensation.json").read_text())
+    loco = summary["leave_one_condition_out"]
+    assert loco["sensors"] == ["T1", "T2", "T3", "T4", "T5"] and loco["lags_s"] == []
+    assert [c["condition"] for c in loco["conditions"]] == ["I", "II", "III", "IV", "V"]
+    # the measurements' own reference model: the paper's printed deviations, 2.9, 3.4, 3.8, 1.8, 6.2 µm
+    assert [round(c["reference_model_um"], 1) for c in loco["conditions"]] == [2.9, 3.4, 3.8, 1.8, 6.2]
+    for name in ("model_only", "adapted", "regression", "reference_model"):
+        assert loco[name]["conditions"] == 5 and loco[name]["max_um"] >= loco[name]["rms_um"] > 0
+    html = (cwd / "out" / "paper_compensation_physics" / "compensation.html").read_text()
+    assert "leave one condition out" in html and "laws adapted to measured.csv" in html
+
+
+FINALS_WITHOUT_D = "condition,quantity,unit,measured\nI,T1,C,27.1\nI,T3,C,34.5\n"
+FINALS_WITHOUT_T3 = "condition,quantity,unit,measured\nI,T1,C,27.1\nI,D_um,um,29.9\n"
+
+
+@pytest.mark.parametrize("text, message", [
+    (FINALS_WITHOUT_D, "measured.csv: no measured D"),
+    (FINALS_WITHOUT_T3, "measured.csv: condition I does not measure T3, an input of the law on T1, T3"),
+    ("condition,quantity,unit\nI,T1,C\n", "measured.csv: line 1: header must be condition,quantity,unit,measured"),
+    (None, "measured.csv: no such measurement file"),
+])
+def test_a_bad_adaptation_file_is_one_line_exit_2_and_nothing_written(tmp_path, text, message):
+    if text is not None:
+        (tmp_path / "measured.csv").write_text(text)
+    result = run(tmp_path, "--sensors", "T1,T3", "--cycles", "1", "--adapt", "measured.csv", "--out", "study")
+    assert result.returncode == 2 and result.stdout == ""
+    lines = result.stderr.splitlines()
+    assert len(lines) == 1 and message in lines[0], result.stderr
+    assert [p.name for p in tmp_path.iterdir()] == ([] if text is None else ["measured.csv"])

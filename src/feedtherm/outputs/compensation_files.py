@@ -8,7 +8,12 @@ Files (all in one directory, replaced as a set):
   Kalman estimator on the same sensors (:class:`~feedtherm.analysis.compensation.kalman.KalmanLaw`
   reads it back);
 - ``compensation.json``: settings, the error of every law for K = 1 … 6 and of the description's
-  own sensors, the best law with at most 3 sensors, the measured bench, the test machines' factors;
+  own sensors, the best law with at most 3 sensors, the measured bench, the test machines' factors,
+  the leave-one-condition-out check of the adaptation on the measured bench and, with ``--adapt``,
+  the ``adaptation`` block;
+- ``law_adapted.json``, ``law_adapted_static.json`` (with ``--adapt``): the two regression laws
+  updated on measurements (:mod:`~feedtherm.analysis.compensation.adapt`), with the posterior
+  covariance and the noise σ, from which the evaluator gives the predictive standard deviation;
 - ``compensation.csv``: one row per law and K;
 - ``error_vs_k.png``, ``sensor_map.png``, ``test_cycle.png`` and ``compensation.html`` (the report's section).
 """
@@ -19,7 +24,11 @@ import csv
 from dataclasses import asdict
 from pathlib import Path
 
-from ..analysis.compensation.law import law_document
+from ..analysis.compensation.adapt import AdaptedLaw
+from ..analysis.compensation.adaptation import ADAPTED_FILES, adaptation_block
+from ..analysis.compensation.law import adapted_law_document, law_document
+from ..analysis.compensation.leave_one_out import LeaveOneOut
+from ..analysis.measurements import MeasurementSet
 from ..analysis.compensation.measured import MeasuredPrediction
 from ..analysis.compensation.study import LawResult, StudyResult
 from ..system.load import LoadedSystem
@@ -29,7 +38,7 @@ from .files import read_study_summary, staged_directory, write_json
 from .report.compensation import compensation_section
 from .report.html import page
 
-COMPENSATION_FILES = ("law.json", "law_static.json", "law_kalman.json", "compensation.json", "compensation.csv", "error_vs_k.png",
+COMPENSATION_FILES = ("law.json", "law_static.json", "law_kalman.json", *ADAPTED_FILES.values(), "compensation.json", "compensation.csv", "error_vs_k.png",
                       "sensor_map.png", "test_cycle.png", "compensation.html")
 CSV_HEADER = ["law", "k", "sensors", "test_rms_um", "test_max_um", "reduction_percent", "validation_rms_um",
               "uncompensated_rms_um"]
@@ -40,7 +49,8 @@ def _entry(result: LawResult) -> dict:
             "test": result.test.as_dict()}
 
 
-def summary(result: StudyResult, loaded: LoadedSystem, measured: dict[str, list[MeasuredPrediction]]) -> dict:
+def summary(result: StudyResult, loaded: LoadedSystem, measured: dict[str, list[MeasuredPrediction]],
+            loco: LeaveOneOut | None = None, adaptation: dict | None = None) -> dict:
     """The study as a JSON-able document (µm at output)."""
     settings = {**asdict(result.settings), "mode": mode_of(loaded)}  # the overlay the runs took
     best = result.best(3)
@@ -61,17 +71,24 @@ def summary(result: StudyResult, loaded: LoadedSystem, measured: dict[str, list[
         "best": _entry(best),
         "measured": {kind: {"law": kind, "sensors": list(result.declared[kind].sensors),
                             "conditions": [m.as_dict() for m in rows]} for kind, rows in measured.items()},
+        "leave_one_condition_out": None if loco is None else loco.as_dict(),
+        **({} if adaptation is None else {"adaptation": adaptation}),
     }
 
 
 def write_compensation(result: StudyResult, loaded: LoadedSystem, out_dir: Path, *,
-                       measured: dict[str, list[MeasuredPrediction]] | None = None) -> list[Path]:
+                       measured: dict[str, list[MeasuredPrediction]] | None = None,
+                       adapted: dict[str, AdaptedLaw] | None = None, adapt_data: MeasurementSet | None = None,
+                       loco: LeaveOneOut | None = None) -> list[Path]:
     """Write the study's files (see the module's notes) into ``out_dir``; return their paths.
 
     ``measured``: law kind -> its predictions of the measured bench (the law on the description's
-    own sensors, :mod:`~feedtherm.analysis.compensation.measured`).
+    own sensors, :mod:`~feedtherm.analysis.compensation.measured`); ``adapted``: law kind -> the law
+    updated on ``adapt_data`` (:func:`~feedtherm.analysis.compensation.adaptation.adapt_study`);
+    ``loco``: the leave-one-condition-out check on the measured bench.
     """
-    document = summary(result, loaded, measured or {})
+    adaptation = None if not adapted else adaptation_block(adapted, adapt_data, loaded)
+    document = summary(result, loaded, measured or {}, loco, adaptation)
     provenance = {"system": loaded.origin, "description_sha256": loaded.sha256,
                   "settings": document["settings"], "fitted_on": "nominal model, training cycles"}
     best = result.best(3)
@@ -86,6 +103,10 @@ def write_compensation(result: StudyResult, loaded: LoadedSystem, out_dir: Path,
                                                            {**provenance, "test": result.chosen["regression"].test.as_dict()}))
         write_json(stage / "law_kalman.json", result.chosen["kalman"].law.document(
             {**provenance, "test": result.chosen["kalman"].test.as_dict()}))
+        for kind, law in (adapted or {}).items():
+            write_json(stage / ADAPTED_FILES[kind], adapted_law_document(law, result.candidates, {
+                **provenance, "fitted_on": "nominal model, training cycles; updated on measurements",
+                "measurements": adapt_data.source, "adaptation": adaptation["laws"][kind]}))
         write_json(stage / "compensation.json", document)
         with open(stage / "compensation.csv", "w", newline="") as handle:
             writer = csv.writer(handle, lineterminator="\n")

@@ -4,5 +4,7 @@
 - :mod:`.regression`: the industry baseline, multiple linear regression with optional lags;
 - :mod:`.selection`: greedy forward choice of K sensors on held-out error;
 - :mod:`.metrics`: residual error of a law over cycles (RMS, maximum, reduction);
-- :mod:`.law` and :mod:`.evaluator`: the law as a JSON document, and its evaluation on a stream.
+- :mod:`.law` and :mod:`.evaluator`: the law as a JSON document, and its evaluation on a stream;
+- :mod:`.pairs`, :mod:`.adapt`, :mod:`.leave_one_out`, :mod:`.adaptation`: a law updated on measured
+  pairs of its machine (Bayesian), and how far the update carries to a condition left out.
 """

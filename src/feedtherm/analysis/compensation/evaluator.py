@@ -12,6 +12,15 @@ The document (``format = "feedtherm-compensation-law"``, ``version = 1``) holds 
 names and units, the bias [m], the weights [m/K] of each input and of its first-order lags, and
 the lags' time constants [s].  A lag starts settled at the first reading and then follows
 ``L = a L + (1 - a) T`` with ``a = exp(-Δt/τ)`` at each reading, Δt the time since the previous one.
+
+A law adapted to measurements (``feedtherm compensate --adapt``, ``law_adapted*.json``) carries a
+``posterior`` block as well: the features' centre ``m`` [K], the covariance ``Σ`` of (the law's D at
+the centre [m], the weights [m/K]) and the noise ``σ`` [m] of a measured D;
+:meth:`CompensationLaw.update_with_sd` then gives D and its predictive standard deviation
+``sqrt(φᵀ Σ φ + σ²)`` with ``φ = [1, features − m]`` (features: each input's reading, then its lags)::
+
+    law = CompensationLaw.from_file("law_adapted.json")
+    D, sd = law.update_with_sd(t, readings)   # [m], [m]
 """
 
 from __future__ import annotations
@@ -38,6 +47,7 @@ class CompensationLaw:
         self.weights = [[float(w) for w in row] for row in document["weights_m_per_K"]]
         if len(self.weights) != len(self.inputs) or any(len(row) != 1 + len(self.lags) for row in self.weights):
             raise ValueError("weights_m_per_K must have one row per input and 1 + len(lags_s) columns")
+        self.posterior = _posterior(document.get("posterior"), len(self.inputs) * (1 + len(self.lags)))
         self.reset()
 
     @classmethod
@@ -51,6 +61,21 @@ class CompensationLaw:
 
     def update(self, time: float, readings: dict[str, float]) -> float:
         """D [m] after the readings [K] taken at ``time`` [s] (times must increase)."""
+        return self._step(time, readings)[0]
+
+    def update_with_sd(self, time: float, readings: dict[str, float]) -> tuple[float, float]:
+        """D [m] and its predictive standard deviation [m] after the readings [K] taken at ``time`` [s];
+        only for an adapted law (a document with a ``posterior`` block)."""
+        if self.posterior is None:
+            raise ValueError("this law has no posterior block (only law_adapted*.json has); use update()")
+        total, row = self._step(time, readings)
+        centre, covariance, noise = self.posterior
+        phi = [1.0] + [f - c for f, c in zip(row, centre)]
+        variance = sum(phi[i] * covariance[i][j] * phi[j] for i in range(len(phi)) for j in range(len(phi)))
+        return total, math.sqrt(max(variance, 0.0) + noise ** 2)
+
+    def _step(self, time: float, readings: dict[str, float]) -> tuple[float, list[float]]:
+        """D [m] and the features (per input: reading, then lags) [K] after one reading."""
         values = [float(readings[name]) for name in self.inputs]
         if self._time is None:
             self._lagged = [[v] * len(self.lags) for v in values]
@@ -63,13 +88,33 @@ class CompensationLaw:
                     a = math.exp(-dt / tau)
                     state[i] = a * state[i] + (1.0 - a) * value
         self._time = float(time)
-        total = self.bias
+        total, features = self.bias, []
         for row, value, state in zip(self.weights, values, self._lagged):
             total += row[0] * value + sum(w * s for w, s in zip(row[1:], state))
-        return total
+            features += [value, *state]
+        return total, features
+
+
+def _posterior(block: dict | None, n_features: int):
+    """(centre [K], covariance, noise σ [m]) of a ``posterior`` block, checked; None without one."""
+    if block is None:
+        return None
+    centre = [float(c) for c in block["centre_K"]]
+    covariance = [[float(v) for v in row] for row in block["covariance"]]
+    if len(centre) != n_features or len(covariance) != n_features + 1 or \
+            any(len(row) != n_features + 1 for row in covariance):
+        raise ValueError(f"posterior: centre_K must have {n_features} entries and covariance "
+                         f"{n_features + 1} x {n_features + 1}")
+    return centre, covariance, float(block["noise_sigma_m"])
 
 
 def evaluate(document: dict, times, readings: dict[str, list[float]]) -> list[float]:
     """D [m] at every time of a recorded stream: ``readings[name][n]`` [K] at ``times[n]`` [s]."""
     law = CompensationLaw(document)
     return [law.update(t, {name: readings[name][n] for name in law.inputs}) for n, t in enumerate(times)]
+
+
+def evaluate_with_sd(document: dict, times, readings: dict[str, list[float]]) -> list[tuple[float, float]]:
+    """(D [m], predictive sd [m]) at every time of a recorded stream, for an adapted law's document."""
+    law = CompensationLaw(document)
+    return [law.update_with_sd(t, {name: readings[name][n] for name in law.inputs}) for n, t in enumerate(times)]

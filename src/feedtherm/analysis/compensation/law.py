@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from ..candidates import Candidate
+from .adapt import AdaptedLaw
 from .evaluator import FORMAT, VERSION
 from .regression import RegressionLaw
 
@@ -35,3 +36,26 @@ def law_document(law: RegressionLaw, candidates: dict[str, Candidate], provenanc
         "lag_start": "settled at the first reading",
         "provenance": provenance or {},
     }
+
+
+def adapted_law_document(adapted: AdaptedLaw, candidates: dict[str, Candidate], provenance: dict | None = None) -> dict:
+    """The document of an adapted law (:mod:`.adapt`): the posterior mean as in :func:`law_document`,
+    and a ``posterior`` block from which :meth:`.evaluator.CompensationLaw.update_with_sd` gives the
+    predictive standard deviation ``sqrt(φᵀ Σ φ + σ²)``, ``φ = [1, features − centre]``.
+    """
+    document = law_document(adapted.law, candidates, provenance)
+    document["posterior"] = {
+        "centre_K": adapted.centre.tolist(),
+        "covariance": adapted.covariance.tolist(),
+        "covariance_order": "the law's D at the centre [m], then weights_m_per_K row by row [m/K]; "
+                            "entries in m², m²/K, m²/K²",
+        "noise_sigma_m": adapted.noise_sigma,
+        "prior_width_m": adapted.width,
+        "scale_K": None if adapted.scale is None else adapted.scale.tolist(),
+        "prior_bias_m": adapted.prior.bias,
+        "prior_weights_m_per_K": adapted.prior.weights.tolist(),
+        "samples": adapted.samples,
+        "method": "conjugate Gaussian update of the simulation-trained law (Bishop 2006, §3.3); prior width by "
+                  "maximum evidence on the adaptation data (§3.5)",
+    }
+    return document

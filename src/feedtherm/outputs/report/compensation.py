@@ -51,7 +51,47 @@ def compensation_section(summary: dict, figures: dict[str, bytes]) -> str:
              for m in rows],
             caption=f"the measured bench: D from the measured {', '.join(block['sensors'])} "
                     f"({LAW_LABELS.get(kind, kind)}, trained on simulated cycles only), µm"))
+    body += _leave_one_out(summary.get("leave_one_condition_out"))
+    body += _adaptation(summary.get("adaptation"))
     return section("compensation", "Thermal-error compensation", "".join(body))
+
+
+#: The leave-one-condition-out predictors (:mod:`feedtherm.analysis.compensation.leave_one_out`) as shown.
+LOCO_LABELS = {"model_only": "simulation-trained law", "adapted": "adapted law (Bayesian)",
+               "regression": "regression on the measured conditions", "reference_model": "the measurements' reference model"}
+
+
+def _leave_one_out(block: dict | None) -> list[str]:
+    """The measured bench, each condition held out in turn: residuals [µm] of the four predictors."""
+    if not block:
+        return []
+    names = [k for k in LOCO_LABELS if block.get(k) is not None]
+    n = len(block["conditions"])
+    rows = [[c["condition"], number(c["measured_um"], 1),
+             *(number(c[f"{k}_um"], 1, signed=True) for k in names), number(c["adapted_sd_um"], 1)]
+            for c in block["conditions"]]
+    rows += [[label, "", *(number(block[k][key], 1) for k in names), ""]
+             for label, key in (("RMS", "rms_um"), ("max", "max_um"))]
+    return [table(["held-out condition", "measured D", *(LOCO_LABELS[k] + " − measured" for k in names),
+                   "adapted law's predictive sd"], rows,
+                  caption=f"leave one condition out on the measured bench ({n} conditions, equilibrium values): the "
+                          f"static law on {', '.join(block['sensors'])} alone, updated on the other {n - 1} "
+                          f"conditions, and a least-squares fit on them alone (minimum-norm where underdetermined), µm"),
+            paragraph(f"{n} points only, equilibrium values only: a figure of how far the adaptation carries to an "
+                      f"unseen operating point, not a statistic. The held-out residual lies within two predictive "
+                      f"standard deviations at {block['within_2sd']} of {n} conditions.")]
+
+
+def _adaptation(block: dict | None) -> list[str]:
+    """With ``--adapt``: each adapted law's prior width and its residuals on the adaptation data."""
+    if not block:
+        return []
+    rows = [[LAW_LABELS.get(kind, kind), ", ".join(a["sensors"]), str(a["samples"]), number(a["prior_width_um"], 2),
+             number(a["noise_sigma_um"], 2), number(a["in_sample_rms_before_um"], 2),
+             number(a["in_sample_rms_after_um"], 2), a["file"]] for kind, a in block["laws"].items()]
+    return [table(["law", "sensors", "pairs", "prior width τ", "noise σ", "RMS before", "RMS after", "file"], rows,
+                  caption=f"laws adapted to {block['file']} (residuals on the adaptation data itself, µm); "
+                          f"the Kalman filter is {block['kalman']}")]
 
 
 def _row(kind: str, entry: dict, note: str = "") -> list:
