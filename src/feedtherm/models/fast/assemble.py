@@ -21,7 +21,16 @@ import scipy.sparse as sp
 from ...errors import ModelError
 from ...system.geometry import surface_area
 from .contacts import JointContact, fused_links, side, surface_samples
-from .layout import AxialBody, Layout, contact_ranges
+from .layout import AxialBody, Layout, contact_ranges, primitive_bounds
+
+#: Faces normal to an axial body's axis: they sit at its ends, not along it.
+END_FACES = ("-x", "+x", "ends")
+
+
+def primitive_x_range(primitive) -> tuple[float, float]:
+    """The x-extent [m] of a box or a cylinder."""
+    lo, hi = primitive_bounds(primitive)
+    return lo[0], hi[0]
 
 
 @dataclass
@@ -185,29 +194,66 @@ class Network:
         return self._body_surface(name, k, self.layout.positions[k])
 
     def _body_surface(self, name: str, k: int, offset: float) -> tuple[np.ndarray, np.ndarray]:
-        """Exposed area [m²] per axial cell of a surface on the screw or a rail.
+        """Exposed area [m²] per node of a surface on the screw or a rail.
 
-        The faces' area by cell length, less what the parts seated on the body cover: on the
-        screw's lateral face the bearings and the nut (by their length), on a rail's faces
-        the contacts of the parts joined to it (the carriages). A declared ``area`` is
-        spread over the exposed cells the same way.
+        The faces along the body (a cylinder's ``lateral``, a rail's ``±y``, ``±z``) by cell
+        length on the outer ring, less what the parts seated on the body cover: on the screw's
+        lateral face the bearings and the nut (by their length), on a rail's faces the contacts
+        of the parts joined to it (the carriages).  An end face (``-x``, ``+x``, a cylinder's
+        ``ends``) is on the cell at its end, over the rings by their areas.  A declared ``area``
+        is spread over the exposed nodes the same way.
         """
         surface = self.system.surfaces[name]
         body = self.layout.bodies[surface.part]
-        faces = surface_area(surface.model_copy(update={"area": None}), self.system.parts[surface.part])
-        areas = faces * body.lengths / body.lengths.sum()
+        along = [face for face in surface.faces if face not in END_FACES]
+        along_area = surface_area(surface.model_copy(update={"area": None, "faces": along}),
+                                  self.system.parts[surface.part]) if along else 0.0
+        areas = along_area * body.lengths / body.lengths.sum()
         if body.cylindrical:
             if "lateral" in surface.faces:
                 areas = areas * np.clip(1.0 - self._covered(body, offset) / body.lengths, 0.0, 1.0)
         else:
             for contact in self.contacts:
                 if body.part in contact.joint.between:
-                    cells, covered = contact.covered_faces(k, set(surface.faces))
+                    cells, covered = contact.covered_faces(k, set(along))
                     np.subtract.at(areas, cells, covered)
             areas = np.clip(areas, 0.0, None)
+        nodes, values = [body.nodes[:, -1]], [areas]
+        for x, area in self._end_faces(surface, body):
+            cell = body.cell_at(x)
+            nodes.append(body.nodes[cell])
+            values.append(area * body.ring_areas() / body.ring_areas().sum())
+        nodes, areas = np.concatenate(nodes), np.concatenate(values)
         if surface.area is not None and areas.sum() > 0.0:
             areas = areas * surface.area / areas.sum()
-        return body.nodes[:, -1], areas
+        return nodes, areas
+
+    def _end_faces(self, surface, body: AxialBody) -> list[tuple[float, float]]:
+        """``(x [m], area [m²])`` of each selected end face of the body's primitives, x a little
+        inside the primitive (so that its cell is the primitive's own end cell)."""
+        part = self.system.parts[surface.part]
+        primitives = [*(part.boxes if surface.boxes is None else [part.boxes[i] for i in surface.boxes]),
+                      *(part.cylinders if surface.cylinders is None else [part.cylinders[i] for i in surface.cylinders])]
+        out = []
+        for face in surface.faces:
+            if face not in END_FACES:
+                continue
+            for primitive in primitives:
+                lo, hi = primitive_x_range(primitive)
+                inset = 1e-6 * (hi - lo)
+                one = surface.model_copy(update={"area": None, "faces": ["-x" if face == "ends" else face],
+                                                 "boxes": None, "cylinders": None})
+                alone = part.model_copy(update={"boxes": [primitive] if primitive in part.boxes else [],
+                                                "cylinders": [primitive] if primitive in part.cylinders else []})
+                try:
+                    area = surface_area(one, alone)
+                except ValueError:
+                    continue  # a face of another axis's cylinder: not an end face of this body
+                if face in ("-x", "ends"):
+                    out.append((lo + inset, area))
+                if face in ("+x", "ends"):
+                    out.append((hi - inset, area))
+        return out
 
     def _cell_surface(self, name: str, k: int) -> tuple[np.ndarray, np.ndarray]:
         """Exposed area [m²] per cell of a surface on a part cut into cells.

@@ -155,14 +155,14 @@ def feature_breaks(system: FeedSystem, name: str) -> list:
             partners.append((other, system.parts[other].moving == part.moving))
     out = []
     for prim in [*part.boxes, *part.cylinders]:
-        lo, hi = _primitive_bounds(prim)
+        lo, hi = primitive_bounds(prim)
         axes = range(3) if not isinstance(prim, Cylinder) else ["xyz".index(prim.axis)]
         found = {a: [] for a in axes}
         for other, same_frame in partners:
             for q in [*system.parts[other].boxes, *system.parts[other].cylinders]:
                 if q is prim:
                     continue
-                qlo, qhi = _primitive_bounds(q)
+                qlo, qhi = primitive_bounds(q)
                 if any(max(qlo[a] - hi[a], lo[a] - qhi[a]) > CONTACT_TOLERANCE for a in range(3)):
                     continue  # apart
                 for a in axes:
@@ -204,7 +204,7 @@ def contact_ranges(system: FeedSystem, part: str, body: AxialBody, offset: float
     ranges = []
     p = system.parts[part]
     for prim in [*p.boxes, *p.cylinders]:
-        lo, hi = _primitive_bounds(prim)
+        lo, hi = primitive_bounds(prim)
         x0, x1 = lo[0] + offset, hi[0] + offset
         if any(max(lo[k] - t_hi[k], t_lo[k] - hi[k]) > CONTACT_TOLERANCE for k in (1, 2)):
             continue  # apart across the axis
@@ -226,7 +226,8 @@ def _coaxial(a: Cylinder, b: Cylinder) -> bool:
     return abs(a.origin[1] - b.origin[1]) < CONTACT_TOLERANCE and abs(a.origin[2] - b.origin[2]) < CONTACT_TOLERANCE
 
 
-def _primitive_bounds(prim):
+def primitive_bounds(prim):
+    """The axis-aligned bounds ``(lower, upper)`` [m] of a box or a cylinder, as lists."""
     if isinstance(prim, Cylinder):
         i = "xyz".index(prim.axis)
         r = prim.outer_diameter / 2.0
