@@ -16,9 +16,10 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
 
 from ..physics.mechanics import speed_table
+from . import topology
+from .finding import Finding
 from .geometry import bounds, contains, gap, screw_axis, surface_area
 from .holding import free_motions
 from .quantities import same_dimension, to_base_si
@@ -34,16 +35,6 @@ FEED_SPEED_TOLERANCE = 0.02
 TOUCH_TOLERANCE = 1e-3
 
 
-@dataclass(frozen=True)
-class Finding:
-    path: str
-    message: str
-    severity: str = "warning"  # or "error": no model can run the description as meant
-
-    def __str__(self) -> str:
-        return f"{self.path}: {self.message}"
-
-
 def check_system(system: FeedSystem) -> list[Finding]:
     """Every inconsistency found in ``system``, errors first (an empty list when there is none)."""
     return [
@@ -52,6 +43,7 @@ def check_system(system: FeedSystem) -> list[Finding]:
         *_wired_sensors(system),
         *_feed_speeds(system),
         *_joints_touch(system),
+        *topology.warnings(system),
         *_elastic_constants(system),
         *_uncertainties(system, "warning"),
         *_provenance(system),
@@ -66,6 +58,7 @@ def _uncertainties(system: FeedSystem, severity: str) -> list[Finding]:
 def check_errors(system: FeedSystem) -> list[Finding]:
     """The findings no model can run past (see the module's docstring)."""
     errors = [
+        *topology.errors(system),
         *_geometry(system),
         *_joints_unique(system),
         *_stroke(system),

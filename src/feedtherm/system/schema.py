@@ -16,6 +16,7 @@ from typing import Annotated, Literal
 
 from pydantic import (
     Field,
+    StrictBool,
     StringConstraints,
     field_validator,
     model_serializer,
@@ -145,6 +146,9 @@ class Joint(Strict):
     area: PosArea | None = None
     sliding: bool = False  # the contact travels with the table (nut-screw, slider-rail)
     release: list[Axis] = []
+    #: A press fit: the two parts are drawn overlapping on purpose (an interference), which
+    #: ``check`` otherwise refuses (system/topology.py).
+    fit: StrictBool = False
     description: str = ""
 
     @field_validator("release")
@@ -159,6 +163,8 @@ class Joint(Strict):
         data = handler(self)
         if isinstance(data, dict) and not self.release:
             data.pop("release", None)  # a tie: descriptions that predate releases keep their form
+        if isinstance(data, dict) and not self.fit:
+            data.pop("fit", None)  # likewise a joint that is no press fit
         return data
 
 
