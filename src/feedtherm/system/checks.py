@@ -102,7 +102,10 @@ def _geometry(system: FeedSystem) -> list[Finding]:
             where = ", ".join(f"{x * 1e3:g}" for x in sensor.position)
             findings.append(Finding(f"sensors.{name}.position", f"({where}) mm lies outside part {sensor.part!r}, "
                                     "which it names (a sensor reads its part's surface or inside)", "error"))
+    badly_selected = {f.path.split(".")[1] for f in topology.selections(system)}  # reported there
     for name, surface in system.surfaces.items():
+        if name in badly_selected:
+            continue
         try:
             area = surface_area(surface, parts[surface.part])
         except (ValueError, IndexError) as exc:
