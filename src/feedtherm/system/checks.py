@@ -26,7 +26,7 @@ from .quantities import same_dimension, to_base_si
 from .schema import FeedSystem
 from .surfaces import RotatingConvection
 from .uncertainties import uncertainty_problems
-from .variants import si_unit_at
+from .variants import si_unit_at, unresolved
 
 _RAD_PER_S_TO_RPM = 60.0 / (2.0 * math.pi)
 #: Relative tolerance on a stated feed speed against (n_s - n_n) * lead.
@@ -239,11 +239,16 @@ def _stroke(system: FeedSystem) -> list[Finding]:
 
 
 def calibration_bounds(system: FeedSystem) -> list[Finding]:
-    """Bounds finite, lower below upper, and of their values' dimension (factors for a scale)."""
+    """Paths that name numbers; bounds finite, lower below upper, and of their values' dimension
+    (factors for a scale)."""
     if system.calibration is None:
         return []
     findings = []
     for name, spec in system.calibration.parameters.items():
+        why = next((w for w in (unresolved(system, p) for p in spec.paths) if w is not None), None)
+        if why is not None:  # as calibrate would meet it
+            findings.append(Finding(f"calibration.parameters.{name}.paths", why, "error"))
+            continue
         where = f"calibration.parameters.{name}.bounds"
         try:
             lower, upper = (to_base_si(b) for b in spec.bounds)
@@ -318,7 +323,7 @@ def covers(prefix: str, path: str) -> bool:
     """
     if "[*]" in prefix:
         pattern = re.escape(prefix).replace(r"\[\*\]", r"\[\d+\]")
-        return re.match(pattern + r"($|[.\[])", path) is not None
+        return re.match(pattern + r"(\Z|[.\[])", path) is not None
     return path == prefix or path.startswith(prefix + ".") or path.startswith(prefix + "[")
 
 

@@ -131,6 +131,8 @@ def describe_error(exc: ValidationError) -> str:
         return f"unknown key {key!r}{where}{suggestion}"
     if kind == "missing":
         return f"{path}: missing (required)"
+    if kind == "bool_type":  # strict: "yes", "off" and 1 are not read as booleans
+        return f"{path}: {error['input']!r} is not a boolean; write true or false"
     if kind == "literal_error":  # pydantic's "Input should be ..." does not say what was given
         return f"{path}: {error['input']!r} is not allowed; allowed values: {error['ctx']['expected']}"
     if kind == "union_tag_invalid":

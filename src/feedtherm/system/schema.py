@@ -54,7 +54,7 @@ from .surfaces import (
 )
 from .uncertainties import Uncertainty
 
-_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*\Z")  # \Z: "$" would let a trailing newline through
 #: Length of a run when nothing else says [s]: the paper's 10,800 s (§4.3).
 DEFAULT_DURATION_S = 10800.0
 
@@ -106,7 +106,7 @@ class Part(Strict):
     boxes: list[Box] = []
     cylinders: list[Cylinder] = []
     holes: list[Cylinder] = []  # bores cut out of the boxes (e.g. a bearing seat)
-    moving: bool = False
+    moving: StrictBool = False  # true or false only: "yes", "off" and 1 are refused
     #: The FE mesh puts this many times more elements across the part than its density's rule
     #: (models/fem/geometry.py; the screw's own factor comes on top): a part whose field a study
     #: resolves finely.  The fast model does not use it.
@@ -144,7 +144,7 @@ class Joint(Strict):
     between: tuple[str, str]
     tcr: PosContactResistance
     area: PosArea | None = None
-    sliding: bool = False  # the contact travels with the table (nut-screw, slider-rail)
+    sliding: StrictBool = False  # the contact travels with the table (nut-screw, slider-rail)
     release: list[Axis] = []
     #: A press fit: the two parts are drawn overlapping on purpose (an interference), which
     #: ``check`` otherwise refuses (system/topology.py).

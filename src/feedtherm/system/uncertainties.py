@@ -92,9 +92,8 @@ def uncertainty_problems(system: "FeedSystem") -> list[tuple[str, str, str]]:
     Errors (``feedtherm check`` and the loader refuse the description): a range or sigma of
     another dimension than the value, a range that excludes the declared value (1 for a scale)
     or is reversed, a sigma that is not positive, the paths of a ``value`` parameter holding
-    different values, a lognormal on values that are not positive.  A warning: a path that
-    names no value (as for calibration parameters, a loss model swapped in the description may
-    leave one behind); ``feedtherm uncertainty`` refuses it (:func:`resolve_uncertainties`).
+    different values, a lognormal on values that are not positive, a path that names no number
+    (a typo, or a loss model swapped in the description that left the path behind).
     """
     if system.uncertainty is None:
         return []
@@ -114,19 +113,15 @@ class _Problem(Exception):
 
 
 def _check(system: "FeedSystem", name: str, spec: UncertaintyParameter) -> None:
-    from .variants import expand_path, get_path, si_unit_at  # variants imports the loader, which imports the schema
+    from .variants import expand_path, get_path, si_unit_at, unresolved  # variants imports the loader, which imports the schema
 
     where = f"uncertainty.parameters.{name}"
     paths = []
     for path in spec.paths:
-        try:
-            expanded = expand_path(system, path)
-            values = [get_path(system, p) for p in expanded]
-        except (KeyError, IndexError, AttributeError, TypeError):
-            raise _Problem(f"{where}.paths", f"{path!r} does not name a value of the description", "warning") from None
-        if not values or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in values):
-            raise _Problem(f"{where}.paths", f"{path!r} does not name a number")
-        paths.extend(expanded)
+        why = unresolved(system, path)
+        if why is not None:
+            raise _Problem(f"{where}.paths", why)
+        paths.extend(expand_path(system, path))
     values = [float(get_path(system, p)) for p in paths]
     if spec.kind == "value" and any(not math.isclose(v, values[0], rel_tol=1e-9, abs_tol=0.0) for v in values):
         raise _Problem(f"{where}.paths", f"a 'value' parameter sets one value at every path, but they hold "

@@ -7,6 +7,7 @@ new SHA-256 so its provenance differs from the original's.
 
 from __future__ import annotations
 
+import difflib
 import hashlib
 import json
 import re
@@ -45,6 +46,25 @@ def expand_path(obj: Any, path: str) -> list[str]:
     head, tail = path.split("[*]", 1)
     items = get_path(obj, head)
     return [p for i in range(len(items)) for p in expand_path(obj, f"{head}[{i}]{tail}")]
+
+
+def unresolved(system: FeedSystem, path: str) -> str | None:
+    """Why ``path`` (``[*]`` allowed) names no number of ``system``, with the closest path that
+    does; ``None`` when it names one or more numbers."""
+    try:
+        values = [get_path(system, p) for p in expand_path(system, path)]
+    except (KeyError, IndexError, AttributeError, TypeError):
+        from .checks import leaf_paths  # checks imports this module
+
+        leaves = leaf_paths(system.model_dump())
+        if "[*]" in path:
+            leaves = list(dict.fromkeys(re.sub(r"\[\d+\]", "[*]", leaf) for leaf in leaves))
+        match = difflib.get_close_matches(path, leaves, n=1, cutoff=0.6)
+        hint = f"; did you mean {match[0]!r}?" if match else ""
+        return f"{path!r} does not name a value of the description{hint}"
+    if not values or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in values):
+        return f"{path!r} does not name a number"
+    return None
 
 
 def _walk(obj: Any, keys: list[str | int]) -> Any:

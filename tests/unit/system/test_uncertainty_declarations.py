@@ -66,20 +66,12 @@ def test_bad_declarations_are_one_line_naming_the_field(tmp_path, new, fragments
         assert fragment in message, message
 
 
-def test_a_path_that_names_no_value_is_a_warning_and_refused_by_the_study(tmp_path):
-    # as for calibration parameters: a loss model swapped in the description may leave a path behind
-    from feedtherm.system.checks import check_system
-
-    path = tmp_path / "variant.toml"
-    path.write_text(BENCH.replace(FRICTION, FRICTION.replace("friction_coefficient", "friction_coeff"), 1))
-    loaded = load_system(str(path))
-    warnings = [str(f) for f in check_system(loaded.system) if f.severity == "warning"]
-    assert "uncertainty.parameters.screw_nut_friction.paths: 'sources.screw_nut.friction_coeff' does not name a " \
-           "value of the description" in warnings
-    with pytest.raises(FeedthermError) as info:
-        resolve_uncertainties(loaded)
-    assert str(info.value) == (f"{path}: uncertainty.parameters.screw_nut_friction.paths: "
-                               "'sources.screw_nut.friction_coeff' does not name a value of the description")
+def test_a_path_that_names_no_value_is_an_error_with_the_closest_path(tmp_path):
+    # a typo, or a loss model swapped in the description that left the path behind (issue 35)
+    message = load_error(tmp_path, FRICTION, FRICTION.replace("friction_coefficient", "friction_coeff"))
+    assert message.endswith("uncertainty.parameters.screw_nut_friction.paths: 'sources.screw_nut.friction_coeff' "
+                            "does not name a value of the description; did you mean "
+                            "'sources.screw_nut.friction_coefficient'?")
 
 
 def test_a_missing_reason_is_an_error(tmp_path):
