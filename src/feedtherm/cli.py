@@ -594,8 +594,15 @@ def _measured_argument(parser: argparse.ArgumentParser) -> None:
                              "default: the description's own")
 
 
+def _directory(text: str) -> str:
+    """argparse type: a directory's path, not empty (an empty one would write into the current directory)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("an empty path; name a directory")
+    return text
+
+
 def _out_argument(parser: argparse.ArgumentParser, default: str) -> None:
-    parser.add_argument("--out", metavar="DIR", help=f"output directory (default: {default})")
+    parser.add_argument("--out", type=_directory, metavar="DIR", help=f"output directory (default: {default})")
 
 
 def _execution_arguments(parser: argparse.ArgumentParser, default: str = "one after another in this process") -> None:
@@ -729,7 +736,7 @@ def build_parser() -> argparse.ArgumentParser:
     new = sub.add_parser("new", help="write a commented bench folder to adapt to your machine (a single-drive "
                                      "ball-screw axis that checks and runs as written)")
     new.add_argument("name", metavar="NAME", help="the bench's name: the folder's and meta.name")
-    new.add_argument("--out", default=".", metavar="DIR", help="where to write the folder NAME (default: here)")
+    new.add_argument("--out", type=_directory, default=".", metavar="DIR", help="where to write the folder NAME (default: here)")
     new.set_defaults(func=cmd_new)
 
     bench_list = sub.add_parser("benches", help="list the bundled and plugged-in benches SYSTEM may name")

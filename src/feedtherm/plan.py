@@ -119,6 +119,7 @@ def plan_run(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
     opts = replace(opts, **{name: value for name, value in (("motion", motion), ("mesh", mesh), ("solver", solver))
                             if value is not None})
     planned = _segments(loaded, segments, end, single_drive)
+    _check_duration(loaded, planned, end, opts, duration is not None)
     _check_step_count(loaded, planned, opts)
     if not allow_overload:
         refuse_overloads(planned, f"condition {condition}" if condition is not None else f"duty cycle {label}")
@@ -150,17 +151,26 @@ def estimated_steps(stroke: float, segments: list[Segment], options: ModelOption
     Its rule (:meth:`~feedtherm.models.integrator.Integrator._step`) on a grid that splits the
     stroke evenly; the model's grid is not built yet when a run is planned.
     """
-    steps = 0.0
-    for seg in segments:
-        span = seg.t1 - seg.t0
-        if seg.speed == 0.0:
-            dt = min(options.standstill_step, options.max_step)
-        elif options.motion == "averaged":
-            dt = min(options.averaged_step, options.max_step)
-        else:  # steps_per_stroke steps per stroke, none longer than max_step
-            dt = min(stroke / (options.steps_per_stroke * seg.speed), options.max_step)
-        steps += span / dt
-    return math.ceil(steps)
+    return math.ceil(sum((seg.t1 - seg.t0) / _time_step(stroke, seg, options) for seg in segments))
+
+
+def _time_step(stroke: float, seg: Segment, options: ModelOptions) -> float:
+    """The integrator's step in ``seg`` [s] (the rule of :func:`estimated_steps`)."""
+    if seg.speed == 0.0:
+        return min(options.standstill_step, options.max_step)
+    if options.motion == "averaged":
+        return min(options.averaged_step, options.max_step)
+    return min(stroke / (options.steps_per_stroke * seg.speed), options.max_step)  # steps_per_stroke per stroke
+
+
+def _check_duration(loaded: LoadedSystem, segments: list[Segment], end: float, options: ModelOptions,
+                    given: bool) -> None:
+    """A run must last one time step at least: shorter, it has no step to report."""
+    step = _time_step(_stroke(loaded.system), segments[0], options)
+    if end < step:
+        what = "--duration" if given else "the run's duration"
+        raise FeedthermError(f"{what}: {end:g} s is shorter than one time step of this run ({step:g} s); "
+                             f"give {step:g} s or more")
 
 
 #: Wall time per time step [s] of each model (and FE mesh), measured on the project's machine

@@ -35,6 +35,7 @@ from typing import Collection, Mapping
 
 from ..benches import MEASUREMENTS, ORIGIN_PREFIX, bench, bench_name_of
 from ..errors import DescriptionError
+from ..system.files import MAX_DATA_BYTES, read_text_file
 from .measurement_series import ELONGATION_QUANTITY, SERIES_HEADER, Series, is_series_header, parse_series
 
 HEADER = ["condition", "quantity", "unit", "measured"]
@@ -90,7 +91,8 @@ def _from_bench(name: str) -> tuple[str, str, str | None]:
     if found.measurements is None:
         raise DescriptionError(f"{source}: bench {name!r} has no {MEASUREMENTS} in {found.folder}")
     eq = found.equilibrium_times
-    return found.measurements.read_text(encoding="utf-8"), source, eq.read_text(encoding="utf-8") if eq else None
+    eq_text = read_text_file(eq, str(eq), MAX_DATA_BYTES, "measurement") if eq else None
+    return read_text_file(found.measurements, source, MAX_DATA_BYTES, "measurement"), source, eq_text
 
 
 def read_measurements(spec: str, relative_to: str | None = None, sensors: list[str] | None = None, *,
@@ -110,9 +112,9 @@ def read_measurements(spec: str, relative_to: str | None = None, sensors: list[s
         if relative_to and not path.is_absolute():
             name = bench_name_of(relative_to)
             path = (bench(name).folder if name else Path(relative_to).parent) / path
-        if not path.is_file():
+        if not path.exists():
             raise DescriptionError(f"{path}: no such measurement file")
-        text, source, eq_text = path.read_text(encoding="utf-8"), str(path), None
+        text, source, eq_text = read_text_file(path, str(path), MAX_DATA_BYTES, "measurement"), str(path), None
     lines = _lines(text)
     if not lines:
         raise DescriptionError(f"{source}: the file is empty; expected the header {','.join(HEADER)}")

@@ -13,6 +13,7 @@ from pathlib import Path
 from pydantic import ValidationError
 
 from ..errors import DescriptionError
+from .files import MAX_DATA_BYTES, read_text_file
 from .load import describe_error
 from .schema import DutyCycle
 
@@ -22,11 +23,12 @@ HEADER = ["time_s", "screw_rpm", "nut_rpm", "ambient_C"]
 def read_duty_cycle_csv(path: str | Path, duration: float) -> DutyCycle:
     """Read a duty cycle; ``duration`` [s] is where the run (and the last row) ends."""
     path = Path(path)
-    if not path.is_file():
+    if not path.exists():
         raise DescriptionError(f"{path}: no such file")
+    text = read_text_file(path, str(path), MAX_DATA_BYTES, "duty-cycle")
     try:
-        rows = list(csv.reader(path.read_text(encoding="utf-8").splitlines()))
-    except (OSError, UnicodeDecodeError, csv.Error) as exc:
+        rows = list(csv.reader(text.splitlines()))
+    except csv.Error as exc:
         raise DescriptionError(f"{path}: cannot be read ({exc})") from None
     rows = [row for row in rows if any(cell.strip() for cell in row)]
     if not rows:

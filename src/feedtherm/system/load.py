@@ -20,6 +20,7 @@ from pydantic import BaseModel, ValidationError
 from ..benches import ORIGIN_PREFIX, bench, bench_names, suggestion
 from ..errors import DescriptionError
 from .areas import with_joint_areas
+from .files import MAX_TOML_DEPTH, nesting_depth, read_text_file
 from .schema import FeedSystem
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -42,6 +43,8 @@ def read_text(spec: str) -> tuple[str, str]:
     if spec in bench_names():
         origin = f"{ORIGIN_PREFIX}{spec}"
         return _read(bench(spec).description, origin), origin
+    if not spec:
+        raise DescriptionError("an empty name: give a bench's name or a description's path")
     path = Path(spec)
     if not path.exists():
         hint = "" if spec.endswith(".toml") else f" or bench{suggestion(spec)}"
@@ -52,19 +55,23 @@ def read_text(spec: str) -> tuple[str, str]:
 
 
 def _read(path: Path, origin: str) -> str:
-    try:
-        return path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise DescriptionError(f"{origin}: cannot be read ({exc.__class__.__name__}: {exc})") from None
+    """A regular file of at most MAX_DESCRIPTION_BYTES, UTF-8 with or without a BOM (system/files.py)."""
+    return read_text_file(path, origin)
 
 
 def parse_toml(text: str, origin: str) -> dict:
     if not text.strip():
         raise DescriptionError(f"{origin}: the file is empty; a description needs [meta], [parts], ... (see docs/system-description.md)")
     try:
-        return tomllib.loads(text)
+        data = tomllib.loads(text.removeprefix("\ufeff"))
     except tomllib.TOMLDecodeError as exc:
         raise DescriptionError(f"{origin}: invalid TOML: {exc}") from None
+    except RecursionError:
+        data = None
+    if data is None or nesting_depth(data) > MAX_TOML_DEPTH:
+        raise DescriptionError(f"{origin}: tables or arrays nest deeper than {MAX_TOML_DEPTH} levels; a description "
+                               "nests 5 at most") from None
+    return data
 
 
 def load_system(spec: str = "paper") -> LoadedSystem:
