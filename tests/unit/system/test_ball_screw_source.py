@@ -35,10 +35,20 @@ poisson_ratio = 0.3
 '''
 
 
+def _without_table(text: str, header: str) -> str:
+    """``text`` without the TOML table ``header`` (up to the blank line after it)."""
+    start = text.index(header)
+    return text[:start] + text[text.index("\n\n", start) + 2:]
+
+
 def write_example(tmp_path, source: str) -> str:
     assert CATALOGUE_NUT in EXAMPLE, "test fixture out of date: the example's ball nut changed"
+    text = EXAMPLE.replace(CATALOGUE_NUT, source, 1)
+    if source != CATALOGUE_NUT:  # the catalogue torque that calibration and uncertainty vary is gone with it
+        for section in ("calibration", "uncertainty"):
+            text = _without_table(text, f"[{section}.parameters.ball_nut_torque]")
     path = tmp_path / "ball_screw_variant.toml"
-    path.write_text(EXAMPLE.replace(CATALOGUE_NUT, source, 1), encoding="utf-8")
+    path.write_text(text, encoding="utf-8")
     return str(path)
 
 
