@@ -50,7 +50,7 @@ setup-test: $(STAMP)
 TEST_WORKERS ?= 2
 
 test: $(STAMP) setup-test
-	$(BIN)/python -m pytest -n $(TEST_WORKERS) --dist loadscope
+	$(BIN)/python -m pytest -n $(TEST_WORKERS) --dist loadscope --durations=30
 
 clean:
 	rm -rf $(VENV) build src/*.egg-info

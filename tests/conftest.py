@@ -109,6 +109,24 @@ def paper():
     return load_system("paper")
 
 
+#: Run length [s] of :func:`paper_short`'s conditions.
+SHORT_RUN_S = 1800.0
+
+
+@pytest.fixture(scope="session")
+def paper_short(paper):
+    """The paper's bench with every condition run for half an hour instead of three.
+
+    For tests that compare two executions of one study (serial against a Dask cluster): what
+    they compare, every number to the last digit, does not depend on how long each run lasts,
+    and the runs take a sixth of the time.
+    """
+    from feedtherm.system.variants import with_values
+
+    return with_values(paper, {f"conditions.{name}.duration": SHORT_RUN_S for name in paper.system.conditions},
+                       origin_suffix="half-hour runs")
+
+
 @pytest.fixture(scope="session")
 def paper_equations():
     """The paper's bench with the paper's own loss models (:func:`paper_with_equation_models`)."""

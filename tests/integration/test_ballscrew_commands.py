@@ -110,6 +110,9 @@ def test_inference_finds_the_heats_of_the_truth_within_their_intervals(loaded, d
     (["run", "--condition", "v10", "--duration", "1800", "--motion", "averaged", "--no-plots"], ["summary.json"]),
     (["run", "--condition", "v10", "--model", "fem", "--mesh", "coarse", "--duration", "600", "--motion",
       "averaged", "--no-plots"], ["summary.json"]),
+    # the reduced model's basis is built from the coarse FE model on the way (about 85 s)
+    (["run", "--condition", "v10", "--model", "reduced", "--mesh", "coarse", "--duration", "600", "--motion",
+      "averaged", "--no-plots"], ["summary.json"]),
     (["sweep", "--screw-rpm", "500,1500", "--nut-rpm", "0", "--ambient", "20", "--duration", "1800"],
      ["sweep.csv"]),
     (["compensate", "--cycles", "1", "--duration", "3600", "--sensors", "2"], ["compensation.json"]),

@@ -64,10 +64,10 @@ def test_the_final_values_are_judged_against_the_measurements(paper):
     assert prior.coverage[1] == 6
 
 
-def test_two_workers_give_the_serial_study(paper):
+def test_two_workers_give_the_serial_study(paper_short):
     tiny = {**TINY, "sobol_base": 2}
-    serial = run_uncertainty(paper, **tiny)
-    parallel = run_uncertainty(paper, **tiny, execution=resolve_execution(2))
+    serial = run_uncertainty(paper_short, **tiny)
+    parallel = run_uncertainty(paper_short, **tiny, execution=resolve_execution(2))
     assert parallel.settings["execution"] == "a local Dask cluster of 2 worker processes"
     a, b = serial.sets[0], parallel.sets[0]
     assert a.finals == b.finals

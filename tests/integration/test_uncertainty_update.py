@@ -26,9 +26,11 @@ def serial(paper, data):
     return bayesian_update(paper, data, ["I"], consistency=check_description_measurements(paper.system, data), **TINY)
 
 
-def test_two_workers_give_the_serial_update(paper, data, serial):
-    parallel = bayesian_update(paper, data, ["I"], consistency=check_description_measurements(paper.system, data),
-                               execution=resolve_execution(2), **TINY)
+def test_two_workers_give_the_serial_update(paper_short, data):
+    consistency = check_description_measurements(paper_short.system, data)
+    serial = bayesian_update(paper_short, data, ["I"], consistency=consistency, **TINY)
+    parallel = bayesian_update(paper_short, data, ["I"], consistency=consistency, execution=resolve_execution(2),
+                               **TINY)
     assert np.array_equal(serial.fit.z, parallel.fit.z)
     assert np.array_equal(serial.fit.covariance, parallel.fit.covariance)
     assert np.array_equal(serial.x_map, parallel.x_map)
