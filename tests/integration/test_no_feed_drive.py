@@ -181,6 +181,18 @@ def test_a_feed_drive_needs_its_positioning_reference(tmp_path, capsys):
     assert "mechanics.positioning: a feed drive needs the positioning error's reference point" in err
 
 
+def test_with_a_feed_drive_a_forgotten_screw_speed_is_not_a_standstill(tmp_path, capsys):
+    from feedtherm.benches import bench
+
+    text = bench("ballscrew_example").description.read_text(encoding="utf-8")
+    start = text.index("[conditions.v10]")
+    line = text.index("screw_speed", start)
+    path = tmp_path / "description.toml"
+    path.write_text(text[:line] + text[text.index("\n", line) + 1:], encoding="utf-8")
+    err = refusal(capsys, "check", path)
+    assert "conditions.v10.screw_speed: missing (required with a feed drive" in err
+
+
 @pytest.mark.parametrize("command", [["compensate", "--sensors", "block"],
                                      ["sweep", "--screw-rpm", "0", "--nut-rpm", "0", "--ambient", "20"]])
 def test_commands_that_vary_motor_speeds_say_they_need_a_feed_drive(block, tmp_path, capsys, command):

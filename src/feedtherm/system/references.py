@@ -67,6 +67,7 @@ def check_references(system: "FeedSystem") -> None:
             raise ValueError(f"parts.{kin.nut}.moving: the nut travels with the table; set moving = true")
         if kin.drive == "single":
             _check_single_drive(system)
+        _check_speeds_given(system)
     _check_mechanics(system)
 
 
@@ -120,6 +121,20 @@ def _check_without_feed_drive(system: "FeedSystem") -> None:
             for field in ("screw_speed", "nut_speed"):
                 if getattr(segment, field) != 0.0:
                     raise ValueError(f"duty_cycles.{name}.segments[{i}].{field}: {_NO_DRIVE}; leave the speed out")
+
+
+def _check_speeds_given(system: "FeedSystem") -> None:
+    """With a feed drive a condition or segment states its screw speed: it defaults to 0 only so
+    that a system without a drive can leave it out, and a forgotten speed is not a standstill."""
+    for name, condition in system.conditions.items():
+        if "screw_speed" not in condition.model_fields_set:
+            raise ValueError(f"conditions.{name}.screw_speed: missing (required with a feed drive; 0 rpm for a "
+                             "standstill)")
+    for name, cycle in system.duty_cycles.items():
+        for i, segment in enumerate(cycle.segments):
+            if "screw_speed" not in segment.model_fields_set:
+                raise ValueError(f"duty_cycles.{name}.segments[{i}].screw_speed: missing (required with a feed "
+                                 "drive; 0 rpm for a standstill)")
 
 
 def _check_single_drive(system: "FeedSystem") -> None:
