@@ -81,7 +81,11 @@ def test_the_hand_value():
 @pytest.fixture(scope="module")
 def steady(tmp_path_factory):
     path = tmp_path_factory.mktemp("fin") / "pin_screw.toml"
-    path.write_text(CASE.read_text(encoding="utf-8") + DRIVE, encoding="utf-8")
+    case = CASE.read_text(encoding="utf-8")
+    assert "[conditions.still_air]\n" in case
+    # with a drive, the condition states its screw speed: the fin stands still
+    case = case.replace("[conditions.still_air]\n", '[conditions.still_air]\nscrew_speed = "0 rpm"\n', 1)
+    path.write_text(case + DRIVE, encoding="utf-8")
     loaded = load_system(str(path))
     assert loaded.system.kinematics.screw == "pin"
     return steady_solve(loaded, "still_air", model="fast")
