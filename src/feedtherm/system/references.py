@@ -94,6 +94,15 @@ def _check_mechanics(system: "FeedSystem") -> None:
 _NO_DRIVE = "the system has no feed drive ([kinematics] is left out)"
 
 
+def _runs(system: "FeedSystem"):
+    """``(path, run)`` of every condition, then every duty-cycle segment, in declared order."""
+    for name, condition in system.conditions.items():
+        yield f"conditions.{name}", condition
+    for name, cycle in system.duty_cycles.items():
+        for i, segment in enumerate(cycle.segments):
+            yield f"duty_cycles.{name}.segments[{i}]", segment
+
+
 def _check_without_feed_drive(system: "FeedSystem") -> None:
     """Without a feed drive nothing moves or turns: no moving part, sliding joint, turning
     source or speed; only ``fixed`` sources and still or natural convection."""
@@ -112,40 +121,25 @@ def _check_without_feed_drive(system: "FeedSystem") -> None:
         if kind in ("rotating", "moving_plate", "moving_face"):
             raise ValueError(f"surfaces.{name}.convection.kind: {kind!r} convection needs a turning or moving part and "
                              f"{_NO_DRIVE}")
-    for name, condition in system.conditions.items():
+    for path, run in _runs(system):
         for field in ("screw_speed", "nut_speed"):
-            if getattr(condition, field) != 0.0:
-                raise ValueError(f"conditions.{name}.{field}: {_NO_DRIVE}; leave the speed out")
-    for name, cycle in system.duty_cycles.items():
-        for i, segment in enumerate(cycle.segments):
-            for field in ("screw_speed", "nut_speed"):
-                if getattr(segment, field) != 0.0:
-                    raise ValueError(f"duty_cycles.{name}.segments[{i}].{field}: {_NO_DRIVE}; leave the speed out")
+            if getattr(run, field) != 0.0:
+                raise ValueError(f"{path}.{field}: {_NO_DRIVE}; leave the speed out")
 
 
 def _check_speeds_given(system: "FeedSystem") -> None:
     """With a feed drive a condition or segment states its screw speed: it defaults to 0 only so
     that a system without a drive can leave it out, and a forgotten speed is not a standstill."""
-    for name, condition in system.conditions.items():
-        if "screw_speed" not in condition.model_fields_set:
-            raise ValueError(f"conditions.{name}.screw_speed: missing (required with a feed drive; 0 rpm for a "
-                             "standstill)")
-    for name, cycle in system.duty_cycles.items():
-        for i, segment in enumerate(cycle.segments):
-            if "screw_speed" not in segment.model_fields_set:
-                raise ValueError(f"duty_cycles.{name}.segments[{i}].screw_speed: missing (required with a feed "
-                                 "drive; 0 rpm for a standstill)")
+    for path, run in _runs(system):
+        if "screw_speed" not in run.model_fields_set:
+            raise ValueError(f"{path}.screw_speed: missing (required with a feed drive; 0 rpm for a standstill)")
 
 
 def _check_single_drive(system: "FeedSystem") -> None:
     """A single drive has no nut motor: nothing may turn with the nut."""
-    for name, condition in system.conditions.items():
-        if condition.nut_speed != 0.0:
-            raise ValueError(f"conditions.{name}.nut_speed: a single drive has no nut motor; the nut speed must be 0 rpm")
-    for name, cycle in system.duty_cycles.items():
-        for i, segment in enumerate(cycle.segments):
-            if segment.nut_speed != 0.0:
-                raise ValueError(f"duty_cycles.{name}.segments[{i}].nut_speed: a single drive has no nut motor; the nut speed must be 0 rpm")
+    for path, run in _runs(system):
+        if run.nut_speed != 0.0:
+            raise ValueError(f"{path}.nut_speed: a single drive has no nut motor; the nut speed must be 0 rpm")
     for name, source in system.sources.items():
         if getattr(source, "shaft", None) == "nut":
             raise ValueError(f"sources.{name}.shaft: a single drive has no rotating nut")
