@@ -37,7 +37,7 @@ class OperatingTable:
     screw_rpm: np.ndarray  # (a,)
     relative_rpm: np.ndarray  # (b,); a single drive: (1,) with the nut at rest
     dual: bool
-    h: np.ndarray  # (a, b, surfaces)
+    h: np.ndarray  # (a, b, surfaces): from the nodes to the air (in series with the conduction to the face)
     q: np.ndarray  # (a, b, sources)
     h_stopped: np.ndarray
     q_stopped: np.ndarray
@@ -81,7 +81,8 @@ def _bracket(axis: np.ndarray, value: float) -> tuple[int, float]:
 
 
 def build_table(system: FeedSystem, surfaces: list[str], sources: list[str], ambient: float, *,
-                overlay: Overlay | None = None, grid: tuple[int, int] = GRID) -> OperatingTable:
+                overlay: Overlay | None = None, grid: tuple[int, int] = GRID,
+                film: np.ndarray | None = None) -> OperatingTable:
     """Evaluate the boundary conditions on the grid (see the module's notes)."""
     envelope = SpeedEnvelope.of(system)
     lead = system.kinematics.lead
@@ -93,7 +94,7 @@ def build_table(system: FeedSystem, surfaces: list[str], sources: list[str], amb
         for j, relative in enumerate(relatives):
             nut = screw - relative if envelope.dual else 0.0
             bc = boundary_conditions_at(system, OperatingPoint(screw, nut, ambient, lead), overlay)
-            h[i, j], q[i, j] = coefficients(bc, surfaces, sources)
+            h[i, j], q[i, j] = coefficients(bc, surfaces, sources, film)
     bc = boundary_conditions_at(system, OperatingPoint(0.0, 0.0, ambient, lead), overlay)
-    h0, q0 = coefficients(bc, surfaces, sources)
+    h0, q0 = coefficients(bc, surfaces, sources, film)
     return OperatingTable(screws, relatives, envelope.dual, h, q, h0, q0, ambient)

@@ -42,7 +42,7 @@ from ...boundary.operating import OperatingPoint
 from ...system.overlay import Overlay
 from ...constants import ELONGATION_PROBE
 from ...errors import FeedthermError
-from ...models.interface import cycle_weights, source_powers, surface_coefficients, weighted_sum
+from ...models.interface import cycle_weights, film_coefficient, source_powers, surface_coefficients, weighted_sum
 from ...simulate import discretize
 from ...system.load import LoadedSystem
 
@@ -71,6 +71,8 @@ class ReducedModel:
     uniform: np.ndarray  # (r,): ζ of the machine at 1 K throughout
     hankel: np.ndarray  # the Hankel singular values at the reference point (all kept and dropped)
     ambient: str = "ambient"  # the name of the ambient reading, the model's input (room.ambient_sensor)
+    #: each surface's conduction from its nodes to its face [m²·K/W], in series with h_s (BoundaryBasis.film)
+    film: np.ndarray | None = None
 
     @property
     def order(self) -> int:
@@ -84,12 +86,17 @@ class ReducedModel:
         """``h`` per surface and ``q`` per source at ``point`` (frozen coefficients, nominal loss models;
         ``overlay``: printed values laid over them)."""
         bc = boundary_conditions_at(system, point, overlay)
-        return coefficients(bc, self.surfaces, self.sources)
+        return coefficients(bc, self.surfaces, self.sources, self.film)
 
 
-def coefficients(bc: BoundaryConditions, surfaces: list[str], sources: list[str]) -> tuple[np.ndarray, np.ndarray]:
-    """Each surface's total coefficient [W/(m²·K)] and each source's heat [W] at ``bc``."""
+def coefficients(bc: BoundaryConditions, surfaces: list[str], sources: list[str],
+                 film: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Each surface's coefficient [W/(m²·K)] from its nodes to the air (its total coefficient in
+    series with ``film``, :func:`~feedtherm.models.interface.film_coefficient`) and each source's
+    heat [W] at ``bc``."""
     h, sinks = surface_coefficients(bc, surfaces)
+    if film is not None:
+        h = film_coefficient(h, film)
     ambient = bc.point.ambient
     if np.any((h > 0) & (np.abs(sinks - ambient) > 1e-9)):
         raise FeedthermError("the state-space model takes every surface's sink at the ambient; a surface of this "
@@ -132,7 +139,7 @@ def reduce_model(loaded: LoadedSystem, outputs: list[str], reference: OperatingP
     out_offset = np.asarray(offset)[[names.index(o) for o in outputs]]
 
     bc = boundary_conditions_at(system, reference, loaded.overlay)
-    h_ref, q_ref = coefficients(bc, list(basis.surfaces), list(basis.sources))
+    h_ref, q_ref = coefficients(bc, list(basis.surfaces), list(basis.sources), basis.film)
     K = (G.toarray() if sp.issparse(G) else np.asarray(G)) + np.diag(exposure.T @ h_ref)
     Ks = s[:, None] * K * s[None, :]
     lam, V = np.linalg.eigh((Ks + Ks.T) / 2)  # Ks = V diag(lam) V^T, lam > 0
@@ -164,7 +171,7 @@ def reduce_model(loaded: LoadedSystem, outputs: list[str], reference: OperatingP
     Cy = (out_rows * s[None, :]) @ Q
     A0 = (A0 + A0.T) / 2
     return ReducedModel(list(basis.surfaces), list(basis.sources), list(outputs), A0, A_surface, f_surface, Bq, Cy,
-                        out_offset, Q.T @ uniform, hankel, system.room.ambient_sensor)
+                        out_offset, Q.T @ uniform, hankel, system.room.ambient_sensor, basis.film)
 
 
 def _psd_root(M: np.ndarray) -> np.ndarray:

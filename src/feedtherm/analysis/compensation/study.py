@@ -151,7 +151,7 @@ def kalman_factory(loaded: LoadedSystem, candidates: dict[str, Candidate], train
     reference = OperatingPoint(screw, nut, ambient, system.kinematics.lead)
     outputs = [n for n in candidates if n != system.room.ambient_sensor] + [ELONGATION_PROBE]
     model = reduce_model(described, outputs, reference, order=order)
-    table = build_table(system, model.surfaces, model.sources, ambient, overlay=described.overlay)
+    table = build_table(system, model.surfaces, model.sources, ambient, overlay=described.overlay, film=model.film)
     errors = model_errors(model, table, train.cycles, train.names)
     methods = {name: sensor.method for name, sensor in system.sensors.items()}
 

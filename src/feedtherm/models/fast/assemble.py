@@ -205,6 +205,14 @@ class Network:
         """
         surface = self.system.surfaces[name]
         body = self.layout.bodies[surface.part]
+        nodes, values, _ = self._body_patches(surface, body, self._body_along(surface, body, k, offset))
+        nodes, areas = np.concatenate(nodes), np.concatenate(values)
+        if surface.area is not None and areas.sum() > 0.0:
+            areas = areas * surface.area / areas.sum()
+        return nodes, areas
+
+    def _body_along(self, surface, body: AxialBody, k: int, offset: float) -> np.ndarray:
+        """Exposed area [m²] per cell of the surface's faces along the body at position k."""
         along = [face for face in surface.faces if face not in END_FACES]
         along_area = surface_area(surface.model_copy(update={"area": None, "faces": along}),
                                   self.system.parts[surface.part]) if along else 0.0
@@ -218,15 +226,26 @@ class Network:
                     cells, covered = contact.covered_faces(k, set(along))
                     np.subtract.at(areas, cells, covered)
             areas = np.clip(areas, 0.0, None)
-        nodes, values = [body.nodes[:, -1]], [areas]
+        return areas
+
+    def _body_patches(self, surface, body: AxialBody, along: np.ndarray):
+        """The surface's nodes, exposed areas [m²] and specific resistances [m²·K/W] from each
+        node to its face, in patches: the faces along the body on the outer ring (``along`` per
+        cell), then each end face on its end cell over the rings."""
+        k = self._material(body.part).conductivity
+        if body.cylindrical:
+            radius = body.ring_radii[-1]
+            centre = 0.5 * (body.ring_radii[-1] + body.ring_radii[-2])
+            r_along = radius * math.log(radius / centre) / k
+        else:
+            r_along = self._surface_resistance_length(body) / k
+        nodes, values, resistances = [body.nodes[:, -1]], [along], [np.full(len(along), r_along)]
         for x, area in self._end_faces(surface, body):
             cell = body.cell_at(x)
             nodes.append(body.nodes[cell])
             values.append(area * body.ring_areas() / body.ring_areas().sum())
-        nodes, areas = np.concatenate(nodes), np.concatenate(values)
-        if surface.area is not None and areas.sum() > 0.0:
-            areas = areas * surface.area / areas.sum()
-        return nodes, areas
+            resistances.append(np.full(body.n_rings, 0.5 * body.lengths[cell] / k))
+        return nodes, values, resistances
 
     def _end_faces(self, surface, body: AxialBody) -> list[tuple[float, float]]:
         """``(x [m], area [m²])`` of each selected end face of the body's primitives, x a little
@@ -269,20 +288,50 @@ class Network:
         key = (name, k if moves else 0)
         if key not in self._surface_cache:
             sd = self.sides[part]
-            selected = surface_samples(sd, surface)
-            exposed = selected & sd.free
-            outside = sd.samples.outside()
-            for contact in partners:
-                idx = np.nonzero(exposed)[0]
-                exposed[idx[contact.covers(part, outside[idx], k)]] = False
-            areas = np.bincount(sd.nodes, weights=sd.samples.areas * exposed, minlength=self.layout.n_nodes)
+            weights = self._cell_samples(name, k)
+            areas = np.bincount(sd.nodes, weights=weights, minlength=self.layout.n_nodes)
             if surface.area is not None:
-                if areas.sum() <= 0.0:  # nothing exposed: spread the declared area over the faces
-                    areas = np.bincount(sd.nodes, weights=sd.samples.areas * selected, minlength=self.layout.n_nodes)
                 areas *= surface.area / areas.sum()
             nodes = np.nonzero(areas)[0]
             self._surface_cache[key] = (nodes, areas[nodes])
         return self._surface_cache[key]
+
+    def _cell_samples(self, name: str, k: int) -> np.ndarray:
+        """Exposed area [m²] of each face sample of surface ``name``'s part at position k (0 off
+        the surface); with a declared ``area`` and nothing exposed, the selected faces' areas."""
+        surface = self.system.surfaces[name]
+        part = surface.part
+        sd = self.sides[part]
+        selected = surface_samples(sd, surface)
+        exposed = selected & sd.free
+        outside = sd.samples.outside()
+        for contact in (c for c in self.contacts if part in c.joint.between):
+            idx = np.nonzero(exposed)[0]
+            exposed[idx[contact.covers(part, outside[idx], k)]] = False
+        if surface.area is not None and not (sd.samples.areas * exposed).sum() > 0.0:
+            return sd.samples.areas * selected  # nothing exposed: the declared area over the faces
+        return sd.samples.areas * exposed
+
+    def film_resistance(self, name: str) -> float:
+        """Specific resistance [m²·K/W] of conduction from the nodes of surface ``name`` to its
+        faces, the exposed-area mean at position 0.
+
+        A node stands for its cell's centre, half a cell (``d``) from the face the film is on:
+        ``d/k`` of a box's cell (from :func:`.contacts.side`), ``R ln(R/r_c)/k`` from an axial
+        body's outer ring at ``r_c`` to its lateral face at ``R``, half the end cell's length
+        over ``k`` to an end face.  :func:`~feedtherm.models.interface.film_coefficient` puts it
+        in series with the surface's coefficient.
+        """
+        surface = self.system.surfaces[name]
+        if surface.part in self.layout.cells:
+            weights = self._cell_samples(name, 0)
+            total = weights.sum()
+            return float(weights @ self.sides[surface.part].resistance / total) if total > 0.0 else 0.0
+        body = self.layout.bodies[surface.part]
+        _, areas, resistances = self._body_patches(surface, body, self._body_along(surface, body, 0,
+                                                                                   self.layout.positions[0]))
+        areas, resistances = np.concatenate(areas), np.concatenate(resistances)
+        return float(areas @ resistances / areas.sum()) if areas.sum() > 0.0 else 0.0
 
     def _covered(self, body: AxialBody, offset: float) -> np.ndarray:
         """Length of each cell covered by parts seated on the body's surface (bearings, nut)."""

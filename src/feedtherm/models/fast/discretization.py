@@ -38,6 +38,9 @@ class FastDiscretization(ThermalModel):
     def surface_exposure(self, name: str, k: int) -> tuple[np.ndarray, np.ndarray]:
         return self.network.surface_exposure(name, k)
 
+    def surface_film_resistance(self, name: str) -> float:
+        return self.network.film_resistance(name)
+
     def heat_distribution(self, heat: HeatInput, k: int) -> np.ndarray:
         return self.network.heat_distribution(heat.part, heat.over_contact_with, k)
 
