@@ -40,7 +40,7 @@ from .coupling import (
 from . import pardiso
 from .direct import EliminationOrder, _DenseLU, _pattern, factorize
 from .iterative import StepCG, jacobi
-from .interface import AmbientCoupling, Operator, ThermalModel, cycle_weights, weighted_sum
+from .interface import AmbientCoupling, Operator, ThermalModel, cycle_weights, source_powers, weighted_sum
 from .options import ModelOptions
 
 #: Above this many unknowns the "auto" solver uses conjugate gradients, not cached SuperLU factors
@@ -78,6 +78,13 @@ class Trace:
     snapshots: list = field(default_factory=list)  # (time, the model's state, offset) every snapshot_interval
     heat_in: float = 0.0
     heat_lost: float = 0.0
+    # the energy ledger: each source's heat and the heat lost since the start [J], at the sample
+    # times (within a step, its share of the step's); the first step's heats [W]
+    sources: list = field(default_factory=list)  # the source names, in the order of the columns below
+    sample_heat_in: list = field(default_factory=list)  # per sample: each source's heat since the start [J]
+    sample_heat_lost: list = field(default_factory=list)  # per sample: the heat lost since the start [J]
+    first_heat_in: np.ndarray | None = None  # each source's heat in the first step [W]
+    first_heat_lost: float = 0.0  # the heat lost in the first step [W]
     time_step: float = 0.0  # the (first moving segment's) step [s]
     final_state: np.ndarray | None = None
     final_position: int = 0
@@ -172,6 +179,7 @@ class _Step:
     load: np.ndarray  # heat and the links' heat at the sink temperatures [W]
     lu: object | None  # the step matrix's factors (direct solver), None: conjugate gradients
     heat_in: float  # [W]
+    heats: np.ndarray  # each source's heat [W] in the description's order (their sum is heat_in)
     ambient: AmbientCoupling  # the links the step is evaluated with
     factorised: AmbientCoupling | None  # the links of the step matrix, when they are not ``ambient``'s
 
@@ -465,6 +473,9 @@ class Integrator:
         period = 2.0 * path.K  # grid cells of one reciprocation cycle
         mid = len(m.positions) // 2
         step_end, step_dt, step_probe = trace.step_end, trace.step_dt, trace.step_probe
+        trace.sources = list(m.system.sources)
+        heat_in = np.zeros(len(trace.sources))  # each source's heat since the start [J]
+        heat_lost = 0.0  # [J]
         for seg_id, seg in enumerate(segments):
             moving = seg.speed > 0.0
             resolved = moving and not averaged
@@ -502,18 +513,26 @@ class Integrator:
                 t_new = t + dt
                 # energy account: heat in from the boundary conditions, losses from the surfaces,
                 # both as the step's equations had them
+                lost = step.heat_lost(T, T_new)
                 trace.heat_in += step.heat_in * dt
-                trace.heat_lost += step.heat_lost(T, T_new) * dt
+                trace.heat_lost += lost * dt
+                if trace.first_heat_in is None:
+                    trace.first_heat_in, trace.first_heat_lost = step.heats.copy(), lost
                 # the moving sensors sit where the group is; averaged motion smears it over the stroke
                 k_probe = mid if (averaged and moving) else k
                 while next_sample is not None and next_sample <= t_new + 1e-9:
                     w = (next_sample - t) / dt
                     state = (1 - w) * T + w * T_new
                     self._record_sample(trace, state, k_probe)
+                    # the ledger's heats as the state: the step's share up to the sample
+                    trace.sample_heat_in.append(heat_in + step.heats * (w * dt))
+                    trace.sample_heat_lost.append(heat_lost + lost * (w * dt))
                     if next_sample >= next_snapshot - 1e-9 or next_sample >= t_end - 1e-9:
                         trace.snapshots.append((next_sample, state, m.positions[k_probe]))
                         next_snapshot = next_sample + self.options.snapshot_interval
                     next_sample = next(samples, None)
+                heat_in = heat_in + step.heats * dt
+                heat_lost += lost * dt
                 step_end.append(t_new)
                 step_dt.append(dt)
                 step_probe.append(m.probe(T_new, k_probe))
@@ -537,13 +556,14 @@ class Integrator:
         loads = self.loads(seg_id, bc, k)
         cap_dt = self.model.capacity / dt
         lu = self.factors(seg_id, factorised, k, dt) if self.direct else None
+        heats = source_powers(bc, list(self.model.system.sources))
         if factorised is bc:
-            return _Step(cap_dt, loads.heat + loads.ambient.source, lu, bc.total_heat, loads.ambient, None)
+            return _Step(cap_dt, loads.heat + loads.ambient.source, lu, bc.total_heat, heats, loads.ambient, None)
         # the links' change since the factorisation, taken at the step's start state
         change = self._link_difference(seg_id, bc, factorised, k)
         rhs_operator = cap_dt - change if np.ndim(cap_dt) == 1 and np.ndim(change) == 1 else \
             operator_sum(cap_dt, -change)
-        return _Step(rhs_operator, loads.heat + loads.ambient.source, lu, bc.total_heat, loads.ambient,
+        return _Step(rhs_operator, loads.heat + loads.ambient.source, lu, bc.total_heat, heats, loads.ambient,
                      self.loads(seg_id, factorised, k).ambient)
 
     def _record_sample(self, trace: Trace, state: np.ndarray, k: int) -> None:

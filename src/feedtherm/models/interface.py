@@ -361,7 +361,21 @@ class ThermalModel(ABC):
 
     @abstractmethod
     def part_means(self, states: np.ndarray) -> dict[str, np.ndarray]:
-        """Mean temperature [K] of every part."""
+        """Mean temperature [K] of every part.
+
+        A model that gives :meth:`part_capacities` weighs each part's nodes by their capacity,
+        so that ``Σ_p C_p ΔT̄_p`` is :meth:`heat_stored` (the energy ledger of ``run``'s files).
+        """
+
+    def part_capacities(self) -> dict[str, float] | None:
+        """Heat capacity ρcV [J/K] of every part, or None if the model does not say.
+
+        The capacities of each part's nodes summed (a projected model: its full model's), every
+        node in one part: with the capacity-weighted :meth:`part_means`, the heat stored
+        between two states is ``Σ_p C_p (T̄_p − T̄_p,start)``, the same as :meth:`heat_stored`
+        up to round-off.
+        """
+        return None
 
     @property
     @abstractmethod

@@ -1,4 +1,5 @@
-"""The files of ``feedtherm run``: sensor series, screw fields, the positioning error and a JSON summary.
+"""The files of ``feedtherm run``: sensor series, screw fields, the positioning error, the energy
+ledger (part temperatures, source heats) and a JSON summary.
 
 Everything is read from a :class:`~feedtherm.solution.Solution` (SI inside); the kelvin →
 °C and metre → µm conversions happen here, at the output edge.  The layout of every file is
@@ -34,8 +35,12 @@ SENSORS_CSV = "sensors.csv"
 SCREW_CSV = "screw.csv"
 SCREW_DISPLACEMENT_CSV = "screw_displacement.csv"
 POSITIONING_ERROR_CSV = "positioning_error.csv"
+PARTS_CSV = "parts.csv"
+HEAT_CSV = "heat.csv"
 SUMMARY_JSON = "summary.json"
-TABLES = (SENSORS_CSV, SCREW_CSV, SCREW_DISPLACEMENT_CSV, POSITIONING_ERROR_CSV, SUMMARY_JSON)
+TABLES = (SENSORS_CSV, SCREW_CSV, SCREW_DISPLACEMENT_CSV, POSITIONING_ERROR_CSV, PARTS_CSV, HEAT_CSV, SUMMARY_JSON)
+#: heat.csv's last column: the heat lost to the air and the surfaces' sinks [W].
+LOST_COLUMN = "lost"
 #: Every file a run can write (glob patterns): an earlier run's files in its directory.
 RUN_FILES = (*TABLES, *PLOT_NAMES, PVD_NAME, "fields_*.vtu", TEMPERATURE_FIELD_PNG, SCREW_DEFORMATION_PNG,
              SCREW_AXIAL_DEFORMATION_PNG)
@@ -47,11 +52,14 @@ SCREW_PART_KEY = "screw_part"
 # measurement or model accuracy.
 _TIME_FORMAT = "%.10g"
 _VALUE_FORMAT = "%.4f"
+# The energy ledger's files keep every digit (17 significant: a double read back is the same
+# double), so that the stored heat recomputed from them is the run's to round-off.
+_EXACT_FORMAT = "%.17g"
 
 
 def write_run_outputs(solution: Solution, out_dir: Path, *, sample_interval: float) -> list[Path]:
-    """Write ``sensors.csv``, ``screw.csv``, ``screw_displacement.csv``, ``positioning_error.csv``
-    and ``summary.json``.
+    """Write ``sensors.csv``, ``screw.csv``, ``screw_displacement.csv``, ``positioning_error.csv``,
+    ``parts.csv``, ``heat.csv`` and ``summary.json``.
 
     Parameters
     ----------
@@ -119,6 +127,10 @@ def write_tables(solution: Solution, directory: Path, *, sample_interval: float)
         write_screw_csv(solution.times[rows], solution.table_x, solution.positioning_error[rows] * 1e6,
                         directory / POSITIONING_ERROR_CSV)
         names += [SCREW_CSV, SCREW_DISPLACEMENT_CSV, POSITIONING_ERROR_CSV]
+    if solution.ledger is not None:
+        write_parts_csv(solution, directory / PARTS_CSV, rows)
+        write_heat_csv(solution, directory / HEAT_CSV, rows)
+        names += [PARTS_CSV, HEAT_CSV]
     write_summary_json(solution, directory / SUMMARY_JSON)
     return [*names, SUMMARY_JSON]
 
@@ -171,8 +183,31 @@ def write_screw_csv(times: np.ndarray, positions: np.ndarray, values: np.ndarray
     _write_csv(path, header, np.column_stack([times, values]))
 
 
-def _write_csv(path: Path, header: str, table: np.ndarray) -> None:
-    formats = [_TIME_FORMAT] + [_VALUE_FORMAT] * (table.shape[1] - 1)
+def write_parts_csv(solution: Solution, path: Path, rows: np.ndarray) -> None:
+    """``time_s,<parts>``: each part's capacity-weighted mean temperature [°C], every digit."""
+    names = list(solution.part_temperatures)
+    columns = [solution.times[rows]] + [solution.part_temperatures[p][rows] - KELVIN_OFFSET for p in names]
+    _write_csv(path, ",".join(["time_s", *names]), np.column_stack(columns), exact=True)
+
+
+def write_heat_csv(solution: Solution, path: Path, rows: np.ndarray) -> None:
+    """``time_s,<sources>,lost``: each source's heat and the heat lost [W], every digit.
+
+    Row i > 0 holds the mean over (t_{i−1}, t_i], the heat between the two rows over their time
+    apart, so that ``Σ_i Q_i (t_i − t_{i−1})`` is the heat since the start; row 0 (t = 0) holds the
+    first time step's heats.
+    """
+    ledger = solution.ledger
+    times = solution.times[rows]
+    energies = np.column_stack([*(ledger.heat_in[s][rows] for s in ledger.heat_in), ledger.heat_lost[rows]])
+    first = np.array([*ledger.first_heat_in.values(), ledger.first_heat_lost])
+    powers = np.vstack([first, np.diff(energies, axis=0) / np.diff(times)[:, None]])
+    header = ",".join(["time_s", *ledger.heat_in, LOST_COLUMN])
+    _write_csv(path, header, np.column_stack([times, powers]), exact=True)
+
+
+def _write_csv(path: Path, header: str, table: np.ndarray, *, exact: bool = False) -> None:
+    formats = [_EXACT_FORMAT] * table.shape[1] if exact else [_TIME_FORMAT] + [_VALUE_FORMAT] * (table.shape[1] - 1)
     with open(path, "w", encoding="utf-8", newline="") as handle:
         np.savetxt(handle, table, fmt=formats, delimiter=",", header=header, comments="")
 
@@ -202,6 +237,7 @@ def run_summary(solution: Solution) -> dict:
         "energy_balance_error": energy.relative_error,
         "energy_J": {"heat_in": energy.heat_in, "heat_lost": energy.heat_lost,
                      "heat_stored": energy.heat_stored, "residual": energy.residual},
+        "ledger": ledger_summary(solution),
         "wall_time_s": info.get("wall_time_s"),
         "time_step_s": info.get("time_step_s"),
         "steps": info.get("steps"),
@@ -212,6 +248,31 @@ def run_summary(solution: Solution) -> dict:
         "mesh": info.get("mesh_statistics"),  # FE runs: vertices, tetrahedra, per part, element size
         "provenance": info.get("provenance", {}),
     })
+
+
+def ledger_summary(solution: Solution) -> dict | None:
+    """The ``ledger`` block of summary.json: the parts' heat capacities, and what parts.csv and heat.csv hold.
+
+    None for a Solution without a :class:`~feedtherm.solution.Ledger`.
+    """
+    ledger = solution.ledger
+    if ledger is None:
+        return None
+    return {
+        "part_capacity_J_per_K": ledger.capacities,
+        "files": {
+            PARTS_CSV: {"columns": ["time_s", *solution.part_temperatures], "unit": "degC",
+                        "rows": "the rows of sensors.csv",
+                        "values": "each part's mean temperature, its nodes weighted by their heat capacity"},
+            HEAT_CSV: {"columns": ["time_s", *ledger.heat_in, LOST_COLUMN], "unit": "W",
+                       "rows": "the rows of sensors.csv",
+                       "values": f"each source's heat, then {LOST_COLUMN}: the heat lost to the air and the surfaces' "
+                                 "sinks; row i > 0 the mean over (t[i-1], t[i]], row 0 the first time step's"},
+        },
+        "heat_stored_J": "sum over parts of part_capacity_J_per_K * (T(t) - T(0)), T from parts.csv",
+        "heat_in_J": "sum over rows i > 0 and sources of Q[i] * (t[i] - t[i-1]), Q from heat.csv",
+        "heat_lost_J": f"sum over rows i > 0 of {LOST_COLUMN}[i] * (t[i] - t[i-1]), from heat.csv",
+    }
 
 
 def equilibrium_by_quantity(solution: Solution) -> dict[str, float | None]:

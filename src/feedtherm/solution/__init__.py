@@ -42,6 +42,38 @@ class EnergyBalance:
 
 
 @dataclass(frozen=True)
+class Ledger:
+    """The energy account over time, by part and by source: what ``parts.csv`` and ``heat.csv`` hold.
+
+    With :attr:`Solution.part_temperatures` (capacity-weighted part means) the heat stored from the
+    start to a sample is ``Σ_p capacities[p] · (T̄_p(t) − T̄_p(0))``, the model's own stored heat
+    (:meth:`~feedtherm.models.interface.ThermalModel.part_capacities`); the heats in and lost
+    since the start are kept as the energy account sums them, step by step.
+
+    Attributes
+    ----------
+    capacities : dict[str, float] or None
+        Heat capacity ρcV [J/K] of every part (a projected model: its full model's); None if the
+        model does not say.
+    heat_in : dict[str, ndarray]
+        Each source's heat since the start [J] at :attr:`Solution.times`, in the description's order;
+        at the last sample their sum is ``energy.heat_in``.
+    heat_lost : ndarray
+        Heat lost to the air and the surfaces' sinks since the start [J] at the sample times.
+    first_heat_in : dict[str, float]
+        Each source's heat in the first time step [W].
+    first_heat_lost : float
+        The heat lost in the first time step [W].
+    """
+
+    capacities: dict[str, float] | None
+    heat_in: dict[str, np.ndarray]
+    heat_lost: np.ndarray
+    first_heat_in: dict[str, float]
+    first_heat_lost: float
+
+
+@dataclass(frozen=True)
 class Solution:
     """Sensor series, screw fields and summary values of one run.
 
@@ -70,7 +102,7 @@ class Solution:
     nut_offset : ndarray, shape (n,)
         Displacement [m] of the moving group from the middle of the stroke.
     part_temperatures : dict[str, ndarray]
-        Mean temperature [K] of every part at ``times``.
+        Mean temperature [K] of every part at ``times``, each node weighted by its heat capacity.
     cycle_times, cycle_sensors, cycle_elongation
         Series averaged over each full reciprocation cycle (time = cycle midpoint).
     final : dict[str, float]
@@ -87,6 +119,8 @@ class Solution:
     equilibrium_times : dict[str, float or None]
         The equilibrium time [s] of each sensor on its own and of ``D`` (its own bounds:
         :func:`feedtherm.solution.equilibrium.equilibrium_times`); None where the run ended first.
+    ledger : Ledger or None
+        Each part's capacity and each source's heat over time (every model's run has one).
     """
 
     times: np.ndarray
@@ -109,6 +143,7 @@ class Solution:
     info: dict = field(default_factory=dict)
     fields: FieldSeries | None = None
     equilibrium_times: dict[str, float | None] = field(default_factory=dict)
+    ledger: Ledger | None = None
 
     @property
     def sensor_names(self) -> list[str]:

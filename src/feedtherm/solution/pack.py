@@ -13,9 +13,10 @@ import numpy as np
 
 from ..constants import ELONGATION_PROBE
 from ..models.integrator import Integrator, Segment, Trace
+from ..models.interface import ThermalModel
 from ..system.geometry import nut_centre_x
 from ..system.schema import FeedSystem
-from . import EnergyBalance, Solution
+from . import EnergyBalance, Ledger, Solution
 from .equilibrium import equilibrium_time, equilibrium_times
 from .fields import field_series
 
@@ -115,6 +116,21 @@ def pack_solution(system: FeedSystem, integrator: Integrator, segments: list[Seg
         info=info,
         fields=fields,
         equilibrium_times=t_eq_each,
+        ledger=ledger(model, trace),
+    )
+
+
+def ledger(model: ThermalModel, trace: Trace) -> Ledger:
+    """The parts' capacities and the sources' heats of a run (:class:`~feedtherm.solution.Ledger`)."""
+    heat_in = np.array(trace.sample_heat_in).reshape(len(trace.sample_heat_in), len(trace.sources))
+    first = trace.first_heat_in if trace.first_heat_in is not None else np.zeros(len(trace.sources))
+    capacities = model.part_capacities()
+    return Ledger(
+        capacities=None if capacities is None else {p: float(c) for p, c in capacities.items()},
+        heat_in={name: heat_in[:, i] for i, name in enumerate(trace.sources)},
+        heat_lost=np.array(trace.sample_heat_lost, dtype=float),
+        first_heat_in={name: float(q) for name, q in zip(trace.sources, first)},
+        first_heat_lost=float(trace.first_heat_lost),
     )
 
 

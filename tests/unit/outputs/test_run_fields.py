@@ -17,7 +17,8 @@ from feedtherm.outputs.run_files import write_run
 from test_fields import PNG_MAGIC, make_screw_series, make_series
 from test_run_files import make_solution
 
-TABLES = ["positioning_error.csv", "screw.csv", "screw_displacement.csv", "sensors.csv", "summary.json"]
+TABLES = ["heat.csv", "parts.csv", "positioning_error.csv", "screw.csv", "screw_displacement.csv", "sensors.csv",
+          "summary.json"]
 PLOTS = ["elongation.png", "positioning_error.png", "screw_heatmap.png", "sensors.png"]
 FIELDS = ["fields.pvd", "fields_0000.vtu", "fields_0001.vtu", "fields_0002.vtu"]
 

@@ -20,7 +20,7 @@ from feedtherm.outputs.run_files import (
     write_run,
     write_run_outputs,
 )
-from feedtherm.solution import EnergyBalance, Solution
+from feedtherm.solution import EnergyBalance, Ledger, Solution
 
 T_AMBIENT = 293.15  # K (20 °C)
 EXPANSION = 11.5e-6  # 1/K, steel
@@ -51,6 +51,12 @@ def make_solution(*, sensor_names=("T1", "T2", "T3", "T4", "T5", "T6"), step=10.
     final["D"] = float(elongation[last].mean())
     steady = {name: T_AMBIENT + (0.0 if name == "T6" else 2.0 + 1.5 * i) for i, name in enumerate(sensor_names)}
     steady["D"] = 2e-6 + EXPANSION * float(np.sum(profile)) * cell
+    # the ledger [J since the start]: a nut's heat of 30 W − 10 W·exp(−t/1800 s), a motor's 50 W, and
+    # 20 W·(1 − exp(−t/1800 s)) lost, each integrated; their first step's at t = 0
+    ledger = Ledger(capacities={"screw": 5000.0},
+                    heat_in={"nut": 30.0 * times - 10.0 * 1800.0 * warm, "motor": 50.0 * times},
+                    heat_lost=20.0 * (times - 1800.0 * warm), first_heat_in={"nut": 20.0, "motor": 50.0},
+                    first_heat_lost=0.0)
     return Solution(
         times=times, sensors=sensors, elongation=elongation, screw_x=screw_x,
         screw_temperature=T_AMBIENT + screw_rise, screw_displacement=displacement,
@@ -66,6 +72,7 @@ def make_solution(*, sensor_names=("T1", "T2", "T3", "T4", "T5", "T6"), step=10.
                            "assumptions": [{"paths": ["parts.screw"], "source": "feedtherm", "reason": "not printed"}]},
         },
         fields=fields,
+        ledger=ledger,
     )
 
 
@@ -179,6 +186,51 @@ def test_positioning_error_csv_has_the_rows_of_the_screw_csvs(solution, tmp_path
     np.testing.assert_allclose(error[:, 1:], solution.positioning_error[::60] * 1e6, atol=1e-4)
 
 
+# --------------------------------------------------------------------------- parts.csv and heat.csv
+
+
+def test_parts_csv_keeps_every_digit_of_the_part_means(solution, tmp_path):
+    write_run_outputs(solution, tmp_path, sample_interval=60.0)
+    header, table = read_csv(tmp_path / "parts.csv")
+    _, sensors = read_csv(tmp_path / "sensors.csv")
+    assert header == ["time_s", "screw"]
+    np.testing.assert_array_equal(table[:, 0], sensors[:, 0])  # the rows of sensors.csv
+    rows = sample_rows(solution.times, 60.0)
+    # read back as the very doubles written: °C = K − 273.15, no rounding to 4 decimals
+    np.testing.assert_array_equal(table[:, 1], solution.part_temperatures["screw"][rows] - 273.15)
+
+
+def test_heat_csv_rows_are_the_mean_heats_since_the_previous_row(solution, tmp_path):
+    write_run_outputs(solution, tmp_path, sample_interval=60.0)
+    header, table = read_csv(tmp_path / "heat.csv")
+    assert header == ["time_s", "nut", "motor", "lost"]
+    t = table[:, 0]
+    assert t[0] == 0.0 and table[0, 1:].tolist() == [20.0, 50.0, 0.0]  # row 0: the first step's
+    np.testing.assert_allclose(table[1:, 2], 50.0, rtol=1e-14)
+    # the nut's mean over each interval: 30 W − 10 W · (1800 s / Δt) (e^(−t0/1800) − e^(−t1/1800))
+    mean = 30.0 - 10.0 * 1800.0 * (np.exp(-t[:-1] / 1800.0) - np.exp(-t[1:] / 1800.0)) / np.diff(t)
+    np.testing.assert_allclose(table[1:, 1], mean, rtol=1e-11)
+    # the rectangle rule over the rows gives back the heats since the start
+    ledger = solution.ledger
+    assert np.sum(table[1:, 1] * np.diff(t)) == pytest.approx(ledger.heat_in["nut"][-1], rel=1e-13)
+    assert np.sum(table[1:, 3] * np.diff(t)) == pytest.approx(ledger.heat_lost[-1], rel=1e-13)
+
+
+def test_summary_json_gives_the_ledgers_capacities_and_columns(solution, tmp_path):
+    write_run_outputs(solution, tmp_path, sample_interval=60.0)
+    ledger = json.loads((tmp_path / "summary.json").read_text(encoding="utf-8"))["ledger"]
+    assert ledger["part_capacity_J_per_K"] == {"screw": 5000.0}
+    assert ledger["files"]["parts.csv"]["columns"] == ["time_s", "screw"]
+    assert ledger["files"]["heat.csv"]["columns"] == ["time_s", "nut", "motor", "lost"]
+    assert (ledger["files"]["parts.csv"]["unit"], ledger["files"]["heat.csv"]["unit"]) == ("degC", "W")
+
+
+def test_a_solution_without_a_ledger_writes_neither_file(solution, tmp_path):
+    written = write_run_outputs(dataclasses.replace(solution, ledger=None), tmp_path, sample_interval=60.0)
+    assert "parts.csv" not in [p.name for p in written] and "heat.csv" not in [p.name for p in written]
+    assert json.loads((tmp_path / "summary.json").read_text(encoding="utf-8"))["ledger"] is None
+
+
 # --------------------------------------------------------------------------- summary.json
 
 
@@ -257,12 +309,12 @@ def fail_on_second_csv(monkeypatch):
     real_write = run_files._write_csv
     calls = []
 
-    def flaky(path, header, table):
+    def flaky(path, header, table, **options):
         calls.append(path.name)
         if len(calls) == 2:
             path.write_text("time_s,x_mm=0\n0,")  # half a file
             raise RuntimeError("disk on fire")
-        real_write(path, header, table)
+        real_write(path, header, table, **options)
 
     monkeypatch.setattr(run_files, "_write_csv", flaky)
     return calls
@@ -298,7 +350,7 @@ def test_rewriting_replaces_our_files_and_keeps_others(solution, tmp_path):
     (out_dir / "notes.txt").write_text("mine\n")
     written = write_run_outputs(solution, out_dir, sample_interval=10.0)
     assert [p.name for p in written] == ["sensors.csv", "screw.csv", "screw_displacement.csv",
-                                         "positioning_error.csv", "summary.json"]
+                                         "positioning_error.csv", "parts.csv", "heat.csv", "summary.json"]
     assert all(p.parent == out_dir and p.is_file() for p in written)
     assert (out_dir / "sensors.csv").read_text().startswith("time_s,T1")
     assert (out_dir / "notes.txt").read_text() == "mine\n"
@@ -327,8 +379,8 @@ def test_an_os_error_becomes_one_feedtherm_error(solution, tmp_path, monkeypatch
 def test_write_run_writes_tables_and_plots_together(solution, tmp_path):
     written = write_run(solution, tmp_path / "run", sample_interval=60.0)
     assert sorted(p.name for p in (tmp_path / "run").iterdir()) == sorted(p.name for p in written) == [
-        "elongation.png", "positioning_error.csv", "positioning_error.png", "screw.csv", "screw_displacement.csv",
-        "screw_heatmap.png", "sensors.csv", "sensors.png", "summary.json"]
+        "elongation.png", "heat.csv", "parts.csv", "positioning_error.csv", "positioning_error.png", "screw.csv",
+        "screw_displacement.csv", "screw_heatmap.png", "sensors.csv", "sensors.png", "summary.json"]
 
 
 def test_without_figures_a_run_writes_the_tables_and_removes_an_earlier_runs_plots(solution, tmp_path):
@@ -336,7 +388,8 @@ def test_without_figures_a_run_writes_the_tables_and_removes_an_earlier_runs_plo
     write_run(solution, out_dir, sample_interval=60.0)
     written = write_run(solution, out_dir, sample_interval=60.0, figures=False)
     assert sorted(p.name for p in out_dir.iterdir()) == sorted(p.name for p in written) == [
-        "positioning_error.csv", "screw.csv", "screw_displacement.csv", "sensors.csv", "summary.json"]
+        "heat.csv", "parts.csv", "positioning_error.csv", "screw.csv", "screw_displacement.csv", "sensors.csv",
+        "summary.json"]
 
 
 def test_a_run_replaces_every_file_of_an_earlier_run_and_keeps_others(solution, tmp_path):
@@ -349,7 +402,7 @@ def test_a_run_replaces_every_file_of_an_earlier_run_and_keeps_others(solution, 
     (out_dir / "notes.txt").write_text("mine\n")
     written = write_run(solution, out_dir, sample_interval=600.0)
     assert sorted(p.name for p in out_dir.iterdir()) == sorted([p.name for p in written] + ["notes.txt"])
-    assert len(written) == 9 and (out_dir / "notes.txt").read_text() == "mine\n"
+    assert len(written) == 11 and (out_dir / "notes.txt").read_text() == "mine\n"
     assert json.loads((out_dir / "summary.json").read_text())["model"] == "fast"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
 

@@ -118,6 +118,10 @@ class FastDiscretization(ThermalModel):
         values = np.asarray(states) @ self._means.T
         return {part: values[..., i] for i, part in enumerate(self._part_names)}
 
+    def part_capacities(self) -> dict[str, float]:
+        """ρcV [J/K] of every part: its nodes' capacities summed."""
+        return {part: float(self.layout.part_capacity(part).sum()) for part in self._part_names}
+
     @property
     def stats(self) -> dict:
         screw = self.layout.screw

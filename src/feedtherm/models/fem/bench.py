@@ -220,11 +220,12 @@ class FemDiscretization(ThermalModel):
         self._screw_bins = self._screw_sections()
         self.deformation = Deformation(self)
         self._probe_rows = None
+        # capacity weights: the volume mean, as a part has one material, and Σ_p C_p T̄_p = C·T exactly
         self._part_weights = {}
         for name in mesh.parts:
             nodes = mesh.part_nodes(name)
-            v = self.node_volume[nodes]
-            self._part_weights[name] = (nodes, v / v.sum())
+            c = self.capacity[nodes]
+            self._part_weights[name] = (nodes, c / c.sum())
 
     def _screw_sections(self) -> sp.csr_matrix:
         """(sections, nodes): the volume-mean of each axial section of the screw; no rows without a feed drive."""
@@ -372,9 +373,13 @@ class FemDiscretization(ThermalModel):
         return self._probe_rows
 
     def part_means(self, states: np.ndarray) -> dict[str, np.ndarray]:
-        """Volume mean temperature of every part, shape ``(...)`` per part."""
+        """Capacity-weighted (= volume) mean temperature of every part, shape ``(...)`` per part."""
         states = np.asarray(states)
         return {name: states[..., nodes] @ w for name, (nodes, w) in self._part_weights.items()}
+
+    def part_capacities(self) -> dict[str, float]:
+        """ρcV [J/K] of every part: its vertices' lumped capacities summed."""
+        return {name: float(self.capacity[nodes].sum()) for name, (nodes, _) in self._part_weights.items()}
 
     def field_mesh(self) -> FieldMesh:
         """The vertices (every part at rest, the moving group mid-stroke) and tetrahedra."""

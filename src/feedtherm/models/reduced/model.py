@@ -144,6 +144,12 @@ class ProjectedModel(ThermalModel):
         states = np.asarray(states)
         return {name: states @ v for name, v in self.projection.parts.items()}
 
+    def part_capacities(self) -> dict[str, float] | None:
+        """The full model's: the part means are its capacity-weighted means of the lifted state ``V z``,
+        and ``Σ_p C_p T̄_p = Σ C (V z)``, the stored heat of :meth:`heat_stored`."""
+        capacity = self.projection.part_capacity
+        return None if capacity is None else dict(capacity)
+
     def field_mesh(self):
         return self.projection.field_mesh
 

@@ -61,6 +61,7 @@ class Projection:
     displacement_basis: np.ndarray | None  # (3n, r) float32: the field of z is basis @ z + displacement_origin
     displacement_origin: np.ndarray | None  # (3n,) [m]: the field of z = 0
     parts: dict[str, np.ndarray]  # part → (r,): its mean is z @ parts[part]
+    part_capacity: dict[str, float] | None  # part → ρcV [J/K] of the full model (None: it does not say)
     averaged: BoundaryBasis  # the full model's cycle-averaged one: coupled readings and links
     positions: np.ndarray
     dx: float
@@ -173,6 +174,7 @@ def project(full: ThermalModel, basis: Basis) -> Projection:
         displacement_basis=field_basis,
         displacement_origin=field_origin,
         parts={name: np.asarray(v) for name, v in full.part_means(V.T).items()},
+        part_capacity=full.part_capacities(),
         averaged=full.boundary_basis(None),
         positions=np.asarray(full.positions, dtype=float),
         dx=float(full.dx),

@@ -46,7 +46,7 @@ from .projection import Projection, project
 __all__ = ["cached_projected_model", "file_digest", "package_digest", "projection_key", "projection_cache_path"]
 
 #: Changes whenever the file layout below changes (the package digest covers it too; this names it).
-STORE_VERSION = 2
+STORE_VERSION = 3
 #: The distributions whose code builds a full model, its basis or its projection.
 LIBRARIES = ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "pymor")
 _PACKAGE = Path(__file__).resolve().parents[2]  # src/feedtherm
@@ -144,6 +144,8 @@ def _to_arrays(p: Projection, key: str) -> dict[str, np.ndarray]:
                "surfaces": np.array(p.surfaces), "sources": np.array(p.sources),
                "probe_names": np.array(p.probe_names), "full_stats": json.dumps(p.full_stats),
                "part_names": np.array(list(p.parts)), "part_rows": np.array(list(p.parts.values())),
+               "has_part_capacity": p.part_capacity is not None,
+               "part_capacity": np.array([(p.part_capacity or {}).get(name, np.nan) for name in p.parts]),
                "basis_vectors": b.vectors, "basis_singular_values": b.singular_values,
                "basis_tolerance": b.tolerance, "basis_snapshots": b.snapshots, "basis_seconds": b.seconds,
                "basis_cached": b.cached}
@@ -174,6 +176,8 @@ def _from_arrays(data, key: str) -> Projection | None:
     return Projection(
         basis=basis, surfaces=surfaces, sources=sources, dx=float(data["dx"]), probe_names=names("probe_names"),
         parts=dict(zip(names("part_names"), data["part_rows"])),
+        part_capacity=(dict(zip(names("part_names"), (float(c) for c in data["part_capacity"])))
+                       if bool(data["has_part_capacity"]) else None),
         averaged=BoundaryBasis(list(surfaces), list(sources), _read_sparse(data, "averaged_exposure"),
                                _read_sparse(data, "averaged_distribution")),
         field_mesh=mesh, full_stats=json.loads(str(data["full_stats"])),
