@@ -27,7 +27,7 @@ from ..system.schema import FeedSystem
 from .heat import SourceHeat, named_failure, source_heats
 from .operating import OperatingPoint, operating_point
 from .overlay import scaled
-from .physical import check_coefficient, check_heat
+from .physical import check_coefficient, check_heat, numeric_errors
 from .surfaces import SurfaceTransfer, surface_transfer
 from .temperatures import LocalTemperatures
 
@@ -113,10 +113,11 @@ def _physics(system: FeedSystem, point: OperatingPoint, *, with_radiation: bool,
     with _collect("sources", sink):
         heats = source_heats(system, point, local.sources)
     surfaces = {}
-    for name in system.surfaces:
-        with _collect(f"surfaces.{name}", sink), named_failure(f"surfaces.{name}"):
-            surfaces[name] = surface_transfer(system, name, point, local.surfaces.get(name, frozen),
-                                              with_radiation=with_radiation)
+    with numeric_errors():  # an overflow raises, for named_failure to name
+        for name in system.surfaces:
+            with _collect(f"surfaces.{name}", sink), named_failure(f"surfaces.{name}"):
+                surfaces[name] = surface_transfer(system, name, point, local.surfaces.get(name, frozen),
+                                                  with_radiation=with_radiation)
     return heats, surfaces
 
 

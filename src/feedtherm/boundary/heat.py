@@ -58,12 +58,12 @@ def named_failure(path: str):
     The correlations check their arguments and raise ``ValueError``; met while evaluating a
     description's source or surface, that is a description the models cannot evaluate at this
     operating point, reported as :class:`~feedtherm.errors.ModelError` with the value's path.
-    An overflow, a division by zero or an invalid operation inside is reported the same way
-    (:func:`~.physical.numeric_errors`), never as a ``RuntimeWarning``.
+    So is an overflow, a division by zero or an invalid operation inside, where the caller made
+    them raise (:func:`~.physical.numeric_errors`, as :func:`source_heats` does): never a
+    ``RuntimeWarning``.
     """
     try:
-        with numeric_errors():
-            yield
+        yield
     except (ValueError, ZeroDivisionError, OverflowError, FloatingPointError, RuntimeWarning) as exc:
         raise ModelError(f"{path}: cannot be evaluated here: {exc}") from None
 
@@ -108,6 +108,12 @@ def source_heats(system: FeedSystem, point: OperatingPoint,
     lubricant's viscosity and its motor winding's resistance are taken; a source left out is
     taken at the frozen temperature of the CHTCs, ambient + ``convection_delta_t``.
     """
+    with numeric_errors():  # once: per source, it would cost a quarter of the evaluation
+        return _source_heats(system, point, temperatures)
+
+
+def _source_heats(system: FeedSystem, point: OperatingPoint,
+                  temperatures: Mapping[str, float] | None) -> dict[str, SourceHeat]:
     sources = system.sources
     heats: dict[str, SourceHeat] = {}
     # torque each motor must deliver on its shaft, accumulated from the friction elements
