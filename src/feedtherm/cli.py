@@ -12,10 +12,11 @@ import signal
 import sys
 import threading
 import time
+from contextlib import contextmanager
 from pathlib import Path
 
 from . import __version__
-from .errors import FeedthermError
+from .errors import FeedthermError, ModelError
 
 
 class _Parser(argparse.ArgumentParser):
@@ -39,6 +40,19 @@ def _load_in_mode(args: argparse.Namespace):
     return with_mode(_load(args.system), args.mode)
 
 
+@contextmanager
+def _naming(origin: str):
+    """An error of the description that only its evaluation or its run finds (a heat, a
+    coefficient, the model) names the description's file, as the loader's errors do."""
+    try:
+        yield
+    except ModelError as exc:
+        message = str(exc)
+        if message.startswith(f"{origin}: "):
+            raise
+        raise ModelError(f"{origin}: {message}") from None
+
+
 def _condition(loaded, name: str) -> str:
     conditions = loaded.system.conditions
     if name not in conditions:
@@ -55,7 +69,8 @@ def cmd_heat(args: argparse.Namespace) -> int:
 
     loaded = _load_in_mode(args)
     condition = _condition(loaded, args.condition)
-    bc = boundary_of(loaded, condition)
+    with _naming(loaded.origin):
+        bc = boundary_of(loaded, condition)
     printed = available_overlay(loaded)
     if args.json:
         print(heat_json(bc, printed))
@@ -70,7 +85,8 @@ def cmd_modes(args: argparse.Namespace) -> int:
 
     loaded = _load_in_mode(args)
     condition = _condition(loaded, args.condition)
-    result = thermal_modes(loaded, condition, count=args.count)
+    with _naming(loaded.origin):
+        result = thermal_modes(loaded, condition, count=args.count)
     if args.json:
         print(modes_json(result))
     else:
@@ -128,15 +144,16 @@ def cmd_run(args: argparse.Namespace) -> int:
     from .plan import plan_run
 
     loaded = _load_in_mode(args)
-    plan = plan_run(loaded, condition=args.condition, cycle=args.cycle, model=args.model,
-                    duration=args.duration, single_drive=args.single_drive, sample_interval=args.sample_interval,
-                    motion=args.motion, mesh=args.mesh, solver=args.solver)
+    with _naming(loaded.origin):
+        plan = plan_run(loaded, condition=args.condition, cycle=args.cycle, model=args.model,
+                        duration=args.duration, single_drive=args.single_drive, sample_interval=args.sample_interval,
+                        motion=args.motion, mesh=args.mesh, solver=args.solver)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, plan.label, plan.mode)
     check_output_dir(out_dir)
     # Imported only now: every input error above is reported without loading the model.
     from .simulate import execute
 
-    with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
+    with _LazyProgress(enabled=sys.stdout.isatty()) as progress, _naming(loaded.origin):
         solution = execute(plan, progress)
     write_run(solution, out_dir, sample_interval=args.sample_interval, figures=not args.no_plots)
     print(summary_line(solution, out_dir))
@@ -154,13 +171,15 @@ def cmd_calculix(args: argparse.Namespace) -> int:
 
     loaded = _load_in_mode(args)
     condition = _condition(loaded, args.condition)
-    plan = plan_run(loaded, condition=condition, model="fem", mesh=args.mesh)
+    with _naming(loaded.origin):
+        plan = plan_run(loaded, condition=condition, model="fem", mesh=args.mesh)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, f"{condition}_calculix", plan.mode)
     check_output_dir(out_dir)
     duration = args.duration if args.duration is not None else plan.segments[-1].t1 - plan.segments[0].t0
     if args.step > duration:
         raise FeedthermError(f"--step: {args.step:g} s is longer than the run ({duration:g} s)")
-    model = plan.model.build(loaded.system, plan.options)
+    with _naming(loaded.origin):
+        model = plan.model.build(loaded.system, plan.options)
     last = len(model.positions) - 1
     k = last // 2 if args.position is None else args.position
     if not 0 <= k <= last:

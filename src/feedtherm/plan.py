@@ -16,7 +16,7 @@ from .boundary import PHYSICS, BoundaryConditions, LocalTemperatures, boundary_c
 from .boundary.heat import motor_overloads
 from .boundary.operating import OperatingPoint, operating_point
 from .constants import RPM_PER_RAD_S
-from .errors import FeedthermError
+from .errors import FeedthermError, ModelError
 from .models.coupling import Coupling
 from .models.integrator import Segment
 from .models.options import ModelOptions
@@ -135,7 +135,7 @@ def refuse_overloads(segments: list[Segment], what: str) -> None:
         overloads = motor_overloads(seg.bc.heats)
         if overloads:
             where = what if len(segments) == 1 else f"{what}, from {seg.t0:g} s"
-            raise FeedthermError(f"{where}: {overloads[0].describe()}")
+            raise ModelError(f"{where}: {overloads[0].describe()}")
 
 
 #: Most time steps a run may plan: a minute or so of the fast model, many hours of the FE model

@@ -27,6 +27,7 @@ from ..system.schema import FeedSystem
 from .heat import SourceHeat, named_failure, source_heats
 from .operating import OperatingPoint, operating_point
 from .overlay import scaled
+from .physical import check_coefficient, check_heat, numeric_errors
 from .surfaces import SurfaceTransfer, surface_transfer
 from .temperatures import LocalTemperatures
 
@@ -89,6 +90,10 @@ def boundary_conditions_at(
                                temperatures=temperatures)
     if overlay is not None:
         heats, surfaces = _overlaid(system, overlay, heats, surfaces)
+    for name, heat in heats.items():  # the physics' and an overlay's alike
+        check_heat(f"sources.{name}", heat.power, heat.details, system.sources[name].heat_factor)
+    for name, transfer in surfaces.items():
+        check_coefficient(f"surfaces.{name}", transfer.convection, transfer.radiation)
     joints = [JointConductance(tuple(j.between), j.tcr, j.area, j.sliding) for j in system.joints]
     return BoundaryConditions(label, overlay.name if overlay else None, point, heats, surfaces, joints, caught,
                               temperatures)
@@ -108,10 +113,11 @@ def _physics(system: FeedSystem, point: OperatingPoint, *, with_radiation: bool,
     with _collect("sources", sink):
         heats = source_heats(system, point, local.sources)
     surfaces = {}
-    for name in system.surfaces:
-        with _collect(f"surfaces.{name}", sink), named_failure(f"surfaces.{name}"):
-            surfaces[name] = surface_transfer(system, name, point, local.surfaces.get(name, frozen),
-                                              with_radiation=with_radiation)
+    with numeric_errors():  # an overflow raises, for named_failure to name
+        for name in system.surfaces:
+            with _collect(f"surfaces.{name}", sink), named_failure(f"surfaces.{name}"):
+                surfaces[name] = surface_transfer(system, name, point, local.surfaces.get(name, frozen),
+                                                  with_radiation=with_radiation)
     return heats, surfaces
 
 

@@ -35,6 +35,7 @@ from ..system.sources import (
     TorqueSource,
 )
 from .operating import OperatingPoint
+from .physical import check_viscosity, numeric_errors
 
 GRAVITY = 9.80665  # standard gravity, [m/s^2]
 
@@ -57,10 +58,13 @@ def named_failure(path: str):
     The correlations check their arguments and raise ``ValueError``; met while evaluating a
     description's source or surface, that is a description the models cannot evaluate at this
     operating point, reported as :class:`~feedtherm.errors.ModelError` with the value's path.
+    So is an overflow, a division by zero or an invalid operation inside, where the caller made
+    them raise (:func:`~.physical.numeric_errors`, as :func:`source_heats` does): never a
+    ``RuntimeWarning``.
     """
     try:
         yield
-    except (ValueError, ZeroDivisionError, OverflowError, FloatingPointError) as exc:
+    except (ValueError, ZeroDivisionError, OverflowError, FloatingPointError, RuntimeWarning) as exc:
         raise ModelError(f"{path}: cannot be evaluated here: {exc}") from None
 
 
@@ -104,6 +108,12 @@ def source_heats(system: FeedSystem, point: OperatingPoint,
     lubricant's viscosity and its motor winding's resistance are taken; a source left out is
     taken at the frozen temperature of the CHTCs, ambient + ``convection_delta_t``.
     """
+    with numeric_errors():  # once: per source, it would cost a quarter of the evaluation
+        return _source_heats(system, point, temperatures)
+
+
+def _source_heats(system: FeedSystem, point: OperatingPoint,
+                  temperatures: Mapping[str, float] | None) -> dict[str, SourceHeat]:
     sources = system.sources
     heats: dict[str, SourceHeat] = {}
     # torque each motor must deliver on its shaft, accumulated from the friction elements
@@ -114,6 +124,13 @@ def source_heats(system: FeedSystem, point: OperatingPoint,
 
     def temperature(name: str) -> float:
         return local.get(name, frozen_temperature)
+
+    def why(name: str) -> str:
+        """Why source ``name`` is at :func:`temperature` (a viscosity's message says it)."""
+        if name in local:
+            return "the source's simulated temperature"
+        return (f"the ambient {point.ambient - 273.15:.4g} degC plus temperatures.convection_delta_t "
+                f"{system.temperatures.convection_delta_t:.4g} K")
 
     for name, src in sources.items():
         if isinstance(src, GuidewaySource):
@@ -130,10 +147,16 @@ def source_heats(system: FeedSystem, point: OperatingPoint,
     for name, src in sources.items():
         with named_failure(f"sources.{name}"):
             if isinstance(src, SlidingScrewSource):
+                if src.grease is not None:
+                    check_viscosity(f"sources.{name}.grease", src.grease.viscosity_at(temperature(name)),
+                                    temperature(name), why(name))
                 heats[name] = _sliding_screw(name, src, point, axial_force, shaft_torque, temperature(name))
             elif isinstance(src, BallScrewSource):
                 heats[name] = _ball_screw(name, src, point, axial_force, shaft_torque)
             elif isinstance(src, BearingSource):
+                if src.lubricant is not None:
+                    check_viscosity(f"sources.{name}.lubricant", src.lubricant.viscosity_at(temperature(name)),
+                                    temperature(name), why(name))
                 heats[name] = _bearing(name, src, point, shaft_torque, temperature(name))
             elif isinstance(src, TorqueSource):
                 heats[name] = _torque(name, src, point, axial_force, shaft_torque)

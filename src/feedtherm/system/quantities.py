@@ -52,7 +52,7 @@ class Limit:
     def describe(self) -> str:
         low, high = (float(registry().Quantity(x, self.si).to(self.unit).magnitude) for x in (self.low, self.high))
         span = f"|value| <= {high:g} {self.unit}" if self.magnitude else f"{low:g} to {high:g} {self.unit}"
-        return f"{span} ({self.reason})"
+        return f"{span.rstrip()} ({self.reason})"
 
 
 #: The ranges of the limited quantities (docs/system-description.md, "Accepted ranges").
@@ -76,7 +76,28 @@ HTC_LIMIT = Limit(0.0, 1e10, "W/(m^2*K)", "W/(m^2*K)",
 TEMPERATURE_DIFFERENCE_LIMIT = Limit(0.0, 1000.0, "K", "K", "the span of the accepted temperatures")
 LINEAR_SPEED_LIMIT = Limit(0.0, 100.0, "m/s", "m/min", "a 6,000 m/min table, or a gale in the room", magnitude=True)
 DURATION_LIMIT = Limit(0.0, 1e8, "s", "h", "three years")
-KINEMATIC_VISCOSITY_LIMIT = Limit(0.0, 1.0, "m^2/s", "mm^2/s", "thicker than any lubricant's base oil")
+KINEMATIC_VISCOSITY_LIMIT = Limit(0.0, 0.1, "m^2/s", "mm^2/s",
+                                  "sixty-odd times the thickest ISO grade's, VG 1500 at 40 degC: an oil that thick "
+                                  "no longer flows")
+DYNAMIC_VISCOSITY_LIMIT = Limit(0.0, 1e4, "Pa*s", "Pa*s",
+                                "ten times a stiff grease's apparent viscosity at low shear, 10^2-10^3 Pa s")
+PRESSURE_VISCOSITY_LIMIT = Limit(0.0, 1e-6, "1/Pa", "1/GPa", "fifty times a mineral oil's, about 20 1/GPa")
+#: A contact resistance from a soldered joint's to an insulating one's (Madhusudana, Thermal Contact
+#: Conductance, 2nd ed. 2014, ch. 1: metal joints 1e-5 to 1e-2 m^2 K/W).
+CONTACT_RESISTANCE_LIMIT = Limit(1e-7, 1e4, "m^2*K/W", "m^2*K/W",
+                                 "from a fifth of a 25 um solder layer's 5e-7, below which two parts are one, to "
+                                 "260 m of still air, beyond which a joint conducts nothing but holds its parts")
+TORQUE_CONSTANT_LIMIT = Limit(1e-4, 1e3, "N*m/A", "N*m/A",
+                              "a micromotor's 1e-3 N m/A to a large torque motor's 100 N m/A, a decade to spare")
+RESISTANCE_LIMIT = Limit(1e-4, 1e4, "ohm", "ohm",
+                         "a large torque motor's milliohms to a micromotor's hundreds of ohms, a decade to spare")
+ROTATIONAL_DAMPING_LIMIT = Limit(0.0, 100.0, "N*m*s/rad", "N*m*s/rad",
+                                 "100 N m of drag at 1 rad/s, beyond any motor's or bearing's viscous drag")
+ANGLE_LIMIT = Limit(0.0, math.pi / 2.0, "rad", "deg",
+                    "a flank or a contact normal lies within a quarter turn of the axis' normal plane")
+#: Factors on a model's heat or coefficient (set by calibration and perturbation studies).
+FACTOR_LIMIT = Limit(0.01, 100.0, "", "", "a model off by more than a hundred either way is another model, not a "
+                     "correction of it")
 
 #: The unit a bare number's hint suggests, where it is not the SI unit.
 _HINT_UNITS = {"m": "mm", "rad/s": "rpm", "m^2": "mm^2"}
@@ -157,8 +178,9 @@ def to_si(value: object, si_unit: str, *, sign: str = "any", limit: Limit | None
     if not math.isfinite(converted):
         raise ValueError(f"must be a finite number, got {value!r} ({converted:g} {si_unit or ''})".replace(" )", ")"))
     out_of_range = limit is not None and limit.violated_by(converted)
-    # an absolute temperature below its range is out of range, not "negative"
-    if out_of_range and limit.low > 0:
+    # an absolute temperature below its range is out of range, not "negative"; a contact
+    # resistance of 1e-300 is out of range, one of -1 is not positive
+    if out_of_range and limit.low > 0 and (converted > 0 or limit is TEMPERATURE_LIMIT):
         raise ValueError(f"{value!r} lies outside the accepted range, {limit.describe()}{_typo(number, unit, limit)}")
     if sign == "positive" and not converted > 0:
         raise ValueError(f"must be positive, got {value!r}")
@@ -198,7 +220,7 @@ PosConductivity = _quantity("W/(m*K)", "positive", CONDUCTIVITY_LIMIT)
 PosSpecificHeat = _quantity("J/(kg*K)", "positive", SPECIFIC_HEAT_LIMIT)
 PosExpansion = _quantity("1/K", "positive", EXPANSION_LIMIT)
 PosModulus = _quantity("Pa", "positive", MODULUS_LIMIT)
-PosContactResistance = _quantity("m^2*K/W", "positive")  # no upper limit: a large one insulates a joint
+PosContactResistance = _quantity("m^2*K/W", "positive", CONTACT_RESISTANCE_LIMIT)
 PosHeatTransferCoefficient = _quantity("W/(m^2*K)", "positive", HTC_LIMIT)
 Power = _quantity("W", "nonnegative", POWER_LIMIT)
 Temperature = _quantity("K", "positive", TEMPERATURE_LIMIT, hint="degC")  # absolute
@@ -212,16 +234,18 @@ PosForce = _quantity("N", "positive", FORCE_LIMIT)
 NonNegForce = _quantity("N", "nonnegative", FORCE_LIMIT)
 NonNegTorque = _quantity("N*m", "nonnegative", TORQUE_LIMIT)
 PosTorque = _quantity("N*m", "positive", TORQUE_LIMIT)
-PosTorqueConstant = _quantity("N*m/A", "positive")  # a motor's torque per A r.m.s.
-PosResistance = _quantity("ohm", "positive")
-NonNegRotationalDamping = _quantity("N*m*s/rad", "nonnegative")  # drag torque per angular speed
+PosTorqueConstant = _quantity("N*m/A", "positive", TORQUE_CONSTANT_LIMIT)  # a motor's torque per A r.m.s.
+PosResistance = _quantity("ohm", "positive", RESISTANCE_LIMIT)
+NonNegRotationalDamping = _quantity("N*m*s/rad", "nonnegative", ROTATIONAL_DAMPING_LIMIT)  # drag torque per angular speed
 PosKinematicViscosity = _quantity("m^2/s", "positive", KINEMATIC_VISCOSITY_LIMIT)
-PosDynamicViscosity = _quantity("Pa*s", "positive")
-PosPressureViscosityCoefficient = _quantity("1/Pa", "positive")  # Barus alpha of a lubricant
+PosDynamicViscosity = _quantity("Pa*s", "positive", DYNAMIC_VISCOSITY_LIMIT)
+PosPressureViscosityCoefficient = _quantity("1/Pa", "positive", PRESSURE_VISCOSITY_LIMIT)  # Barus alpha of a lubricant
 PosMass = _quantity("kg", "positive", MASS_LIMIT)
 Fraction = Annotated[float, BeforeValidator(lambda v: _fraction(v)), SIUnit("")]
 PosDimensionless = _quantity("", "positive")
-NonNegAngle = _quantity("rad", "nonnegative")
+NonNegAngle = _quantity("rad", "nonnegative", ANGLE_LIMIT)
+#: A factor on a model's heat or coefficient (``heat_factor``, ``chtc_factor``).
+PosFactor = _quantity("", "positive", FACTOR_LIMIT)
 
 
 def _fraction(value: object) -> float:

@@ -29,6 +29,7 @@ from .quantities import (
     Temperature,
     PosDimensionless,
     PosDynamicViscosity,
+    PosFactor,
     PosForce,
     PosKinematicViscosity,
     PosLength,
@@ -44,6 +45,12 @@ from .quantities import (
 # --------------------------------------------------------------------------- heat sources
 
 ShaftName = Literal["screw", "nut"]
+#: The lowest efficiency a motor source may state: below it the loss P (1/eta - 1) is over nine
+#: times the shaft power, a motor near standstill, whose loss ``losses`` gives (copper and no-load).
+MIN_MOTOR_EFFICIENCY = 0.1
+#: The flank half angle's range, [0, 45 deg): the thread-friction formula's (physics/screw_nut.py,
+#: friction_angle_thread); a Tr thread has 15 deg, a metric V thread 30 deg, a square one 0.
+MAX_FLANK_HALF_ANGLE = math.pi / 4.0
 
 
 class _Source(Strict):
@@ -57,7 +64,8 @@ class _Source(Strict):
     # Multiplies the heat the source's model gives (not the torques it puts on its shaft): set by
     # perturbation studies ("another machine of the same design", analysis/machine_variants.py).
     # Left out of the serialised description at 1 (FeedSystem), so the benches' hashes stay.
-    heat_factor: PosDimensionless = 1.0
+    # 0.01 to 100 (quantities.FACTOR_LIMIT): further off, the model is another one.
+    heat_factor: PosFactor = 1.0
 
     @field_validator("into")
     @classmethod
@@ -309,6 +317,16 @@ class MotorSource(_Source):
     # preloads and frictions are not a machine that can run there).
     continuous_torque: PosTorque | None = None
 
+    @field_validator("efficiency")
+    @classmethod
+    def _a_motors_efficiency(cls, value: float | None) -> float | None:
+        if value is not None and value < MIN_MOTOR_EFFICIENCY:
+            raise ValueError(f"{value:g} is below {MIN_MOTOR_EFFICIENCY:g}: the loss P (1/eta - 1) would be over "
+                             f"{1.0 / MIN_MOTOR_EFFICIENCY - 1.0:g} times the shaft power; a motor running that "
+                             "inefficiently is near standstill, where losses = { model = \"datasheet\", ... } "
+                             "gives its copper and no-load loss")
+        return value
+
     @model_validator(mode="after")
     def _one_loss_model(self) -> "MotorSource":
         if self.efficiency is None and self.losses is None:
@@ -357,6 +375,14 @@ class SlidingScrewSource(_Source):
     grease_density: PosDensity | None = None  # of the base oil [kg/m^3], with ``grease``
     grease_gap: PosLength
     engaged_length: PosLength
+
+    @field_validator("flank_half_angle")
+    @classmethod
+    def _flank_below_45_deg(cls, value: float) -> float:
+        if not value < MAX_FLANK_HALF_ANGLE:
+            raise ValueError(f"must lie from 0 to under 45 deg, the thread-friction formula's range (a Tr thread "
+                             f"has 15 deg, a metric V thread 30 deg), got {math.degrees(value):g} deg")
+        return value
 
     @model_validator(mode="after")
     def _one_grease(self) -> "SlidingScrewSource":

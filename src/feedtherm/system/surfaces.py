@@ -12,7 +12,7 @@ from pydantic import (
 from .base import Strict
 from .quantities import (
     PosArea,
-    PosDimensionless,
+    PosFactor,
     PosHeatTransferCoefficient,
     PosLength,
     Temperature,
@@ -78,7 +78,7 @@ class Surface(Strict):
     convection: Convection
     emissivity: Annotated[float, Field(ge=0.0, le=1.0)]  # 0: no radiation
     area: PosArea | None = None  # overrides the area computed from the faces
-    chtc_factor: PosDimensionless = 1.0  # multiplies the convective coefficient (set by calibration)
+    chtc_factor: PosFactor = 1.0  # multiplies the convective coefficient (set by calibration); 0.01 to 100
     # The medium this surface exchanges heat with, when it is not the ambient air (a coolant, a
     # clamped face held at a temperature); only with a fixed coefficient, as the air correlations
     # are for the ambient air.
