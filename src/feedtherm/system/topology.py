@@ -312,10 +312,11 @@ def faces_once(system: FeedSystem) -> list[Finding]:
     return findings
 
 
-def errors(system: FeedSystem) -> list[Finding]:
-    """Every error of this module: selections and holes first (the overlaps read them)."""
+def errors(system: FeedSystem, with_overlaps: bool = True) -> list[Finding]:
+    """Every error of this module: selections and holes first (the overlaps read them); the overlaps
+    only ``with_overlaps`` (not along a stroke that is an error itself)."""
     found = [*selections(system), *holes(system)]
-    return found or [*faces_once(system), *overlaps(system)]
+    return found or [*faces_once(system), *(overlaps(system) if with_overlaps else [])]
 
 
 def unjoined(system: FeedSystem) -> list[Finding]:
