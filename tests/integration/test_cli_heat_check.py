@@ -59,11 +59,8 @@ def test_check_flags_condition_I_only():
     result = run("check")
     assert result.returncode == 0, result.stderr
     warnings = [line for line in result.stdout.splitlines() if line.startswith("warning:")]
-    assert len(warnings) == 2
+    assert len(warnings) == 1
     assert "conditions.I.feed_speed" in warnings[0] and "0.36 m/min" in warnings[0]
-    # the bench's own drawing (issue 35): its belt, a slab from the nut motor to the nut's pulley,
-    # runs through the screw; a warning until it is redrawn (system/topology.py, OVERLAP_SEVERITY)
-    assert warnings[1].startswith("warning: parts.screw.cylinders[0]: overlaps part 'belt'")
 
 
 def test_check_accepts_a_file(tmp_path):

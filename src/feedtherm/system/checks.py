@@ -57,11 +57,14 @@ def _uncertainties(system: FeedSystem, severity: str) -> list[Finding]:
 
 def check_errors(system: FeedSystem) -> list[Finding]:
     """The findings no model can run past (see the module's docstring)."""
+    stroke = _stroke(system)
     errors = [
-        *topology.errors(system),
+        # a stroke that takes the nut off its screw also drives the moving group into other parts:
+        # its one error, not the overlaps along it
+        *stroke,
+        *topology.errors(system, with_overlaps=not stroke),
         *_geometry(system),
         *_joints_unique(system),
-        *_stroke(system),
         *calibration_bounds(system),
         *_ambient_paths(system),
         *_held(system),

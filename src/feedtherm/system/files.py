@@ -8,6 +8,7 @@ files are read, and only up to a size no real input approaches.
 from __future__ import annotations
 
 import stat
+import tomllib
 from pathlib import Path
 
 from ..errors import DescriptionError
@@ -27,6 +28,7 @@ MAX_TOML_DEPTH = 32
 def read_text_file(path: str | Path, origin: str, limit: int = MAX_DESCRIPTION_BYTES, what: str = "description") -> str:
     """The text of the regular file ``path`` (at most ``limit`` bytes, UTF-8, a BOM dropped)."""
     path = Path(path)
+    a = "an" if what[:1] in "aeiou" else "a"
     try:
         info = path.stat()  # does not open it: a FIFO does not block here
     except OSError as exc:
@@ -35,8 +37,8 @@ def read_text_file(path: str | Path, origin: str, limit: int = MAX_DESCRIPTION_B
         raise DescriptionError(f"{origin}: is a directory, not a file")
     if not stat.S_ISREG(info.st_mode):
         raise DescriptionError(f"{origin}: is not a regular file (a pipe, a device or a socket); give the path of "
-                               f"a {what} file")
-    too_big = (f"{origin}: is larger than the {limit // 2**20} MB a {what} may have (feedtherm.system.files); "
+                               f"{a} {what} file")
+    too_big = (f"{origin}: is larger than the {limit // 2**20} MB {a} {what} may have (feedtherm.system.files); "
                "is it the right file?")
     if info.st_size > limit:
         raise DescriptionError(too_big)
@@ -70,3 +72,19 @@ def nesting_depth(data) -> int:
             return deepest
         stack.extend((child, depth + 1) for child in children)
     return deepest
+
+
+def parse_bounded_toml(text: str, origin: str, what: str = "description", deepest: int = 5) -> dict:
+    """TOML text parsed, its tables and arrays nested at most MAX_TOML_DEPTH levels; a one-line
+    DescriptionError naming ``origin`` otherwise (``deepest``: how deep a valid ``what`` nests)."""
+    try:
+        data = tomllib.loads(text.removeprefix("\ufeff"))
+    except tomllib.TOMLDecodeError as exc:
+        raise DescriptionError(f"{origin}: invalid TOML: {exc}") from None
+    except RecursionError:
+        data = None
+    if data is None or nesting_depth(data) > MAX_TOML_DEPTH:
+        a = "an" if what[:1] in "aeiou" else "a"
+        raise DescriptionError(f"{origin}: tables or arrays nest deeper than {MAX_TOML_DEPTH} levels; {a} {what} "
+                               f"nests {deepest} at most") from None
+    return data

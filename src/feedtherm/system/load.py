@@ -10,7 +10,6 @@ from __future__ import annotations
 import difflib
 import hashlib
 import json
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, get_args
@@ -20,7 +19,7 @@ from pydantic import BaseModel, ValidationError
 from ..benches import ORIGIN_PREFIX, bench, bench_names, suggestion
 from ..errors import DescriptionError
 from .areas import with_joint_areas
-from .files import MAX_TOML_DEPTH, nesting_depth, read_text_file
+from .files import parse_bounded_toml, read_text_file
 from .schema import FeedSystem
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -62,16 +61,7 @@ def _read(path: Path, origin: str) -> str:
 def parse_toml(text: str, origin: str) -> dict:
     if not text.strip():
         raise DescriptionError(f"{origin}: the file is empty; a description needs [meta], [parts], ... (see docs/system-description.md)")
-    try:
-        data = tomllib.loads(text.removeprefix("\ufeff"))
-    except tomllib.TOMLDecodeError as exc:
-        raise DescriptionError(f"{origin}: invalid TOML: {exc}") from None
-    except RecursionError:
-        data = None
-    if data is None or nesting_depth(data) > MAX_TOML_DEPTH:
-        raise DescriptionError(f"{origin}: tables or arrays nest deeper than {MAX_TOML_DEPTH} levels; a description "
-                               "nests 5 at most") from None
-    return data
+    return parse_bounded_toml(text, origin)
 
 
 def load_system(spec: str = "paper") -> LoadedSystem:

@@ -27,7 +27,6 @@ conditions is in :mod:`feedtherm.boundary.overlay`.
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import replace
 from pathlib import Path
 
@@ -36,6 +35,7 @@ from pydantic import ValidationError
 from ..benches import ORIGIN_PREFIX, bench, bench_name_of
 from ..errors import DescriptionError
 from .base import Strict
+from .files import parse_bounded_toml, read_text_file
 from .quantities import PosHeatTransferCoefficient, Power
 from .references import closest
 from .schema import FeedSystem
@@ -43,6 +43,8 @@ from .schema import FeedSystem
 OVERLAY = "overlay.toml"
 #: What runs without an overlay are called in outputs: every value from the physics.
 PHYSICS = "physics"
+#: How deep an overlay's tables and arrays nest: the file, [[chtc]], a row, its ``surfaces``.
+OVERLAY_DEPTH = 4
 
 
 class PrintedHeat(Strict):
@@ -106,15 +108,14 @@ def available_overlay(loaded) -> Overlay | None:
 
 def read_overlay(path: Path, system: FeedSystem) -> Overlay:
     """Read and check an overlay file; one-line DescriptionError naming the file and the field."""
-    if not path.is_file():
+    if not path.exists():  # stat only: a FIFO does not block here
         raise DescriptionError(f"{path}: no such overlay file")
+    # a regular file of at most MAX_DESCRIPTION_BYTES, UTF-8 with or without a BOM, nested at most
+    # MAX_TOML_DEPTH levels: the rules of a description (system/files.py)
+    data = parse_bounded_toml(read_text_file(path, str(path), what="overlay"), str(path), what="overlay",
+                              deepest=OVERLAY_DEPTH)
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
         overlay = Overlay.model_validate(data)
-    except (OSError, UnicodeDecodeError) as exc:
-        raise DescriptionError(f"{path}: cannot be read: {exc}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise DescriptionError(f"{path}: invalid TOML: {exc}") from None
     except ValidationError as exc:
         from .load import describe_error  # load imports the schema this module extends
 

@@ -46,11 +46,6 @@ GRID = 24
 #: Positions of the moving group checked between the two ends of its travel over a fixed part
 #: (the ends included).
 POSITIONS = 9
-#: The severity of an overlap between two parts.  It is to be "error" (no machine can be two
-#: parts in one place); it stays a warning until the bundled paper bench's belt, drawn as a slab
-#: through the screw (6.4 cm^3 at every position), is redrawn (issue 35): an error would refuse
-#: the bench in every command.  Overlaps within a part are errors already.
-OVERLAP_SEVERITY = "warning"
 #: A surface's stated area outside [1/AREA_RATIO, AREA_RATIO] times its faces' area is a warning.
 AREA_RATIO = 10.0
 
@@ -207,7 +202,7 @@ def overlaps(system: FeedSystem) -> list[Finding]:
             else:
                 findings.append(Finding(f"parts.{a.part}.{a.label}", f"overlaps part {b.part!r} ({b.label}) by {mm3}"
                                         f"{where}: two parts cannot fill the same space (move or resize one; a press "
-                                        "fit is declared with fit = true on their joint)", OVERLAP_SEVERITY))
+                                        "fit is declared with fit = true on their joint)", "error"))
     return findings
 
 
@@ -317,10 +312,11 @@ def faces_once(system: FeedSystem) -> list[Finding]:
     return findings
 
 
-def errors(system: FeedSystem) -> list[Finding]:
-    """Every error of this module: selections and holes first (the overlaps read them)."""
+def errors(system: FeedSystem, with_overlaps: bool = True) -> list[Finding]:
+    """Every error of this module: selections and holes first (the overlaps read them); the overlaps
+    only ``with_overlaps`` (not along a stroke that is an error itself)."""
     found = [*selections(system), *holes(system)]
-    return found or [*faces_once(system), *(f for f in overlaps(system) if f.severity == "error")]
+    return found or [*faces_once(system), *(overlaps(system) if with_overlaps else [])]
 
 
 def unjoined(system: FeedSystem) -> list[Finding]:
@@ -353,7 +349,5 @@ def area_overrides(system: FeedSystem) -> list[Finding]:
 
 
 def warnings(system: FeedSystem) -> list[Finding]:
-    """Every warning of this module (overlaps between parts while OVERLAP_SEVERITY is "warning")."""
-    found = [*selections(system), *holes(system)]
-    between = [] if found else [f for f in overlaps(system) if f.severity == "warning"]
-    return [*between, *unjoined(system), *area_overrides(system)]
+    """Every warning of this module."""
+    return [*unjoined(system), *area_overrides(system)]

@@ -1,5 +1,5 @@
-"""Files that are not what a description or a measurement file is: refused in one line naming the
-file, without blocking, a MemoryError or a RecursionError (issue 35, item 4)."""
+"""Files that are not what a description, an overlay or a measurement file is: refused in one line
+naming the file, without blocking, a MemoryError or a RecursionError (issue 35, item 4)."""
 
 import os
 
@@ -11,6 +11,7 @@ from feedtherm.cli import main
 from feedtherm.errors import DescriptionError
 from feedtherm.system.files import MAX_DESCRIPTION_BYTES, MAX_TOML_DEPTH
 from feedtherm.system.load import load_system
+from feedtherm.system.overlay import OVERLAY, OVERLAY_DEPTH, read_overlay
 
 BENCH = bench("paper").description.read_text(encoding="utf-8")
 
@@ -92,3 +93,60 @@ def test_a_duration_shorter_than_a_time_step_is_refused_in_one_line(tmp_path, ca
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--duration: 1e-09 s is shorter than one time step of this run" in err
     assert list(tmp_path.iterdir()) == []
+
+
+# --------------------------------------------------------------------------- overlays
+# An overlay (system/overlay.py) is read by the same rules as a description: `heat` reads the
+# overlay a description names in meta.overlay, beside the computed values.
+OVERLAY_TEXT = bench("paper").folder.joinpath(OVERLAY).read_text(encoding="utf-8")
+
+
+def heat_with_overlay(tmp_path, capsys, overlay: str) -> tuple[int, str, str]:
+    """`feedtherm heat` on the paper bench copied to a file that names ``overlay`` as its overlay."""
+    path = tmp_path / "mine.toml"
+    path.write_text(BENCH.replace('measurements = "bundled:paper"',
+                                  f'measurements = "bundled:paper"\noverlay = "{overlay}"', 1), encoding="utf-8")
+    code = main(["heat", str(path), "--condition", "I"])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def overlay_refused(tmp_path, capsys, overlay: str, name: str) -> str:
+    code, out, err = heat_with_overlay(tmp_path, capsys, overlay)
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and err.startswith(f"feedtherm: error: {name}: "), err
+    return err
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no FIFOs here")
+def test_an_overlay_fifo_is_refused_without_blocking(tmp_path, capsys):
+    os.mkfifo(tmp_path / "printed.toml")
+    assert "is not a regular file" in overlay_refused(tmp_path, capsys, "printed.toml", tmp_path / "printed.toml")
+
+
+@pytest.mark.skipif(not os.path.exists("/dev/zero"), reason="no /dev/zero here")
+def test_an_overlay_on_dev_zero_is_refused_without_reading_it(tmp_path, capsys):
+    assert "is not a regular file" in overlay_refused(tmp_path, capsys, "/dev/zero", "/dev/zero")
+
+
+def test_an_overlay_larger_than_the_limit_is_refused(tmp_path, capsys):
+    with open(tmp_path / "printed.toml", "wb") as f:
+        f.truncate(MAX_DESCRIPTION_BYTES + 1)  # sparse: nothing is written
+    err = overlay_refused(tmp_path, capsys, "printed.toml", tmp_path / "printed.toml")
+    assert "is larger than the 16 MB an overlay may have" in err
+
+
+@pytest.mark.parametrize("depth", [40, 5000])  # past the limit, and past the TOML reader's recursion
+def test_an_overlay_nested_too_deep_is_refused(tmp_path, capsys, depth):
+    (tmp_path / "printed.toml").write_text("a = " + "[" * depth + "]" * depth + "\n", encoding="utf-8")
+    err = overlay_refused(tmp_path, capsys, "printed.toml", tmp_path / "printed.toml")
+    assert err.endswith(f"tables or arrays nest deeper than {MAX_TOML_DEPTH} levels; an overlay nests "
+                        f"{OVERLAY_DEPTH} at most\n"), err
+
+
+def test_an_overlay_with_a_byte_order_mark_reads(tmp_path, capsys, paper):
+    (tmp_path / "printed.toml").write_text("\ufeff" + OVERLAY_TEXT, encoding="utf-8")
+    code, out, err = heat_with_overlay(tmp_path, capsys, "printed.toml")
+    assert code == 0 and err == "" and "4.95" in out  # Table 1's front bearing, printed beside
+    bundled = read_overlay(bench("paper").folder / OVERLAY, paper.system)
+    assert read_overlay(tmp_path / "printed.toml", paper.system) == bundled

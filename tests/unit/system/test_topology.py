@@ -116,7 +116,7 @@ def test_two_boxes_of_a_part_that_touch_are_accepted():
 def test_a_block_sunk_into_its_plate_names_both_parts_and_the_volume():
     [finding] = topology.overlaps(system(text(PLATE_BOX, box((50, 20, 15), (100, 60, 40)))))
     assert str(finding).startswith("parts.plate.boxes[0]: overlaps part 'block' (boxes[0]) by 3e+04 mm^3")
-    assert finding.severity == topology.OVERLAP_SEVERITY
+    assert finding.severity == "error"  # no machine is two parts in one place
 
 
 def test_a_press_fit_declared_on_the_joint_may_overlap():
@@ -196,11 +196,20 @@ def test_the_bundled_benches_have_no_topology_error():
         assert topology.errors(loaded) == []
 
 
-def test_the_paper_bench_belt_runs_through_the_screw():
-    """Known (issue 35): the belt is drawn as a slab across the screw; reported, not yet redrawn."""
+def test_the_paper_bench_belt_clears_the_screw_and_touches_what_it_is_joined_to():
+    """Once a slab across the screw (issue 35), the belt is its two strands beside it, on the nut
+    flange's and the nut motor's faces, with the slab's volume."""
     data = __import__("tomllib").loads(bench("paper").description.read_text(encoding="utf-8"))
-    [finding] = topology.overlaps(validate_data(data, "paper").system)
-    assert "parts.screw.cylinders[0]: overlaps part 'belt'" in str(finding)
+    parts = validate_data(data, "paper").system.parts
+    screw_radius = parts["screw"].cylinders[0].outer_diameter / 2.0
+    for strand in parts["belt"].boxes:
+        z_lo, z_hi = strand.origin[2], strand.origin[2] + strand.size[2]
+        assert min(abs(z_lo), abs(z_hi)) > screw_radius + 2e-3  # a gap of more than 2 mm (4 mm drawn)
+        assert strand.origin[0] == pytest.approx(0.257)  # on the flange's and the motor's +x faces
+    flange, motor = parts["nut"].cylinders[1], parts["nut_motor"].boxes[0]
+    assert flange.origin[0] + flange.length == pytest.approx(0.257)
+    assert motor.origin[0] + motor.size[0] == pytest.approx(0.257)
+    assert sum(b.size[0] * b.size[1] * b.size[2] for b in parts["belt"].boxes) == pytest.approx(50e-6)
 
 
 # --------------------------------------------------------------------------- warnings
@@ -232,8 +241,7 @@ def test_check_refuses_an_overlap_in_one_line(tmp_path, capsys):
     assert err.count("\n") == 1 and "parts.block: boxes[0] and boxes[1] overlap by 2.4e+04 mm^3" in err
 
 
-def test_an_overlap_between_parts_as_an_error_refuses_the_description(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr(topology, "OVERLAP_SEVERITY", "error")
+def test_an_overlap_between_parts_refuses_the_description(tmp_path, capsys):
     path = tmp_path / "d.toml"
     path.write_text(text(PLATE_BOX, box((50, 20, 15), (100, 60, 40))), encoding="utf-8")
     assert main(["check", str(path)]) == 2
