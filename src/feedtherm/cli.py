@@ -880,6 +880,11 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt as stop:
         print(f"feedtherm: interrupted{_what_was_kept(stop)}", file=sys.stderr)
         return 130
+    except BrokenPipeError:
+        # The reader went away (`feedtherm check | head`): nothing more to say, and Python's
+        # final flush of stdout must not fail again (the recipe of the signal module's docs).
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 1
     finally:
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)

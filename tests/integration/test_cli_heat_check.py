@@ -113,3 +113,16 @@ def test_modes_name_the_slow_mass_and_add_up():
 
 def test_modes_refuse_an_unknown_condition():
     assert_one_line_error(run("modes", "--condition", "IX"), "--condition", "IX")
+
+
+def test_a_reader_that_goes_away_gets_no_traceback():
+    """`feedtherm check | head`: the pipe closed before the output is written ends quietly."""
+    import subprocess
+    import sys
+
+    proc = subprocess.Popen([sys.executable, "-m", "feedtherm", "check", "paper"], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE)
+    proc.stdout.close()  # nobody reads: the first flush of stdout meets a broken pipe
+    _, err = proc.communicate(timeout=120)
+    assert b"Traceback" not in err and b"BrokenPipeError" not in err, err.decode()
+    assert proc.returncode == 1
