@@ -58,8 +58,11 @@ clean:
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_fast.py
 
-# The description fuzzing contract with a larger budget than the suite's (about 25 minutes).
+# The description fuzzing contract with a larger budget than the suite's (about 25 minutes),
+# and the geometry fuzz (a box moved, resized or duplicated) with issue 35's 500 examples each.
 FUZZ_EXAMPLES ?= 2000
+TOPOLOGY_EXAMPLES ?= 500
 fuzz: $(STAMP)
 	FEEDTHERM_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(BIN)/python -m pytest -q --hypothesis-show-statistics \
 		tests/integration/test_fuzz_descriptions.py
+	FEEDTHERM_TOPOLOGY_EXAMPLES=$(TOPOLOGY_EXAMPLES) $(BIN)/python -m pytest -q tests/unit/system/test_topology_property.py
