@@ -10,8 +10,8 @@ temperatures [1]_ [2]_.  The weights are the least-squares fit over every sample
 cycles (columns centred, so the fit does not depend on the temperatures' origin), with a ridge
 penalty (Tikhonov regularisation [3]_ [4]_):
 
-.. math:: \min_w \frac{1}{n} \lVert y - X w \rVert^2 + \alpha \lVert w \rVert^2,
-          \qquad w = (X^T X + n \alpha I)^{-1} X^T y .
+.. math:: \\min_w \\frac{1}{n} \\lVert y - X w \\rVert^2 + \\alpha \\lVert w \\rVert^2,
+          \\qquad w = (X^T X + n \\alpha I)^{-1} X^T y .
 
 Every regressor is a temperature [K], so one isotropic ``α`` [K²] is physical: it is the penalty
 that white noise of variance ``α`` added to every regressor gives in expectation (Bishop 1995 [4]_),
