@@ -139,7 +139,8 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
         if own:
             declared[kind] = _judge(kind, fit_validated(sets["train"], sets["validation"], own, lags), sets)
     kalman = kalman_factory(loaded, candidates, sets["train"].clean(), settings, kalman_noise(noise))
-    curves[KALMAN] = [_judge(KALMAN, kalman(r.sensors), sets) for r in curves["regression_lags"]]
+    curves[KALMAN] = [_with_kalman_conditioning(_judge(KALMAN, kalman(r.sensors), sets), sets)
+                      for r in curves["regression_lags"]]
     chosen[KALMAN] = _with_kalman_conditioning(_judge(KALMAN, kalman(chosen["regression_lags"].sensors), sets), sets)
     if own:
         declared[KALMAN] = _with_kalman_conditioning(_judge(KALMAN, kalman(own), sets), sets)
