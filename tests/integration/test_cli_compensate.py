@@ -80,6 +80,16 @@ def test_a_study_writes_its_files_and_one_line(study):
     assert np.isfinite(law.update(0.0, {name: 300.0 for name in law.inputs}))
     html = (out / "compensation.html").read_text()
     assert 'id="compensation"' in html and "data:image/png;base64" in html
+    # issue 34: the noise the readings carried, each candidate's kind, every law's conditioning
+    assert summary["noise"]["kinds"]["contact"]["noise_K"] == 0.1
+    assert summary["noise"]["kinds"]["infrared"]["offset_K"] == 0.5
+    assert summary["candidates"]["T4"]["kind"] == "infrared" and summary["candidates"]["T1"]["kind"] == "contact"
+    for name in ("law.json", "law_static.json", "law_kalman.json"):
+        document = json.loads((out / name).read_text())
+        conditioning = document["conditioning"]
+        assert set(conditioning["offset_error_um"]) >= {i["name"] for i in document["inputs"]}, name
+        assert conditioning["max_offset_error_um"] == max(conditioning["offset_error_um"].values())
+    assert "ridge_K" in summary["chosen"]["regression"] and "conditioning" in summary["best"]
 
 
 @pytest.mark.parametrize("args, message", [
@@ -99,6 +109,22 @@ def test_bad_input_is_one_line_exit_2_and_nothing_written(tmp_path, args, messag
     lines = result.stderr.splitlines()
     assert len(lines) == 1 and message in lines[0], result.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("section, message", [
+    ('[compensation.infrared]\nnoise = "-0.3 K"\nreason = "r"\n', "compensation.infrared.noise: must not be negative"),
+    ('[compensation]\nkinds = ["laser"]\n', "compensation.kinds"),
+    ('[compensation.contact]\noffset = "0.2 K"\n', "compensation.contact: reason: a declared noise or offset needs"),
+])
+def test_bad_noise_settings_are_one_line_exit_2_and_nothing_written(tmp_path, section, message):
+    from feedtherm.benches import bench
+
+    (tmp_path / "bench.toml").write_text(bench("paper").description.read_text() + "\n" + section)
+    result = run(tmp_path, "bench.toml", "--out", "study")
+    assert result.returncode == 2 and result.stdout == ""
+    lines = result.stderr.splitlines()
+    assert len(lines) == 1 and message in lines[0], result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bench.toml"]
 
 
 def test_validate_refuses_a_folder_without_a_study_in_one_line(tmp_path):

@@ -13,7 +13,12 @@ here from the geometry alone, by one rule:
   where the face is exposed: :data:`DEPTH` outside it there is no part that moves with it (a part
   passing by, such as the table over a rail, does not hide a surface for good);
 - the description's own sensors and the ambient (``room.ambient_sensor``) are candidates
-  under their names.
+  under their names;
+- each candidate has a sensor kind (:func:`sensor_kind`, issue 34): ``contact`` (a PT100 or
+  thermocouple) on a part that stays still, ``infrared`` (a pyrometer on the frame) on a part that
+  moves or turns, where wires could not follow; a declared sensor keeps its declared ``method``,
+  the ambient is a contact sensor in the air.  A generated point whose kind the description does
+  not allow (``[compensation] kinds``, :mod:`feedtherm.system.sensing`) is no candidate.
 
 Names are ``<part>[_b<box>|_c<cylinder>]_<face>[_x<mm>]``, e.g. ``front_housing_b0_top``,
 ``screw_top_x200``, ``screw_top_xm50`` (at x = −50 mm).
@@ -25,6 +30,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..system.checks import turning_parts
 from ..system.geometry import contains
 from ..system.load import LoadedSystem
 from ..system.schema import Box, Cylinder, FeedSystem, Sensor
@@ -48,17 +54,31 @@ class Candidate:
     part: str
     position: tuple[float, float, float]
     where: str  # "top", "side_neg_y", ..., "declared" (a sensor of the description), "ambient"
+    kind: str = "contact"  # "contact" | "infrared" (:func:`sensor_kind`)
+
+
+def sensor_kind(system: FeedSystem, part: str) -> str:
+    """``infrared`` on a part that moves or turns (its wires could not follow it), else ``contact``."""
+    moving = system.parts[part].moving if part in system.parts else False
+    screw = system.kinematics.screw if system.kinematics is not None else None
+    return "infrared" if moving or part == screw or part in turning_parts(system) else "contact"
+
+
+def allowed_kinds(system: FeedSystem) -> tuple[str, ...]:
+    """The sensor kinds a study may place (``[compensation] kinds``; default both)."""
+    return tuple(system.compensation.kinds) if system.compensation is not None else ("contact", "infrared")
 
 
 def candidate_sensors(system: FeedSystem) -> dict[str, Candidate]:
-    """Every candidate of ``system``: its declared sensors first (ambient included), then the generated points."""
+    """Every candidate of ``system``: its declared sensors first (ambient included), then the generated
+    points of the kinds allowed (:func:`allowed_kinds`)."""
     out: dict[str, Candidate] = {}
     for name, sensor in system.sensors.items():
         if name != system.room.ambient_sensor:
-            out[name] = Candidate(name, sensor.part, tuple(sensor.position), "declared")
+            out[name] = Candidate(name, sensor.part, tuple(sensor.position), "declared", sensor.method)
     # the air: every run reports it (Solution.sensors), at no point of a part
     ambient = system.room.ambient_sensor
-    out[ambient] = Candidate(ambient, "", (float("nan"),) * 3, "ambient")
+    out[ambient] = Candidate(ambient, "", (float("nan"),) * 3, "ambient", "contact")
     for part_name, part in system.parts.items():
         several = len(part.boxes) > 1
         for i, box in enumerate(part.boxes):
@@ -78,11 +98,10 @@ def candidate_sensors(system: FeedSystem) -> dict[str, Candidate]:
 def with_candidates(loaded: LoadedSystem, candidates: dict[str, Candidate]) -> LoadedSystem:
     """``loaded`` with every candidate as a sensor (the declared sensors keep their entries)."""
     sensors = dict(loaded.system.sensors)
-    screw = loaded.system.kinematics.screw
     for name, candidate in candidates.items():
-        if name not in sensors and candidate.where != "ambient":  # the screw turns: read without contact
+        if name not in sensors and candidate.where != "ambient":
             sensors[name] = Sensor(part=candidate.part, position=[f"{v!r} m" for v in candidate.position],
-                                   method="infrared" if candidate.part == screw else "contact",
+                                   method=candidate.kind,
                                    description=f"candidate: {candidate.part}, {candidate.where}")
     return with_values(loaded, {"sensors": sensors}, origin_suffix="candidate sensors")
 
@@ -130,7 +149,9 @@ def _keep(out: dict[str, Candidate], system: FeedSystem, part_name: str, name: s
     for other_name, other in system.parts.items():
         if other_name != part_name and other.moving == part.moving and contains(other, outside, tol=0.0):
             return
-    out[name] = Candidate(name, part_name, tuple(float(v) for v in point), face)
+    kind = sensor_kind(system, part_name)
+    if kind in allowed_kinds(system):
+        out[name] = Candidate(name, part_name, tuple(float(v) for v in point), face, kind)
 
 
 def _outward(point, face: str, distance: float) -> tuple[float, float, float]:

@@ -45,8 +45,13 @@ CSV_HEADER = ["law", "k", "sensors", "test_rms_um", "test_max_um", "reduction_pe
 
 
 def _entry(result: LawResult) -> dict:
-    return {"law": result.kind, "sensors": list(result.sensors), "validation_rms_um": result.validation.rms * 1e6,
-            "test": result.test.as_dict()}
+    entry = {"law": result.kind, "sensors": list(result.sensors), "validation_rms_um": result.validation.rms * 1e6,
+             "test": result.test.as_dict()}
+    if hasattr(result.law, "ridge"):
+        entry["ridge_K"] = float(result.law.ridge) ** 0.5  # chosen on the validation cycles
+    if result.conditioning:
+        entry["conditioning"] = result.conditioning
+    return entry
 
 
 def summary(result: StudyResult, loaded: LoadedSystem, measured: dict[str, list[MeasuredPrediction]],
@@ -60,7 +65,8 @@ def summary(result: StudyResult, loaded: LoadedSystem, measured: dict[str, list[
         "description_sha256": loaded.sha256,
         "settings": settings,
         "request": result.request if isinstance(result.request, int) else list(result.request),
-        "candidates": {name: {"part": c.part, "where": c.where, "position_m": list(c.position)}
+        "noise": None if result.noise is None else result.noise.as_dict(),
+        "candidates": {name: {"part": c.part, "where": c.where, "kind": c.kind, "position_m": list(c.position)}
                        for name, c in result.candidates.items()},
         "sets": {"test": {"uncompensated_rms_um": test.uncompensated_rms * 1e6,
                           "uncompensated_max_um": test.uncompensated_max * 1e6,
@@ -90,7 +96,8 @@ def write_compensation(result: StudyResult, loaded: LoadedSystem, out_dir: Path,
     adaptation = None if not adapted else adaptation_block(adapted, adapt_data, loaded)
     document = summary(result, loaded, measured or {}, loco, adaptation)
     provenance = {"system": loaded.origin, "description_sha256": loaded.sha256,
-                  "settings": document["settings"], "fitted_on": "nominal model, training cycles"}
+                  "settings": document["settings"], "noise": document["noise"],
+                  "fitted_on": "nominal model, training cycles read through noisy sensors"}
     best = result.best(3)
     figures = {"error_vs_k.png": plots.error_against_k(result),
                "sensor_map.png": plots.sensor_map(loaded.system, result, best.kind),
@@ -101,8 +108,9 @@ def write_compensation(result: StudyResult, loaded: LoadedSystem, out_dir: Path,
                                                     {**provenance, "test": result.chosen["regression_lags"].test.as_dict()}))
         write_json(stage / "law_static.json", law_document(result.chosen["regression"].law, result.candidates,
                                                            {**provenance, "test": result.chosen["regression"].test.as_dict()}))
-        write_json(stage / "law_kalman.json", result.chosen["kalman"].law.document(
-            {**provenance, "test": result.chosen["kalman"].test.as_dict()}))
+        kalman = result.chosen["kalman"].law.document({**provenance, "test": result.chosen["kalman"].test.as_dict()})
+        kalman["conditioning"] = result.chosen["kalman"].conditioning
+        write_json(stage / "law_kalman.json", kalman)
         for kind, law in (adapted or {}).items():
             write_json(stage / ADAPTED_FILES[kind], adapted_law_document(law, result.candidates, {
                 **provenance, "fitted_on": "nominal model, training cycles; updated on measurements",

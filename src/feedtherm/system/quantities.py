@@ -225,6 +225,7 @@ PosHeatTransferCoefficient = _quantity("W/(m^2*K)", "positive", HTC_LIMIT)
 Power = _quantity("W", "nonnegative", POWER_LIMIT)
 Temperature = _quantity("K", "positive", TEMPERATURE_LIMIT, hint="degC")  # absolute
 PosTemperatureDifference = _quantity("K", "positive", TEMPERATURE_DIFFERENCE_LIMIT, hint="K")
+NonNegTemperatureDifference = _quantity("K", "nonnegative", TEMPERATURE_DIFFERENCE_LIMIT, hint="K")
 AngularSpeed = _quantity("rad/s", limit=ROTATIONAL_SPEED_LIMIT)  # signed: the sign is the direction of rotation
 Speed = _quantity("m/s", limit=LINEAR_SPEED_LIMIT)
 NonNegSpeed = _quantity("m/s", "nonnegative", LINEAR_SPEED_LIMIT)

@@ -53,6 +53,7 @@ from .surfaces import (
     Surface,
 )
 from .uncertainties import Uncertainty
+from .sensing import Compensation
 
 _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*\Z")  # \Z: "$" would let a trailing newline through
 #: Length of a run when nothing else says [s]: the paper's 10,800 s (§4.3).
@@ -355,6 +356,9 @@ class FeedSystem(Strict):
     duty_cycles: dict[str, DutyCycle] = {}
     calibration: Calibration | None = None
     uncertainty: Uncertainty | None = None
+    #: How a compensation study's sensors read (system/sensing.py): the kinds that may be
+    #: mounted and each kind's noise and offset; left out, the defaults declared there.
+    compensation: Compensation | None = None
     provenance: list[Provenance] = []
 
     @model_serializer(mode="wrap")
@@ -367,6 +371,8 @@ class FeedSystem(Strict):
             data.pop("room", None)
         if isinstance(data, dict) and self.uncertainty is None:
             data.pop("uncertainty", None)  # likewise: descriptions without declared uncertainties
+        if isinstance(data, dict) and self.compensation is None:
+            data.pop("compensation", None)  # likewise: descriptions without sensor-noise settings
         if isinstance(data, dict) and self.kinematics is None:
             data.pop("kinematics", None)  # TOML has no null: a system without a feed drive leaves it out
         if isinstance(data, dict) and isinstance(data.get("sources"), dict):

@@ -59,6 +59,8 @@ class StudySettings:
     model: str = "fast"
     motion: str = "averaged"
     mesh: str | None = None
+    #: Read the cycles through noisy sensors (:mod:`.noise`); False: the model's temperatures.
+    noise: bool = True
 
     def __post_init__(self) -> None:
         if isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer)):
@@ -73,8 +75,10 @@ class StudySettings:
 class CycleRecord:
     """One simulated cycle: series at the sample times, SI units.
 
-    ``sensors[:, j]`` is candidate ``j``'s temperature [K]; ``elongation`` D [m]; the motor speeds
-    [rpm] are those commanded over the sample's preceding interval (what a controller knows).
+    ``sensors[:, j]`` is candidate ``j``'s reading [K] (with its sensor's noise and offset once
+    :func:`.noise.noisy_set` has run; ``truth`` then holds the model's temperatures, else None);
+    ``elongation`` D [m]; the motor speeds [rpm] are those commanded over the sample's preceding
+    interval (what a controller knows).
     """
 
     label: str
@@ -85,6 +89,7 @@ class CycleRecord:
     nut_rpm: np.ndarray
     variant: dict | None = None
     cycle: DutyCycle | None = field(default=None, repr=False)
+    truth: np.ndarray | None = field(default=None, repr=False)
 
 
 @dataclass(frozen=True)
@@ -98,6 +103,13 @@ class CycleSet:
     def stacked(self) -> tuple[np.ndarray, np.ndarray]:
         """All samples of all cycles: sensors ``(n, candidates)`` [K] and D ``(n,)`` [m]."""
         return (np.vstack([c.sensors for c in self.cycles]), np.concatenate([c.elongation for c in self.cycles]))
+
+    def clean(self) -> "CycleSet":
+        """The same cycles with the model's (noise-free) temperatures as readings."""
+        from dataclasses import replace
+
+        return replace(self, cycles=[c if c.truth is None else replace(c, sensors=c.truth, truth=None)
+                                     for c in self.cycles])
 
 
 def speeds_at(cycle: DutyCycle, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -45,6 +45,10 @@ class KalmanNoise:
       ±0.2 K at 30 °C; taken as a uniform bound, its standard uncertainty is 0.12 K;
     - ``infrared`` 0.3 K: an infrared reading of a turning screw (emissivity, reflections);
       a pyrometer's repeatability is 0.1-0.5 K;
+    - ``contact_offset``, ``infrared_offset``: a sensor's fixed bias (0 by default here; a study
+      passes the declared offsets, :mod:`.noise`).  The filter has no state for it: it adds the
+      offset's variance to the reading's (:func:`sensor_sigma`), which makes it trust the reading
+      less, though an offset, unlike white noise, does not average out;
     - ``heat_prior`` 0.115: the relative heat error of another machine, ±20 % uniform
       (:mod:`..machine_variants`) has a standard deviation of 0.2/√3;
     - ``heat_drift`` 0.05 per √h: the losses drift as lubricant and seals warm and age, and the
@@ -63,11 +67,14 @@ class KalmanNoise:
     heat_noise: float = 0.1
     air_noise: float = 1.0
     initial: float = 1.0
+    contact_offset: float = 0.0
+    infrared_offset: float = 0.0
 
     def as_dict(self) -> dict:
         return {"contact_K": self.contact, "infrared_K": self.infrared, "heat_prior": self.heat_prior,
                 "heat_drift_per_sqrt_h": self.heat_drift, "heat_noise": self.heat_noise, "air_noise_K": self.air_noise,
-                "initial_K": self.initial}
+                "initial_K": self.initial, "contact_offset_K": self.contact_offset,
+                "infrared_offset_K": self.infrared_offset}
 
 
 class KalmanEstimator:
@@ -164,8 +171,10 @@ class KalmanEstimator:
 
 
 def sensor_sigma(names, methods: dict[str, str], noise: KalmanNoise = KalmanNoise()) -> list[float]:
-    """Each sensor's standard uncertainty from its method (``contact`` or ``infrared``)."""
-    return [noise.infrared if methods.get(n) == "infrared" else noise.contact for n in names]
+    """Each sensor's standard uncertainty [K] from its method (``contact`` or ``infrared``): its
+    white noise and its offset combined, ``√(σ² + σ_offset²)``."""
+    return [float(np.hypot(noise.infrared, noise.infrared_offset)) if methods.get(n) == "infrared"
+            else float(np.hypot(noise.contact, noise.contact_offset)) for n in names]
 
 
 def run_filter(estimator: KalmanEstimator, times, readings: np.ndarray, names: list[str], screw_rpm, nut_rpm):
@@ -243,7 +252,8 @@ class KalmanLaw:
                              np.array(d["uniform"]), np.array(d["hankel"]), ambient)
         n = document["noise"]
         noise = KalmanNoise(n["contact_K"], n["infrared_K"], n["heat_prior"], n["heat_drift_per_sqrt_h"],
-                            n["heat_noise"], n["air_noise_K"], n["initial_K"])
+                            n["heat_noise"], n["air_noise_K"], n["initial_K"], n.get("contact_offset_K", 0.0),
+                            n.get("infrared_offset_K", 0.0))
         inputs = [i for i in document["inputs"] if i.get("role") != AMBIENT_ROLE]
         return cls(model, OperatingTable.from_dict(document["table"]), tuple(i["name"] for i in inputs),
                    tuple(float(i["sigma_K"]) for i in inputs), noise)

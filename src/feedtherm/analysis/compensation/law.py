@@ -6,6 +6,7 @@ import math
 
 from ..candidates import Candidate
 from .adapt import AdaptedLaw
+from .conditioning import regression_conditioning
 from .evaluator import FORMAT, VERSION
 from .regression import RegressionLaw
 
@@ -13,7 +14,8 @@ from .regression import RegressionLaw
 def law_document(law: RegressionLaw, candidates: dict[str, Candidate], provenance: dict | None = None) -> dict:
     """The JSON-able document of ``law``: inputs with their part and position, weights, lags, bias.
 
-    Units are SI: inputs in kelvin, D in metres, weights in m/K, time constants in seconds.
+    Units are SI: inputs in kelvin, D in metres, weights in m/K, time constants in seconds; the
+    ``conditioning`` block (:mod:`.conditioning`) in µm/K and µm, for people.
     """
     inputs = []
     for name in law.sensors:
@@ -34,6 +36,8 @@ def law_document(law: RegressionLaw, candidates: dict[str, Candidate], provenanc
         "bias_m": law.bias,
         "weights_m_per_K": law.weights.tolist(),
         "lag_start": "settled at the first reading",
+        "ridge_K": float(law.ridge) ** 0.5,
+        "conditioning": regression_conditioning(law),
         "provenance": provenance or {},
     }
 

@@ -6,8 +6,20 @@ with a bias ``b`` [m], weights [m/K] and, optionally, first-order lags ``L_τ`` 
 (time constants declared, :data:`DEFAULT_LAGS`).  The lags give the law a memory: the screw
 heats within minutes of a speed change while a housing sensor follows over an hour, so the
 present readings alone cannot tell a warming machine from a cooling one at the same
-temperatures [1]_ [2]_.  The weights are the ordinary least-squares fit over every sample of the
-training cycles (columns centred, so the fit does not depend on the temperatures' origin).
+temperatures [1]_ [2]_.  The weights are the least-squares fit over every sample of the training
+cycles (columns centred, so the fit does not depend on the temperatures' origin), with a ridge
+penalty (Tikhonov regularisation [3]_ [4]_):
+
+.. math:: \\min_w \\frac{1}{n} \\lVert y - X w \\rVert^2 + \\alpha \\lVert w \\rVert^2,
+          \\qquad w = (X^T X + n \\alpha I)^{-1} X^T y .
+
+Every regressor is a temperature [K], so one isotropic ``α`` [K²] is physical: it is the penalty
+that white noise of variance ``α`` added to every regressor gives in expectation (Bishop 1995 [4]_),
+and it is stated as that noise, ``σ_r = √α`` [K].  A pair of nearly collinear sensors fitted
+without it takes weights of hundreds of µm/K of opposite sign (their difference carries the
+signal), which turns a 0.1 K offset into tens of µm; the ridge trades that for a small bias.
+``α`` is chosen on the validation cycles from :data:`RIDGE_GRID_K` (:mod:`.selection`), never on
+the test cycles.
 
 A lag is the discrete first-order filter a controller runs on each new reading:
 ``L_n = a L_{n-1} + (1 - a) T_n`` with ``a = exp(-Δt/τ)`` and ``L_0 = T_0`` (the machine starts
@@ -21,6 +33,10 @@ References
 .. [2] J. Yang, J. Yuan, J. Ni, "Thermal error mode analysis and robust modeling for error
    compensation on a CNC turning center", Int. J. Mach. Tools Manuf. 39 (1999) 1367-1381:
    temperatures and their first-order lagged values as regressors of the thermal error.
+.. [3] A. E. Hoerl, R. W. Kennard, "Ridge regression: biased estimation for nonorthogonal
+   problems", Technometrics 12(1) (1970) 55-67.
+.. [4] C. M. Bishop, "Training with noise is equivalent to Tikhonov regularization", Neural
+   Computation 7(1) (1995) 108-116.
 """
 
 from __future__ import annotations
@@ -36,6 +52,28 @@ from ...errors import FeedthermError
 #: slow mode of the housings, base and table (the bench reaches equilibrium in 2-3 h, paper §4.2,
 #: about three time constants).  Declared from the physics, not chosen on the held-out error.
 DEFAULT_LAGS: tuple[float, ...] = (900.0, 3600.0)
+
+#: The ridge strengths tried on the validation cycles, as the equivalent reading noise
+#: ``σ_r = √α`` [K]: from none, through the declared sensors' noise (0.1-0.3 K) and offsets
+#: (0.1-0.5 K), to 2 K, beyond which a law on readings that swing by a few kelvin is all bias.
+RIDGE_GRID_K: tuple[float, ...] = (0.0, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0)
+
+
+def ridge_weights(X: np.ndarray, y: np.ndarray, alphas) -> list[np.ndarray]:
+    """Ridge weights of the centred ``X`` ``(n, p)`` [K] and ``y`` ``(n,)`` for each ``α`` [K²]
+    (module notes), from one SVD; ``α = 0`` is the least-squares solution of least norm."""
+    n = len(X)
+    U, s, Vt = np.linalg.svd(X, full_matrices=False)
+    uy = U.T @ y
+    keep = s > (s.max() if s.size else 0.0) * max(X.shape) * np.finfo(float).eps
+    out = []
+    for alpha in alphas:
+        if alpha > 0:
+            factor = s / (s ** 2 + n * alpha)
+        else:
+            factor = np.where(keep, 1.0 / np.where(keep, s, 1.0), 0.0)
+        out.append(Vt.T @ (factor * uy))
+    return out
 
 
 def lagged(times: np.ndarray, readings: np.ndarray, tau: float) -> np.ndarray:
@@ -58,12 +96,14 @@ def features(times: np.ndarray, readings: np.ndarray, lags: tuple[float, ...]) -
 
 @dataclass(frozen=True)
 class RegressionLaw:
-    """A fitted law: ``D = bias + features · weights`` (weights ``(k, 1 + len(lags))``, [m/K])."""
+    """A fitted law: ``D = bias + features · weights`` (weights ``(k, 1 + len(lags))``, [m/K]);
+    ``ridge``: the penalty ``α`` [K²] it was fitted with (module notes)."""
 
     sensors: tuple[str, ...]
     lags: tuple[float, ...]
     weights: np.ndarray
     bias: float
+    ridge: float = 0.0
 
     def predict(self, times: np.ndarray, readings: np.ndarray) -> np.ndarray:
         """D [m] at ``times`` from ``readings`` ``(n, k)`` [K] of :attr:`sensors`, in order."""
@@ -75,8 +115,8 @@ class RegressionLaw:
 
 
 def fit_regression(cycles: list[tuple[np.ndarray, np.ndarray, np.ndarray]], sensors: tuple[str, ...],
-                   lags: tuple[float, ...] = ()) -> RegressionLaw:
-    """Least-squares weights over every sample of ``cycles``.
+                   lags: tuple[float, ...] = (), ridge: float = 0.0) -> RegressionLaw:
+    """Least-squares weights over every sample of ``cycles``, with the ridge penalty ``ridge``.
 
     Parameters
     ----------
@@ -86,6 +126,8 @@ def fit_regression(cycles: list[tuple[np.ndarray, np.ndarray, np.ndarray]], sens
         Names of the readings' columns.
     lags : tuple of float
         Time constants [s] of the lagged regressors; empty for the static law.
+    ridge : float
+        The penalty ``α`` [K²] (module notes); 0: ordinary least squares.
     """
     if not cycles:
         raise FeedthermError("a regression needs at least one cycle")
@@ -94,6 +136,9 @@ def fit_regression(cycles: list[tuple[np.ndarray, np.ndarray, np.ndarray]], sens
     if X.shape[1] != len(sensors) * (1 + len(lags)):
         raise FeedthermError(f"{X.shape[1]} regressors for {len(sensors)} sensors and {len(lags)} lags")
     mean_x, mean_y = X.mean(axis=0), y.mean()
-    weights, *_ = np.linalg.lstsq(X - mean_x, y - mean_y, rcond=None)
+    if ridge > 0:
+        weights = ridge_weights(X - mean_x, y - mean_y, [ridge])[0]
+    else:
+        weights, *_ = np.linalg.lstsq(X - mean_x, y - mean_y, rcond=None)
     return RegressionLaw(tuple(sensors), tuple(float(t) for t in lags), weights.reshape(len(sensors), 1 + len(lags)),
-                         float(mean_y - mean_x @ weights))
+                         float(mean_y - mean_x @ weights), float(ridge))

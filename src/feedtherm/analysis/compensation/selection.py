@@ -14,6 +14,12 @@ model's states and says nothing of the law's error under mismatch.  Greedy selec
 usual approach of thermal-error studies (Mayr et al. 2012, §4.1 [1]_); it is not guaranteed to
 find the best set of K, and the report shows the error against K so its steps can be judged.
 
+Every trial set is judged at its best ridge strength (:mod:`.regression`, :data:`RIDGE_GRID_K`),
+chosen on the same validation cycles, and on the sensors' noisy readings (:mod:`.noise`): a pair of
+nearly collinear sensors that fits the noise-free training cycles exactly by the difference of two
+large weights is judged with the noise and offsets that difference amplifies, or with the bias the
+ridge puts in its place, so the selection prefers a well-conditioned set.
+
 References
 ----------
 .. [1] J. Mayr et al., "Thermal issues in machine tools", CIRP Annals 61(2), 771-791 (2012).
@@ -27,12 +33,12 @@ import numpy as np
 
 from ...errors import FeedthermError
 from .data import CycleSet
-from .regression import RegressionLaw, features, fit_regression
+from .regression import RIDGE_GRID_K, RegressionLaw, features, fit_regression, ridge_weights
 
 
 @dataclass(frozen=True)
 class SelectionStep:
-    """The sensors chosen for K = len(sensors), the law fitted on them and its validation RMS [m]."""
+    """The sensors chosen for K = len(sensors), the law fitted on them (at the ridge chosen) and its validation RMS [m]."""
 
     sensors: tuple[str, ...]
     law: RegressionLaw
@@ -45,16 +51,28 @@ def _feature_cube(cycles: CycleSet, lags: tuple[float, ...]) -> list[np.ndarray]
     return [features(c.times, c.sensors, lags).reshape(len(c.times), len(cycles.names), m) for c in cycles.cycles]
 
 
-def _fit(cube: list[np.ndarray], targets: list[np.ndarray], chosen: list[int]):
+def _fit(cube: list[np.ndarray], targets: list[np.ndarray], chosen: list[int], alphas):
+    """``[(weights, bias), ...]``, one per ridge ``α`` [K²] of ``alphas``."""
     X = np.vstack([f[:, chosen, :].reshape(len(f), -1) for f in cube])
     y = np.concatenate(targets)
     mx, my = X.mean(axis=0), y.mean()
-    w, *_ = np.linalg.lstsq(X - mx, y - my, rcond=None)
-    return w, float(my - mx @ w)
+    return [(w, float(my - mx @ w)) for w in ridge_weights(X - mx, y - my, alphas)]
+
+
+def _best_ridge(train_cube, train_y, val_cube, val_all, trial, alphas) -> tuple[float, float]:
+    """(validation RMS [m], α [K²]) of the ridge strength of ``alphas`` with the smallest validation RMS."""
+    best = None
+    for alpha, (w, b) in zip(alphas, _fit(train_cube, train_y, trial, alphas)):
+        pred = np.concatenate([f[:, trial, :].reshape(len(f), -1) @ w + b for f in val_cube])
+        rms = float(np.sqrt(np.mean((val_all - pred) ** 2)))
+        if best is None or rms < best[0]:
+            best = (rms, float(alpha))
+    return best
 
 
 def greedy_selection(train: CycleSet, validation: CycleSet, max_sensors: int, lags: tuple[float, ...] = (),
-                     allowed: list[str] | None = None, start: tuple[str, ...] = ()) -> list[SelectionStep]:
+                     allowed: list[str] | None = None, start: tuple[str, ...] = (),
+                     ridge_grid: tuple[float, ...] = RIDGE_GRID_K) -> list[SelectionStep]:
     """Nested sensor sets for K = 1 … ``max_sensors`` (see the module's notes).
 
     Parameters
@@ -68,6 +86,9 @@ def greedy_selection(train: CycleSet, validation: CycleSet, max_sensors: int, la
         Candidates to choose from (default: all).
     start : tuple of str
         Sensors every set contains (counted in K).
+    ridge_grid : tuple of float
+        Ridge strengths tried, as the equivalent reading noise ``√α`` [K] (:mod:`.regression`);
+        ``(0.0,)``: ordinary least squares.
     """
     names = train.names
     if validation.names != names:
@@ -79,6 +100,7 @@ def greedy_selection(train: CycleSet, validation: CycleSet, max_sensors: int, la
     train_y = [c.elongation for c in train.cycles]
     val_y = [c.elongation for c in validation.cycles]
     val_all = np.concatenate(val_y)
+    alphas = [float(g) ** 2 for g in ridge_grid]
     chosen = [names.index(s) for s in start]
     steps = []
     while len(chosen) < max_sensors:
@@ -87,25 +109,37 @@ def greedy_selection(train: CycleSet, validation: CycleSet, max_sensors: int, la
             j = names.index(name)
             if j in chosen:
                 continue
-            trial = [*chosen, j]
-            w, b = _fit(train_cube, train_y, trial)
-            pred = np.concatenate([f[:, trial, :].reshape(len(f), -1) @ w + b for f in val_cube])
-            rms = float(np.sqrt(np.mean((val_all - pred) ** 2)))
+            rms, alpha = _best_ridge(train_cube, train_y, val_cube, val_all, [*chosen, j], alphas)
             if best is None or rms < best[0]:
-                best = (rms, j)
+                best = (rms, j, alpha)
         chosen.append(best[1])
         sensors = tuple(names[j] for j in chosen)
-        steps.append(SelectionStep(sensors, fit_on(train, sensors, lags), best[0]))
+        steps.append(SelectionStep(sensors, fit_on(train, sensors, lags, best[2]), best[0]))
     return steps
 
 
-def fit_on(train: CycleSet, sensors: tuple[str, ...], lags: tuple[float, ...] = ()) -> RegressionLaw:
-    """The regression law on the named sensors, fitted on ``train``."""
+def fit_on(train: CycleSet, sensors: tuple[str, ...], lags: tuple[float, ...] = (), ridge: float = 0.0) -> RegressionLaw:
+    """The regression law on the named sensors, fitted on ``train`` with the ridge ``α`` [K²]."""
     unknown = [s for s in sensors if s not in train.names]
     if unknown:
         raise FeedthermError(f"--sensors: no candidate {unknown[0]!r}")
     columns = [train.names.index(s) for s in sensors]
-    return fit_regression([(c.times, c.sensors[:, columns], c.elongation) for c in train.cycles], tuple(sensors), lags)
+    return fit_regression([(c.times, c.sensors[:, columns], c.elongation) for c in train.cycles], tuple(sensors), lags,
+                          ridge)
+
+
+def fit_validated(train: CycleSet, validation: CycleSet, sensors: tuple[str, ...], lags: tuple[float, ...] = (),
+                  ridge_grid: tuple[float, ...] = RIDGE_GRID_K) -> RegressionLaw:
+    """The law on the named sensors, its ridge chosen on ``validation`` from ``ridge_grid`` [K]."""
+    unknown = [s for s in sensors if s not in train.names]
+    if unknown:
+        raise FeedthermError(f"--sensors: no candidate {unknown[0]!r}")
+    trial = [train.names.index(s) for s in sensors]
+    alphas = [float(g) ** 2 for g in ridge_grid]
+    _, alpha = _best_ridge(_feature_cube(train, lags), [c.elongation for c in train.cycles],
+                           _feature_cube(validation, lags), np.concatenate([c.elongation for c in validation.cycles]),
+                           trial, alphas)
+    return fit_on(train, sensors, lags, alpha)
 
 
 def predictor(law: RegressionLaw, names: list[str]):

@@ -1,17 +1,19 @@
 """A compensation study: cycles, sensor selection for K = 1 … 6, laws judged on held-out machines.
 
 :func:`parse_sensors` checks ``--sensors`` (a count K, or names of candidates) before anything
-runs; :func:`run_study` simulates the three sets of cycles (:mod:`.data`), chooses sensors
-greedily for the static and the lagged regression (:mod:`.selection`), fits the law asked for,
-the law on the description's own sensors for comparison, and
-judges each on the test cycles (:mod:`.metrics`).
+runs; :func:`run_study` simulates the three sets of cycles (:mod:`.data`), reads them through
+noisy sensors (:mod:`.noise`: every set, each candidate with its kind's noise and offset),
+chooses sensors greedily for the static and the lagged regression with the ridge chosen on the
+validation cycles (:mod:`.selection`), fits the law asked for, the law on the description's own
+sensors for comparison, judges each on the test cycles (:mod:`.metrics`) and states each law's
+conditioning (:mod:`.conditioning`).
 """
 
 from __future__ import annotations
 
 import re
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 from ...boundary.operating import OperatingPoint
 from ...constants import ELONGATION_PROBE, KELVIN_OFFSET
@@ -20,12 +22,14 @@ from ...system.load import LoadedSystem
 from ..candidates import Candidate, candidate_sensors, with_candidates
 from ..execution import Execution, progress_share
 from ..random_cycles import SpeedEnvelope
-from .data import CycleSet, StudySettings, simulate_set
+from .conditioning import kalman_conditioning, regression_conditioning
+from .data import STREAMS, CycleSet, StudySettings, simulate_set
 from .kalman import KalmanLaw, KalmanNoise, model_errors, sensor_sigma
 from .metrics import Residuals, residuals
+from .noise import SensorNoise, noisy_set
 from .operating_table import build_table
 from .regression import DEFAULT_LAGS, RegressionLaw
-from .selection import fit_on, greedy_selection
+from .selection import fit_validated, greedy_selection
 from .state_space import DEFAULT_ORDER, reduce_model
 
 #: The error against K is shown for K = 1 … this (issue 16), or up to the K asked for.
@@ -47,6 +51,7 @@ class LawResult:
     law: RegressionLaw | KalmanLaw
     validation: Residuals
     test: Residuals
+    conditioning: dict = field(default_factory=dict)  # :mod:`.conditioning`
 
     @property
     def k(self) -> int:
@@ -62,6 +67,7 @@ class StudyResult:
     chosen: dict[str, LawResult]  # law kind -> the law asked for (K greedy sensors, or the named ones)
     declared: dict[str, LawResult]  # law kind -> the law on the description's own sensors
     request: int | tuple[str, ...]
+    noise: SensorNoise | None = None  # the sensors' noise the sets were read with
 
     def best(self, max_sensors: int = 3) -> LawResult:
         """The law with the smallest validation RMS among the curves' laws of at most ``max_sensors`` sensors."""
@@ -111,11 +117,14 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
     candidates = candidate_sensors(loaded.system)
     if isinstance(request, int) and request > len(candidates):
         raise FeedthermError(f"--sensors: K = {request} but there are {len(candidates)} candidate positions")
+    kinds = {name: c.kind for name, c in candidates.items()}
+    noise = SensorNoise.of(loaded.system, kinds) if settings.noise else SensorNoise.none(kinds)
     sets = {}
     names = ("train", "validation", "test")
     for i, name in enumerate(names):
         inner = None if progress is None else progress_share(progress, i, len(names))
-        sets[name] = simulate_set(loaded, candidates, settings, name, inner, execution)
+        clean = simulate_set(loaded, candidates, settings, name, inner, execution)
+        sets[name] = noisy_set(clean, noise, settings.seed, STREAMS[name], one_machine=name == "train")
     n_curve = max(CURVE_SENSORS, request if isinstance(request, int) else 0)
     n_curve = min(n_curve, len(candidates))
     curves, chosen, declared = {}, {}, {}
@@ -126,22 +135,30 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
         if isinstance(request, int):
             chosen[kind] = curves[kind][request - 1]
         else:
-            chosen[kind] = _judge(kind, fit_on(sets["train"], request, lags), sets)
+            chosen[kind] = _judge(kind, fit_validated(sets["train"], sets["validation"], request, lags), sets)
         if own:
-            declared[kind] = _judge(kind, fit_on(sets["train"], own, lags), sets)
-    kalman = kalman_factory(loaded, candidates, sets["train"], settings)
-    curves[KALMAN] = [_judge(KALMAN, kalman(r.sensors), sets) for r in curves["regression_lags"]]
-    chosen[KALMAN] = _judge(KALMAN, kalman(chosen["regression_lags"].sensors), sets)
+            declared[kind] = _judge(kind, fit_validated(sets["train"], sets["validation"], own, lags), sets)
+    kalman = kalman_factory(loaded, candidates, sets["train"].clean(), settings, kalman_noise(noise))
+    curves[KALMAN] = [_with_kalman_conditioning(_judge(KALMAN, kalman(r.sensors), sets), sets)
+                      for r in curves["regression_lags"]]
+    chosen[KALMAN] = _with_kalman_conditioning(_judge(KALMAN, kalman(chosen["regression_lags"].sensors), sets), sets)
     if own:
-        declared[KALMAN] = _judge(KALMAN, kalman(own), sets)
-    return StudyResult(settings, candidates, sets, curves, chosen, declared, request)
+        declared[KALMAN] = _with_kalman_conditioning(_judge(KALMAN, kalman(own), sets), sets)
+    return StudyResult(settings, candidates, sets, curves, chosen, declared, request, noise)
+
+
+def kalman_noise(noise: SensorNoise, base: KalmanNoise = KalmanNoise()) -> KalmanNoise:
+    """The filter's noise model with the study's declared sensor noise and offsets (:mod:`.noise`)."""
+    c, i = noise.levels["contact"], noise.levels["infrared"]
+    return replace(base, contact=c.noise, infrared=i.noise, contact_offset=c.offset, infrared_offset=i.offset)
 
 
 def kalman_factory(loaded: LoadedSystem, candidates: dict[str, Candidate], train: CycleSet, settings: StudySettings,
                    noise: KalmanNoise = KalmanNoise(), order: int = DEFAULT_ORDER):
     """``sensors -> KalmanLaw``: the reduced model of every candidate and D, reduced once at the
     middle of the speed envelope and the middle of the cycles' ambient range, its table, and each
-    output's open-loop error over the training cycles (:class:`~.kalman.KalmanLaw`)."""
+    output's open-loop error over the training cycles (:class:`~.kalman.KalmanLaw`; ``train``
+    with the model's noise-free temperatures, so that the error is the model's)."""
     described = with_candidates(loaded, candidates)
     system = described.system
     envelope = SpeedEnvelope.of(system)
@@ -153,7 +170,7 @@ def kalman_factory(loaded: LoadedSystem, candidates: dict[str, Candidate], train
     model = reduce_model(described, outputs, reference, order=order)
     table = build_table(system, model.surfaces, model.sources, ambient, overlay=described.overlay, film=model.film)
     errors = model_errors(model, table, train.cycles, train.names)
-    methods = {name: sensor.method for name, sensor in system.sensors.items()}
+    methods = {name: candidate.kind for name, candidate in candidates.items()}
 
     def law(sensors: tuple[str, ...]) -> KalmanLaw:
         own = sensor_sigma(sensors, methods, noise)
@@ -167,4 +184,11 @@ def _judge(kind: str, law: RegressionLaw | KalmanLaw, sets: dict[str, CycleSet])
     names = sets["test"].names
     return LawResult(kind, tuple(law.sensors), law,
                      residuals(lambda record: law.predict_record(record, names), sets["validation"]),
-                     residuals(lambda record: law.predict_record(record, names), sets["test"]))
+                     residuals(lambda record: law.predict_record(record, names), sets["test"]),
+                     regression_conditioning(law) if isinstance(law, RegressionLaw) else {})
+
+
+def _with_kalman_conditioning(result: LawResult, sets: dict[str, CycleSet]) -> LawResult:
+    """``result`` with the Kalman law's conditioning on the first test cycle (:mod:`.conditioning`)."""
+    test = sets["test"]
+    return replace(result, conditioning=kalman_conditioning(result.law, test.cycles[0], test.names))

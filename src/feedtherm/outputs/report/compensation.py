@@ -23,14 +23,17 @@ def compensation_section(summary: dict, figures: dict[str, bytes]) -> str:
         f"(every heat and CHTC scaled by a factor within ±{100 * settings['spread']:.0f} %). Without compensation "
         f"the RMS error over the test cycles is {number(test['uncompensated_rms_um'], 1)} µm, the largest "
         f"{number(test['uncompensated_max_um'], 1)} µm. Residuals in µm; reduction of the RMS error.")]
+    body += _noise(summary.get("noise"))
     rows = []
     for kind, curve in summary["curves"].items():
         for entry in curve:
             rows.append(_row(kind, entry))
     for kind, entry in summary.get("declared", {}).items():
         rows.append(_row(kind, entry, note=" (the description's sensors)"))
-    body.append(table(["law", "K", "sensors", "RMS", "max", "reduction", "validation RMS"], rows,
-                      caption="held-out test cycles (machine variants)"))
+    body.append(table(["law", "K", "sensors", "RMS", "max", "reduction", "validation RMS", "ridge √α [K]",
+                       "worst 0.1 K offset [µm]"], rows,
+                      caption="held-out test cycles (machine variants); the ridge chosen on the validation cycles; "
+                              "the error a 0.1 K offset of one sensor causes, the worst sensor's"))
     best = summary["best"]
     body.append(paragraph(
         f"Best law with at most 3 sensors (on the validation cycles): {LAW_LABELS.get(best['law'], best['law'])} on "
@@ -94,8 +97,23 @@ def _adaptation(block: dict | None) -> list[str]:
                           f"the Kalman filter is {block['kalman']}")]
 
 
+def _noise(block: dict | None) -> list[str]:
+    """The sensors' noise and offsets the study's readings carried (issue 34)."""
+    if not block:
+        return [paragraph("The readings carry no sensor noise (a study from before issue 34).")]
+    kinds = block["kinds"]
+    return [paragraph("Every reading of the training, validation and test cycles carries its sensor's noise: "
+                      + "; ".join(f"{kind} sensors {number(k['noise_K'], 2)} K white noise and offsets of "
+                                  f"{number(k['offset_K'], 2)} K (standard deviations; {k['source']})"
+                                  for kind, k in kinds.items())
+                      + ". Contact sensors sit on parts that stay still, infrared ones read moving or turning parts.")]
+
+
 def _row(kind: str, entry: dict, note: str = "") -> list:
     t = entry["test"]
+    ridge = entry.get("ridge_K")
+    worst = (entry.get("conditioning") or {}).get("max_offset_error_um")
     return [LAW_LABELS.get(kind, kind) + note, str(len(entry["sensors"])), ", ".join(entry["sensors"]),
             number(t["rms_um"], 2), number(t["max_um"], 2), number(t["reduction_percent"], 1),
-            number(entry["validation_rms_um"], 2)]
+            number(entry["validation_rms_um"], 2), "" if ridge is None else number(ridge, 2),
+            "" if worst is None else number(worst, 2)]
