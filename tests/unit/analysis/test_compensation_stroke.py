@@ -134,3 +134,14 @@ def test_d_only_documents_stay_version_1_and_take_no_x():
         law.update(60.0, {"a": 300.0, "c": 301.0}, 0.2)
     with pytest.raises(ValueError, match="needs version 2"):
         CompensationLaw({**document, "kind": "linear_regression_stroke", "version": 1})
+
+
+def test_stroke_conditioning_is_the_worst_offset_cost_over_the_stroke():
+    from feedtherm.analysis.compensation.stroke import stroke_conditioning
+
+    law = fit_stroke(_set("train", 1), ("a", "c"), LAGS, order=1)
+    block = stroke_conditioning(law)
+    # a: Σ_f W0 = 2.0e-6, Σ_f W1 = 1.4e-6 -> |2.0 ± 1.4| µm/K, worst at ξ = 1: 3.4 µm/K, 0.34 µm for 0.1 K
+    assert block["offset_error_um"]["a"] == pytest.approx(0.34, rel=1e-5)
+    assert block["offset_error_um"]["c"] == pytest.approx(0.1 * (3.0 + 1.3), rel=1e-5)
+    assert block["max_abs_weight_um_per_K"] == pytest.approx(4.0, rel=1e-5)  # a's reading at ξ = 1

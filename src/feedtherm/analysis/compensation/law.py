@@ -73,7 +73,7 @@ def adapted_law_document(adapted: AdaptedLaw, candidates: dict[str, Candidate], 
 
 
 def stroke_law_document(law: StrokeLaw, candidates: dict[str, Candidate], provenance: dict | None = None,
-                        choice: dict | None = None) -> dict:
+                        choice: dict | None = None, conditioning: dict | None = None) -> dict:
     """The JSON-able document of a stroke law (:mod:`.stroke`, format version 2): E(x, t) [m] at a
     table position x [m] from the inputs [K], their lags and a Legendre basis in the normalised x.
 
@@ -103,5 +103,6 @@ def stroke_law_document(law: StrokeLaw, candidates: dict[str, Candidate], proven
         "ridge_K": float(law.ridge) ** 0.5,
         "controller_cost": {"multiply_adds_per_sample": law.cost["total"], **law.cost},
         **({"choice": choice} if choice else {}),
+        **({"conditioning": conditioning} if conditioning else {}),
         "provenance": provenance or {},
     }
