@@ -93,6 +93,8 @@ def test_a_study_writes_its_files_and_one_line(study):
     # issue 34, item 3: the error along the stroke, the stroke law beside each law of D applied at every x
     stroke = summary["stroke"]
     assert stroke["positions"] == 9 and stroke["laws"]["kalman"]["stroke_law"] is None
+    kalman = stroke["laws"]["kalman"]["state_along_stroke"]  # the filter's state read along the stroke
+    assert 0 < kalman["test"]["rms_um"] <= kalman["test"]["max_um"]
     for kind, name in (("regression_lags", "law_stroke.json"), ("regression", "law_stroke_static.json")):
         entry = stroke["laws"][kind]
         assert entry["sensors"] == summary["chosen"][kind]["sensors"] and entry["stroke_law"]["file"] == name

@@ -67,7 +67,12 @@ def _stroke_entry(stroke: StrokeResult) -> dict:
              "d_only": {k: v for k, v in stroke.d_only.as_dict().items() if k != "per_cycle"}}
     if stroke.choice is None:
         entry["stroke_law"] = None
-        entry["note"] = "the Kalman estimator's reduced model outputs D only: no law along the stroke for it yet"
+        if stroke.test is not None:
+            entry["state_along_stroke"] = {
+                "validation_rms_um": stroke.validation.rms * 1e6, "test": stroke.test.as_dict(),
+                "how": "the filter's reduced state read under the nut at each position (the full model's "
+                       "displacement rows projected on the reduced basis); not in law_kalman.json, which gives D"}
+        entry["note"] = "law_kalman.json outputs D only: no exported law along the stroke for it yet"
         return entry
     law = stroke.choice.law
     entry["stroke_law"] = {**stroke.choice.as_dict(), "file": STROKE_FILES[stroke.kind],

@@ -220,6 +220,23 @@ class KalmanLaw:
         """D [m] at every sample of a recorded cycle (columns ``names``)."""
         return run_filter(self.estimator(), record.times, record.sensors, names, record.screw_rpm, record.nut_rpm)[0]
 
+    def predict_stroke_record(self, record, names: list[str]) -> np.ndarray | None:
+        """E [m] ``(n, len(record.positions))`` at every sample of a recorded cycle: the filter's state read
+        along the stroke (:attr:`.state_space.ReducedModel.C_stroke`, linear between its positions);
+        None when the model has no such rows."""
+        m = self.model
+        if m.C_stroke is None or record.positions is None:
+            return None
+        estimator = self.estimator()
+        estimator.reset()
+        columns = {n: names.index(n) for n in (*estimator.sensors, m.ambient)}
+        out = np.zeros((len(record.times), len(m.stroke_x)))
+        for n, t in enumerate(record.times):
+            estimator.update(t, {name: record.sensors[n, j] for name, j in columns.items()},
+                             record.screw_rpm[n], record.nut_rpm[n])
+            out[n] = m.C_stroke @ estimator.x[:estimator.r] + m.d_stroke
+        return np.array([np.interp(record.positions, m.stroke_x, row) for row in out])
+
     def document(self, provenance: dict | None = None) -> dict:
         """The JSON-able document (SI units) that :meth:`from_document` reads back."""
         m = self.model

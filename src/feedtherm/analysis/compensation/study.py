@@ -66,7 +66,8 @@ class LawResult:
 class StrokeResult:
     """Along the stroke, for one law asked for: the law of D applied at every x (``d_only``, test
     cycles) and, for a regression law, the stroke law on its sensors (``choice``, its ``validation``
-    and ``test`` residuals over positions and time); None where there is none (the Kalman law)."""
+    and ``test`` residuals over positions and time); the Kalman estimator: no ``choice``, its state
+    read along the stroke (``validation``, ``test``), or None where its model has no such rows."""
 
     kind: str
     sensors: tuple[str, ...]
@@ -174,8 +175,15 @@ def along_stroke(chosen: dict[str, LawResult], sets: dict[str, CycleSet]) -> dic
     out = {}
     for kind, result in chosen.items():
         d_only = stroke_residuals(lambda record, law=result.law: law.predict_record(record, names), sets["test"])
-        if kind not in LAWS:
-            out[kind] = StrokeResult(kind, result.sensors, d_only)
+        if kind not in LAWS:  # the Kalman estimator: its state read along the stroke, where its model can
+            law = result.law
+            stroke = getattr(law, "predict_stroke_record", None)
+            if stroke is None or stroke(sets["test"].cycles[0], names) is None:
+                out[kind] = StrokeResult(kind, result.sensors, d_only)
+            else:
+                out[kind] = StrokeResult(kind, result.sensors, d_only, None,
+                                         stroke_residuals(lambda record: stroke(record, names), sets["validation"]),
+                                         stroke_residuals(lambda record: stroke(record, names), sets["test"]))
             continue
         choice = fit_stroke_validated(sets["train"], sets["validation"], result.sensors, LAWS[kind])
         law = choice.law

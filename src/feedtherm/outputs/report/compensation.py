@@ -105,6 +105,9 @@ def _stroke(block: dict | None) -> list[str]:
     rows = []
     for kind, entry in block["laws"].items():
         d, law = entry["d_only"], entry.get("stroke_law")
+        state = entry.get("state_along_stroke")
+        if law is None and state is not None:  # the Kalman filter's state read along the stroke
+            law = {"test": state["test"], "order": "state", "multiply_adds_per_sample": "—"}
         rows.append([LAW_LABELS.get(kind, kind), ", ".join(entry["sensors"]), number(d["rms_um"], 2),
                      number(d["max_um"], 2),
                      "—" if law is None else number(law["test"]["rms_um"], 2),
@@ -117,7 +120,7 @@ def _stroke(block: dict | None) -> list[str]:
                   caption=f"the error along the stroke, over {block['positions']} table positions and every sample of "
                           f"the test cycles (without compensation RMS {number(first['uncompensated_rms_um'], 1)} µm, max "
                           f"{number(first['uncompensated_max_um'], 1)} µm); the E(x) law's Legendre order chosen on "
-                          f"the validation cycles; the Kalman filter stays a law of D, µm")]
+                          f"the validation cycles; the Kalman filter: its state read along the stroke, not in its law file, µm")]
 
 
 def _noise(block: dict | None) -> list[str]:
