@@ -95,6 +95,11 @@ def test_a_study_writes_its_files_and_one_line(study):
     assert stroke["positions"] == 9 and stroke["laws"]["kalman"]["stroke_law"] is None
     kalman = stroke["laws"]["kalman"]["state_along_stroke"]  # the filter's state read along the stroke
     assert 0 < kalman["test"]["rms_um"] <= kalman["test"]["max_um"]
+    from feedtherm.analysis.compensation.kalman import KalmanLaw
+
+    estimator = KalmanLaw.from_document(json.loads((out / "law_kalman.json").read_text())).estimator()
+    estimator.update(0.0, {n: 300.0 for n in (*estimator.sensors, estimator.model.ambient)}, 1000.0, 1000.0)
+    assert np.isfinite(estimator.stroke_error(float(estimator.model.stroke_x.mean())))
     for kind, name in (("regression_lags", "law_stroke.json"), ("regression", "law_stroke_static.json")):
         entry = stroke["laws"][kind]
         assert entry["sensors"] == summary["chosen"][kind]["sensors"] and entry["stroke_law"]["file"] == name

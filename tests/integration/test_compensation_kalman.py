@@ -113,3 +113,26 @@ def test_the_filter_state_read_along_the_stroke_tracks_the_positioning_error(law
     assert predicted.shape == (len(solution.times), 9)
     assert np.sqrt(np.mean(error ** 2)) < STROKE_RMS_M, np.sqrt(np.mean(error ** 2))
     assert np.ptp(truth[-1]) > 5e-6  # E does change along the stroke: the test is not of a constant
+
+
+def test_the_exported_document_gives_the_same_error_along_the_stroke_and_refuses_a_bad_x(law, run):
+    solution, names, readings = run
+    document = json.loads(json.dumps(law.document()))
+    assert len(document["stroke"]["x_m"]) == 9 and document["stroke"]["multiply_adds_per_sample"] == 2 * law.model.order + 1
+    first, second = law.estimator(), KalmanLaw.from_document(document).estimator()
+    lo, hi = document["stroke"]["x_m"][0], document["stroke"]["x_m"][-1]
+    xs = [lo, lo + 0.3 * (hi - lo), (lo + hi) / 2, document["stroke"]["x_m"][5], hi]
+    columns = {n: names.index(n) for n in (*SENSORS, "T6")}
+    for n, t in enumerate(solution.times[:30]):
+        values = {name: readings[n, j] for name, j in columns.items()}
+        first.update(t, values, 1116.0, 1080.0)
+        second.update(t, values, 1116.0, 1080.0)
+        for x in xs:
+            assert second.stroke_error(x) == pytest.approx(first.stroke_error(x), abs=1e-12)
+    record = type("Record", (), {"times": solution.times[:30], "sensors": readings[:30], "positions": np.array(xs),
+                                 "screw_rpm": np.full(30, 1116.0), "nut_rpm": np.full(30, 1080.0)})()
+    np.testing.assert_allclose(law.predict_stroke_record(record, names)[-1], [first.stroke_error(x) for x in xs],
+                               rtol=0, atol=1e-12)
+    for bad, words in ((hi + 0.01, "outside the stroke"), (float("nan"), "not a finite"), ("far", "not a table position")):
+        with pytest.raises(ValueError, match=f"^x: .*{words}"):
+            second.stroke_error(bad)

@@ -6,7 +6,7 @@ Files (all in one directory, replaced as a set):
 - ``law.json``: the law asked for (``--sensors``), with lags (:mod:`~feedtherm.analysis.compensation.evaluator`
   evaluates it); ``law_static.json``: the same sensors without lags; ``law_kalman.json``: the
   Kalman estimator on the same sensors (:class:`~feedtherm.analysis.compensation.kalman.KalmanLaw`
-  reads it back);
+  reads it back; its ``stroke`` block gives E(x) from the filter's state, ``KalmanEstimator.stroke_error``);
 - ``law_stroke.json``, ``law_stroke_static.json``: the laws of the positioning error E(x, t) at a
   table position x on the sensors of ``law.json`` and ``law_static.json`` (format version 2,
   :mod:`~feedtherm.analysis.compensation.stroke`; the evaluator takes x);
@@ -71,8 +71,9 @@ def _stroke_entry(stroke: StrokeResult) -> dict:
             entry["state_along_stroke"] = {
                 "validation_rms_um": stroke.validation.rms * 1e6, "test": stroke.test.as_dict(),
                 "how": "the filter's reduced state read under the nut at each position (the full model's "
-                       "displacement rows projected on the reduced basis); not in law_kalman.json, which gives D"}
-        entry["note"] = "law_kalman.json outputs D only: no exported law along the stroke for it yet"
+                       "displacement rows projected on the reduced basis); law_kalman.json's stroke block, "
+                       "KalmanEstimator.stroke_error(x)"}
+        entry["note"] = "no fitted stroke law: the filter's own model gives E(x)"
         return entry
     law = stroke.choice.law
     entry["stroke_law"] = {**stroke.choice.as_dict(), "file": STROKE_FILES[stroke.kind],

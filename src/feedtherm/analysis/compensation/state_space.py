@@ -75,7 +75,7 @@ class ReducedModel:
     film: np.ndarray | None = None
     #: the positioning error E along the stroke, ``E = C_stroke ζ + d_stroke`` [m] at the table positions
     #: ``stroke_x`` [m] (:func:`.data.stroke_positions`); read through the same basis, not weighed in its
-    #: choice, and not exported (None: a model without a table, or read back from a law's document)
+    #: choice (None: a model without a table, or a law document written before them)
     stroke_x: np.ndarray | None = None
     C_stroke: np.ndarray | None = None
     d_stroke: np.ndarray | None = None

@@ -120,7 +120,7 @@ def _stroke(block: dict | None) -> list[str]:
                   caption=f"the error along the stroke, over {block['positions']} table positions and every sample of "
                           f"the test cycles (without compensation RMS {number(first['uncompensated_rms_um'], 1)} µm, max "
                           f"{number(first['uncompensated_max_um'], 1)} µm); the E(x) law's Legendre order chosen on "
-                          f"the validation cycles; the Kalman filter: its state read along the stroke, not in its law file, µm")]
+                          f"the validation cycles; the Kalman filter: its state read along the stroke (its model's rows), µm")]
 
 
 def _noise(block: dict | None) -> list[str]:
