@@ -67,7 +67,7 @@ def test_a_study_writes_its_files_and_one_line(study):
     out = cwd / "out" / "paper_compensation_physics"
     assert sorted(p.name for p in out.iterdir()) == sorted(
         ["law.json", "law_static.json", "law_kalman.json", "law_adapted.json", "law_adapted_static.json",
-         "compensation.json", "compensation.csv", "error_vs_k.png",
+         "law_stroke.json", "law_stroke_static.json", "compensation.json", "compensation.csv", "error_vs_k.png",
          "sensor_map.png", "test_cycle.png", "compensation.html"])
     for name in ("error_vs_k.png", "sensor_map.png", "test_cycle.png"):
         assert (out / name).read_bytes()[:8] == PNG_MAGIC
@@ -90,6 +90,29 @@ def test_a_study_writes_its_files_and_one_line(study):
         assert set(conditioning["offset_error_um"]) >= {i["name"] for i in document["inputs"]}, name
         assert conditioning["max_offset_error_um"] == max(conditioning["offset_error_um"].values())
     assert "ridge_K" in summary["chosen"]["regression"] and "conditioning" in summary["best"]
+    # issue 34, item 3: the error along the stroke, the stroke law beside each law of D applied at every x
+    stroke = summary["stroke"]
+    assert stroke["positions"] == 9 and stroke["laws"]["kalman"]["stroke_law"] is None
+    kalman = stroke["laws"]["kalman"]["state_along_stroke"]  # the filter's state read along the stroke
+    assert 0 < kalman["test"]["rms_um"] <= kalman["test"]["max_um"]
+    from feedtherm.analysis.compensation.kalman import KalmanLaw
+
+    estimator = KalmanLaw.from_document(json.loads((out / "law_kalman.json").read_text())).estimator()
+    estimator.update(0.0, {n: 300.0 for n in (*estimator.sensors, estimator.model.ambient)}, 1000.0, 1000.0)
+    assert np.isfinite(estimator.stroke_error(float(estimator.model.stroke_x.mean())))
+    for kind, name in (("regression_lags", "law_stroke.json"), ("regression", "law_stroke_static.json")):
+        entry = stroke["laws"][kind]
+        assert entry["sensors"] == summary["chosen"][kind]["sensors"] and entry["stroke_law"]["file"] == name
+        assert entry["stroke_law"]["order"] in (0, 1, 2, 3) and entry["d_only"]["rms_um"] > 0
+        document = json.loads((out / name).read_text())
+        assert document["version"] == 2 and document["controller_cost"]["multiply_adds_per_sample"] == \
+            entry["stroke_law"]["multiply_adds_per_sample"]
+        law = CompensationLaw(document)
+        x_min, x_max = document["position"]["x_min_m"], document["position"]["x_max_m"]
+        assert np.isfinite(law.update(0.0, {n: 300.0 for n in law.inputs}, (x_min + x_max) / 2))
+        with pytest.raises(ValueError, match="^x: .* outside the stroke"):
+            law.at(x_max + 0.01)
+    assert "along the stroke" in html and "along the stroke E(x) RMS" in lines[0]
 
 
 @pytest.mark.parametrize("args, message", [

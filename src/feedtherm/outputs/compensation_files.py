@@ -6,11 +6,15 @@ Files (all in one directory, replaced as a set):
 - ``law.json``: the law asked for (``--sensors``), with lags (:mod:`~feedtherm.analysis.compensation.evaluator`
   evaluates it); ``law_static.json``: the same sensors without lags; ``law_kalman.json``: the
   Kalman estimator on the same sensors (:class:`~feedtherm.analysis.compensation.kalman.KalmanLaw`
-  reads it back);
+  reads it back; its ``stroke`` block gives E(x) from the filter's state, ``KalmanEstimator.stroke_error``);
+- ``law_stroke.json``, ``law_stroke_static.json``: the laws of the positioning error E(x, t) at a
+  table position x on the sensors of ``law.json`` and ``law_static.json`` (format version 2,
+  :mod:`~feedtherm.analysis.compensation.stroke`; the evaluator takes x);
 - ``compensation.json``: settings, the error of every law for K = 1 … 6 and of the description's
   own sensors, the best law with at most 3 sensors, the measured bench, the test machines' factors,
   the leave-one-condition-out check of the adaptation on the measured bench and, with ``--adapt``,
-  the ``adaptation`` block;
+  the ``adaptation`` block; ``stroke``: each law asked for judged along the stroke (RMS and max over
+  positions and time on the test cycles), the law of D applied at every x beside the stroke law;
 - ``law_adapted.json``, ``law_adapted_static.json`` (with ``--adapt``): the two regression laws
   updated on measurements (:mod:`~feedtherm.analysis.compensation.adapt`), with the posterior
   covariance and the noise σ, from which the evaluator gives the predictive standard deviation;
@@ -26,11 +30,12 @@ from pathlib import Path
 
 from ..analysis.compensation.adapt import AdaptedLaw
 from ..analysis.compensation.adaptation import ADAPTED_FILES, adaptation_block
-from ..analysis.compensation.law import adapted_law_document, law_document
+from ..analysis.compensation.law import adapted_law_document, law_document, stroke_law_document
 from ..analysis.compensation.leave_one_out import LeaveOneOut
 from ..analysis.measurements import MeasurementSet
 from ..analysis.compensation.measured import MeasuredPrediction
-from ..analysis.compensation.study import LawResult, StudyResult
+from ..analysis.compensation.stroke import stroke_conditioning
+from ..analysis.compensation.study import LawResult, StrokeResult, StudyResult
 from ..system.load import LoadedSystem
 from ..system.overlay import mode_of
 from . import compensation_plots as plots
@@ -38,7 +43,9 @@ from .files import read_study_summary, staged_directory, write_json
 from .report.compensation import compensation_section
 from .report.html import page
 
-COMPENSATION_FILES = ("law.json", "law_static.json", "law_kalman.json", *ADAPTED_FILES.values(), "compensation.json", "compensation.csv", "error_vs_k.png",
+#: The stroke laws' files, by the law of D whose sensors they read.
+STROKE_FILES = {"regression_lags": "law_stroke.json", "regression": "law_stroke_static.json"}
+COMPENSATION_FILES = ("law.json", "law_static.json", "law_kalman.json", *STROKE_FILES.values(), *ADAPTED_FILES.values(), "compensation.json", "compensation.csv", "error_vs_k.png",
                       "sensor_map.png", "test_cycle.png", "compensation.html")
 CSV_HEADER = ["law", "k", "sensors", "test_rms_um", "test_max_um", "reduction_percent", "validation_rms_um",
               "uncompensated_rms_um"]
@@ -51,6 +58,29 @@ def _entry(result: LawResult) -> dict:
         entry["ridge_K"] = float(result.law.ridge) ** 0.5  # chosen on the validation cycles
     if result.conditioning:
         entry["conditioning"] = result.conditioning
+    return entry
+
+
+def _stroke_entry(stroke: StrokeResult) -> dict:
+    """One law along the stroke, µm: its law of D at every x, and the stroke law where there is one."""
+    entry = {"law": stroke.kind, "sensors": list(stroke.sensors),
+             "d_only": {k: v for k, v in stroke.d_only.as_dict().items() if k != "per_cycle"}}
+    if stroke.choice is None:
+        entry["stroke_law"] = None
+        if stroke.test is not None:
+            entry["state_along_stroke"] = {
+                "validation_rms_um": stroke.validation.rms * 1e6, "test": stroke.test.as_dict(),
+                "how": "the filter's reduced state read under the nut at each position (the full model's "
+                       "displacement rows projected on the reduced basis); law_kalman.json's stroke block, "
+                       "KalmanEstimator.stroke_error(x)"}
+        entry["note"] = "no fitted stroke law: the filter's own model gives E(x)"
+        return entry
+    law = stroke.choice.law
+    entry["stroke_law"] = {**stroke.choice.as_dict(), "file": STROKE_FILES[stroke.kind],
+                           "test": stroke.test.as_dict(),
+                           "multiply_adds_per_sample": law.cost["total"],
+                           "conditioning": stroke_conditioning(law),
+                           "stroke_m": [law.x_min, law.x_max]}
     return entry
 
 
@@ -78,6 +108,11 @@ def summary(result: StudyResult, loaded: LoadedSystem, measured: dict[str, list[
         "measured": {kind: {"law": kind, "sensors": list(result.declared[kind].sensors),
                             "conditions": [m.as_dict() for m in rows]} for kind, rows in measured.items()},
         "leave_one_condition_out": None if loco is None else loco.as_dict(),
+        "stroke": None if not result.stroke else {
+            "positions": len(result.sets["test"].cycles[0].positions),
+            "metric": "RMS and max of E(x_j, t) - prediction over the recorded table positions and every sample of "
+                      "the test cycles; d_only: the law of D applied at every x (correction -D everywhere)",
+            "laws": {kind: _stroke_entry(s) for kind, s in result.stroke.items()}},
         **({} if adaptation is None else {"adaptation": adaptation}),
     }
 
@@ -108,6 +143,11 @@ def write_compensation(result: StudyResult, loaded: LoadedSystem, out_dir: Path,
                                                     {**provenance, "test": result.chosen["regression_lags"].test.as_dict()}))
         write_json(stage / "law_static.json", law_document(result.chosen["regression"].law, result.candidates,
                                                            {**provenance, "test": result.chosen["regression"].test.as_dict()}))
+        for kind, stroke in result.stroke.items():
+            if stroke.choice is not None:
+                write_json(stage / STROKE_FILES[kind], stroke_law_document(
+                    stroke.choice.law, result.candidates, {**provenance, "test": stroke.test.as_dict()},
+                    stroke.choice.as_dict(), stroke_conditioning(stroke.choice.law)))
         kalman = result.chosen["kalman"].law.document({**provenance, "test": result.chosen["kalman"].test.as_dict()})
         kalman["conditioning"] = result.chosen["kalman"].conditioning
         write_json(stage / "law_kalman.json", kalman)
@@ -137,8 +177,12 @@ def summary_line(out_dir: Path, result: StudyResult, wall_time_s: float) -> str:
     chosen = result.chosen["regression_lags"]
     reduction = 100 * chosen.test.reduction
     change = f"{reduction:.1f} % less than" if reduction >= 0 else f"{-reduction:.0f} % more than"
+    stroke = result.stroke.get("regression_lags")
+    along = "" if stroke is None or stroke.test is None else (
+        f"; along the stroke E(x) RMS {stroke.test.rms * 1e6:.2f} µm, max {stroke.test.max * 1e6:.2f} µm "
+        f"(-D everywhere: {stroke.d_only.rms * 1e6:.2f}, {stroke.d_only.max * 1e6:.2f} µm)")
     return (f"{out_dir}: law on {', '.join(chosen.sensors)}: held-out RMS {chosen.test.rms * 1e6:.2f} µm, "
-            f"max {chosen.test.max * 1e6:.2f} µm ({change} uncompensated); written in {wall_time_s:.1f} s")
+            f"max {chosen.test.max * 1e6:.2f} µm ({change} uncompensated){along}; written in {wall_time_s:.1f} s")
 
 
 FIGURES = ("error_vs_k.png", "sensor_map.png", "test_cycle.png")

@@ -38,6 +38,10 @@ STREAMS = {"train": 0, "validation": 1, "test": 2}
 VARIANT_STREAM = 100
 #: The name under which a cycle is added to the description's duty cycles.
 CYCLE_NAME = "compensation_cycle"
+#: The table positions along the stroke where a study records the positioning error E(x, t):
+#: 9, evenly spaced, both ends included (a quarter of a 250 mm stroke every 31 mm; E varies smoothly
+#: along the screw, a quadratic or cubic in x, so 9 points over-determine any basis of order ≤ 4).
+STROKE_POSITIONS = 9
 
 
 @dataclass(frozen=True)
@@ -78,7 +82,10 @@ class CycleRecord:
     ``sensors[:, j]`` is candidate ``j``'s reading [K] (with its sensor's noise and offset once
     :func:`.noise.noisy_set` has run; ``truth`` then holds the model's temperatures, else None);
     ``elongation`` D [m]; the motor speeds [rpm] are those commanded over the sample's preceding
-    interval (what a controller knows).
+    interval (what a controller knows); ``positions`` [m] the table positions x_j
+    (:func:`stroke_positions`) and ``stroke_error`` ``(n, len(positions))`` [m] the positioning error
+    E(x_j, t) there (the run's ``positioning_error``, relative to ``[mechanics] positioning``), or
+    None for a record without a table.
     """
 
     label: str
@@ -90,6 +97,22 @@ class CycleRecord:
     variant: dict | None = None
     cycle: DutyCycle | None = field(default=None, repr=False)
     truth: np.ndarray | None = field(default=None, repr=False)
+    positions: np.ndarray | None = field(default=None, repr=False)
+    stroke_error: np.ndarray | None = field(default=None, repr=False)
+
+
+def stroke_positions(table_x: np.ndarray, count: int = STROKE_POSITIONS) -> np.ndarray:
+    """``count`` table positions [m] evenly spaced from the first to the last of a run's ``table_x``
+    (its ends included): where a study records E(x, t)."""
+    table_x = np.asarray(table_x, dtype=float)
+    return np.linspace(table_x[0], table_x[-1], count) if table_x.size else np.zeros(0)
+
+
+def stroke_error_at(solution, positions: np.ndarray) -> np.ndarray:
+    """The run's E(x, t) [m] ``(n, len(positions))`` at ``positions`` [m], linear between its table positions."""
+    table_x = np.asarray(solution.table_x, dtype=float)
+    error = np.asarray(solution.positioning_error, dtype=float)
+    return np.array([np.interp(positions, table_x, row) for row in error]).reshape(len(error), len(positions))
 
 
 @dataclass(frozen=True)
@@ -155,8 +178,11 @@ def simulate_set(loaded: LoadedSystem, candidates: dict[str, Candidate], setting
         if missing:  # pragma: no cover - every candidate is a sensor of the run
             raise FeedthermError(f"the run did not report {', '.join(missing)}")
         screw, nut = speeds_at(cycles[index], solution.times)
+        positions = stroke_positions(solution.table_x)
         records.append(CycleRecord(
             f"{name}-{index:03d}", np.asarray(solution.times, float),
             np.column_stack([solution.sensors[n] for n in names]), np.asarray(solution.elongation, float),
-            screw, nut, None if variants[index] is None else variants[index].as_dict(), cycles[index]))
+            screw, nut, None if variants[index] is None else variants[index].as_dict(), cycles[index],
+            positions=positions if positions.size else None,
+            stroke_error=stroke_error_at(solution, positions) if positions.size else None))
     return CycleSet(name, names, records)

@@ -21,6 +21,20 @@ the centre [m], the weights [m/K]) and the noise ``σ`` [m] of a measured D;
 
     law = CompensationLaw.from_file("law_adapted.json")
     D, sd = law.update_with_sd(t, readings)   # [m], [m]
+
+**The error along the stroke** (``law_stroke*.json``, ``version = 2``, ``kind =
+"linear_regression_stroke"``): the law gives the positioning error E [m] at a table position x [m]
+inside the stroke declared in its ``position`` block; each input's reading and lags get ``order + 1``
+weights over Legendre polynomials of ``ξ = 2 (x - x_min)/(x_max - x_min) - 1``::
+
+    law = CompensationLaw.from_file("law_stroke.json")
+    for t, readings, x in stream:                  # x: where the table is [m]
+        correction = -law.update(t, readings, x)   # E(x) [m]; the axis at x moves by -E(x)
+        elsewhere = law.at(0.2)                    # E at another x from the same readings
+
+An x outside the stroke, or not finite, raises ValueError naming x.  A law of D (version 1) takes
+no x: D is the same at every position.  The ``controller_cost`` block counts the multiply-adds per
+sample.
 """
 
 from __future__ import annotations
@@ -30,24 +44,52 @@ import math
 from pathlib import Path
 
 FORMAT = "feedtherm-compensation-law"
+#: Laws of D (one number): version 1, unchanged since the first release.
 VERSION = 1
+#: Laws of E(x, t) along the stroke (kind ``linear_regression_stroke``).
+STROKE_VERSION = 2
+KINDS = {"linear_regression": (VERSION, STROKE_VERSION), "linear_regression_stroke": (STROKE_VERSION,)}
 
 
 class CompensationLaw:
-    """A linear-regression law read from its document; :meth:`update` gives D [m] reading by reading."""
+    """A linear-regression law read from its document; :meth:`update` gives D [m] (a law of D) or
+    E(x) [m] (a stroke law) reading by reading."""
 
     def __init__(self, document: dict):
-        if document.get("format") != FORMAT or document.get("version") != VERSION:
-            raise ValueError(f"not a {FORMAT} document of version {VERSION}")
-        if document.get("kind") != "linear_regression":
-            raise ValueError(f"cannot evaluate a law of kind {document.get('kind')!r}")
+        if document.get("format") != FORMAT or document.get("version") not in (VERSION, STROKE_VERSION):
+            raise ValueError(f"not a {FORMAT} document of version {VERSION} or {STROKE_VERSION}")
+        kind = document.get("kind")
+        if kind not in KINDS:
+            raise ValueError(f"cannot evaluate a law of kind {kind!r}")
+        if document["version"] not in KINDS[kind]:
+            raise ValueError(f"a law of kind {kind!r} needs version {KINDS[kind][0]}")
         self.inputs = [item["name"] for item in document["inputs"]]
         self.lags = [float(tau) for tau in document["lags_s"]]
-        self.bias = float(document["bias_m"])
-        self.weights = [[float(w) for w in row] for row in document["weights_m_per_K"]]
-        if len(self.weights) != len(self.inputs) or any(len(row) != 1 + len(self.lags) for row in self.weights):
-            raise ValueError("weights_m_per_K must have one row per input and 1 + len(lags_s) columns")
-        self.posterior = _posterior(document.get("posterior"), len(self.inputs) * (1 + len(self.lags)))
+        self.stroke = kind == "linear_regression_stroke"
+        if self.stroke:
+            position = document["position"]
+            self.x_min, self.x_max = float(position["x_min_m"]), float(position["x_max_m"])
+            if not (math.isfinite(self.x_min) and math.isfinite(self.x_max) and self.x_max > self.x_min):
+                raise ValueError("position: x_max_m must be finite and above x_min_m")
+            if document["basis"]["kind"] != "legendre":
+                raise ValueError(f"cannot evaluate a basis of kind {document['basis']['kind']!r}")
+            self.order = int(document["basis"]["order"])
+            self.bias_coefficients = [float(b) for b in document["bias_m"]]
+            # per input, per feature (reading, lags), per basis order [m/K]
+            self.weight_blocks = [[[float(w) for w in row] for row in block] for block in document["weights_m_per_K"]]
+            q = self.order + 1
+            if len(self.bias_coefficients) != q or len(self.weight_blocks) != len(self.inputs) or any(
+                    len(block) != 1 + len(self.lags) or any(len(row) != q for row in block)
+                    for block in self.weight_blocks):
+                raise ValueError("weights_m_per_K must be inputs x (1 + len(lags_s)) x (order + 1) and bias_m "
+                                 "have order + 1 entries")
+            self.posterior = None
+        else:
+            self.bias = float(document["bias_m"])
+            self.weights = [[float(w) for w in row] for row in document["weights_m_per_K"]]
+            if len(self.weights) != len(self.inputs) or any(len(row) != 1 + len(self.lags) for row in self.weights):
+                raise ValueError("weights_m_per_K must have one row per input and 1 + len(lags_s) columns")
+            self.posterior = _posterior(document.get("posterior"), len(self.inputs) * (1 + len(self.lags)))
         self.reset()
 
     @classmethod
@@ -58,10 +100,51 @@ class CompensationLaw:
         """Forget the past readings (the next one restarts the lags)."""
         self._time: float | None = None
         self._lagged: list[list[float]] = []
+        self._coefficients: list[float] | None = None
 
-    def update(self, time: float, readings: dict[str, float]) -> float:
-        """D [m] after the readings [K] taken at ``time`` [s] (times must increase)."""
-        return self._step(time, readings)[0]
+    def update(self, time: float, readings: dict[str, float], x: float | None = None) -> float:
+        """After the readings [K] taken at ``time`` [s] (times must increase): D [m] for a law of D
+        (``x`` not given), E(x) [m] at the table position ``x`` [m] for a stroke law."""
+        if not self.stroke:
+            if x is not None:
+                raise ValueError("x: this law predicts D, the same at every table position; call update(time, readings)")
+            return self._step(time, readings)[0]
+        xi = self._xi(x)  # checked before the state moves
+        self._step(time, readings)
+        return self._at(xi)
+
+    def at(self, x: float) -> float:
+        """E(x) [m] at the table position ``x`` [m] from the last readings (a stroke law, after an update)."""
+        if not self.stroke:
+            raise ValueError("x: this law predicts D, the same at every table position")
+        if self._coefficients is None:
+            raise ValueError("no readings yet: call update() first")
+        return self._at(self._xi(x))
+
+    def _xi(self, x) -> float:
+        """The normalised position ξ of ``x`` [m]; ValueError naming x when x is missing, not finite or outside the stroke."""
+        if x is None:
+            raise ValueError("x: a stroke law needs the table position x [m]")
+        try:
+            x = float(x)
+        except (TypeError, ValueError):
+            raise ValueError(f"x: {x!r} is not a table position in metres") from None
+        if not math.isfinite(x):
+            raise ValueError(f"x: {x} is not a finite table position [m]")
+        if not self.x_min - 1e-9 <= x <= self.x_max + 1e-9:
+            raise ValueError(f"x: {x:.6g} m is outside the stroke, [{self.x_min:.6g}, {self.x_max:.6g}] m")
+        return min(1.0, max(-1.0, 2.0 * (x - self.x_min) / (self.x_max - self.x_min) - 1.0))
+
+    def _at(self, xi: float) -> float:
+        """Σ_m P_m(ξ) c_m with the Legendre recurrence (m P_m = (2m - 1) ξ P_{m-1} - (m - 1) P_{m-2})."""
+        total, previous, current = 0.0, 0.0, 1.0
+        for m, c in enumerate(self._coefficients):
+            if m == 1:
+                previous, current = current, xi
+            elif m > 1:
+                previous, current = current, ((2 * m - 1) * xi * current - (m - 1) * previous) / m
+            total += c * current
+        return total
 
     def update_with_sd(self, time: float, readings: dict[str, float]) -> tuple[float, float]:
         """D [m] and its predictive standard deviation [m] after the readings [K] taken at ``time`` [s];
@@ -88,6 +171,14 @@ class CompensationLaw:
                     a = math.exp(-dt / tau)
                     state[i] = a * state[i] + (1.0 - a) * value
         self._time = float(time)
+        if self.stroke:
+            coefficients = list(self.bias_coefficients)
+            for block, value, state in zip(self.weight_blocks, values, self._lagged):
+                for row, feature in zip(block, [value, *state]):
+                    for m, w in enumerate(row):
+                        coefficients[m] += w * feature
+            self._coefficients = coefficients
+            return float("nan"), []
         total, features = self.bias, []
         for row, value, state in zip(self.weights, values, self._lagged):
             total += row[0] * value + sum(w * s for w, s in zip(row[1:], state))
@@ -108,10 +199,23 @@ def _posterior(block: dict | None, n_features: int):
     return centre, covariance, float(block["noise_sigma_m"])
 
 
-def evaluate(document: dict, times, readings: dict[str, list[float]]) -> list[float]:
-    """D [m] at every time of a recorded stream: ``readings[name][n]`` [K] at ``times[n]`` [s]."""
+def evaluate(document: dict, times, readings: dict[str, list[float]], x=None) -> list:
+    """The law's output at every time of a recorded stream: ``readings[name][n]`` [K] at ``times[n]`` [s].
+
+    A law of D: D [m] per time (no ``x``).  A stroke law: ``x`` [m] a table position (E(x) [m] per
+    time) or a list of them (per time, the list of E at each x).
+    """
     law = CompensationLaw(document)
-    return [law.update(t, {name: readings[name][n] for name in law.inputs}) for n, t in enumerate(times)]
+    if not law.stroke or x is None or not isinstance(x, (list, tuple)):
+        return [law.update(t, {name: readings[name][n] for name in law.inputs}, x) for n, t in enumerate(times)]
+    positions = [float(v) for v in x]
+    for v in positions:
+        law._xi(v)  # every x checked before any reading
+    out = []
+    for n, t in enumerate(times):
+        law.update(t, {name: readings[name][n] for name in law.inputs}, positions[0] if positions else None)
+        out.append([law.at(v) for v in positions])
+    return out
 
 
 def evaluate_with_sd(document: dict, times, readings: dict[str, list[float]]) -> list[tuple[float, float]]:

@@ -27,7 +27,7 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg as sl
@@ -164,6 +164,36 @@ class KalmanEstimator:
         var = float(self.c_d @ self.P[:self.r, :self.r] @ self.c_d)
         return float(self.c_d @ zeta + self.d_offset), float(np.sqrt(max(var, 0.0)))
 
+    def stroke_error(self, x: float) -> float:
+        """E [m] at the table position ``x`` [m] from the present state (after :meth:`update`): the
+        model's rows along the stroke (:attr:`.state_space.ReducedModel.C_stroke`), linear between them.
+
+        Raises
+        ------
+        ValueError
+            One line naming x: no rows along the stroke, no update yet, x not finite or outside the stroke.
+        """
+        m = self.model
+        if m.C_stroke is None:
+            raise ValueError("x: this law has no rows along the stroke (a law of D only)")
+        if self.x is None:
+            raise ValueError("no readings yet: call update() first")
+        try:
+            x = float(x)
+        except (TypeError, ValueError):
+            raise ValueError(f"x: {x!r} is not a table position in metres") from None
+        lo, hi = float(m.stroke_x[0]), float(m.stroke_x[-1])
+        if not np.isfinite(x):
+            raise ValueError(f"x: {x} is not a finite table position [m]")
+        if not lo - 1e-9 <= x <= hi + 1e-9:
+            raise ValueError(f"x: {x:.6g} m is outside the stroke, [{lo:.6g}, {hi:.6g}] m")
+        j = int(np.clip(np.searchsorted(m.stroke_x, x, side="right") - 1, 0, len(m.stroke_x) - 2))
+        w = (min(max(x, lo), hi) - m.stroke_x[j]) / (m.stroke_x[j + 1] - m.stroke_x[j])
+        zeta = self.x[:self.r]
+        left = float(m.C_stroke[j] @ zeta + m.d_stroke[j])
+        right = float(m.C_stroke[j + 1] @ zeta + m.d_stroke[j + 1])
+        return left + w * (right - left)
+
     @property
     def heat_errors(self) -> np.ndarray:
         """The estimated relative heat errors ``δ`` per source."""
@@ -220,6 +250,23 @@ class KalmanLaw:
         """D [m] at every sample of a recorded cycle (columns ``names``)."""
         return run_filter(self.estimator(), record.times, record.sensors, names, record.screw_rpm, record.nut_rpm)[0]
 
+    def predict_stroke_record(self, record, names: list[str]) -> np.ndarray | None:
+        """E [m] ``(n, len(record.positions))`` at every sample of a recorded cycle: the filter's state read
+        along the stroke (:attr:`.state_space.ReducedModel.C_stroke`, linear between its positions);
+        None when the model has no such rows."""
+        m = self.model
+        if m.C_stroke is None or record.positions is None:
+            return None
+        estimator = self.estimator()
+        estimator.reset()
+        columns = {n: names.index(n) for n in (*estimator.sensors, m.ambient)}
+        out = np.zeros((len(record.times), len(m.stroke_x)))
+        for n, t in enumerate(record.times):
+            estimator.update(t, {name: record.sensors[n, j] for name, j in columns.items()},
+                             record.screw_rpm[n], record.nut_rpm[n])
+            out[n] = m.C_stroke @ estimator.x[:estimator.r] + m.d_stroke
+        return np.array([np.interp(record.positions, m.stroke_x, row) for row in out])
+
     def document(self, provenance: dict | None = None) -> dict:
         """The JSON-able document (SI units) that :meth:`from_document` reads back."""
         m = self.model
@@ -238,6 +285,12 @@ class KalmanLaw:
                       "uniform": m.uniform.tolist(), "hankel": m.hankel.tolist()},
             "table": self.table.as_dict(),
             "noise": self.noise.as_dict(),
+            **({} if m.C_stroke is None else {"stroke": {
+                "x_m": m.stroke_x.tolist(), "C": m.C_stroke.tolist(), "d_m": m.d_stroke.tolist(),
+                "meaning": "the positioning error at table position x_m[j]: E_j = C[j] . state + d_m[j] [m] (the state's "
+                           "first len(A0) entries); linear in x between two positions; no x outside [x_m[0], x_m[-1]]",
+                "multiply_adds_per_sample": 2 * m.order + 1,
+                "cost": "the two rows around x (2 x order) and the interpolation (1), besides the filter's own step"}}),
             "provenance": provenance or {},
         }
 
@@ -250,6 +303,10 @@ class KalmanLaw:
         model = ReducedModel(d["surfaces"], d["sources"], d["outputs"], np.array(d["A0"]), np.array(d["A_surface"]),
                              np.array(d["f_surface"]), np.array(d["Bq"]), np.array(d["Cy"]), np.array(d["dy"]),
                              np.array(d["uniform"]), np.array(d["hankel"]), ambient)
+        stroke = document.get("stroke")  # optional: a law of D only before issue 34's item 3
+        if stroke is not None:
+            model = replace(model, stroke_x=np.array(stroke["x_m"], dtype=float), C_stroke=np.array(stroke["C"], dtype=float),
+                            d_stroke=np.array(stroke["d_m"], dtype=float))
         n = document["noise"]
         noise = KalmanNoise(n["contact_K"], n["infrared_K"], n["heat_prior"], n["heat_drift_per_sqrt_h"],
                             n["heat_noise"], n["air_noise_K"], n["initial_K"], n.get("contact_offset_K", 0.0),

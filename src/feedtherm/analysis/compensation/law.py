@@ -7,16 +7,12 @@ import math
 from ..candidates import Candidate
 from .adapt import AdaptedLaw
 from .conditioning import regression_conditioning
-from .evaluator import FORMAT, VERSION
+from .evaluator import FORMAT, STROKE_VERSION, VERSION
 from .regression import RegressionLaw
+from .stroke import StrokeLaw
 
 
-def law_document(law: RegressionLaw, candidates: dict[str, Candidate], provenance: dict | None = None) -> dict:
-    """The JSON-able document of ``law``: inputs with their part and position, weights, lags, bias.
-
-    Units are SI: inputs in kelvin, D in metres, weights in m/K, time constants in seconds; the
-    ``conditioning`` block (:mod:`.conditioning`) in µm/K and µm, for people.
-    """
+def _inputs(law, candidates: dict[str, Candidate]) -> list[dict]:
     inputs = []
     for name in law.sensors:
         candidate = candidates.get(name)
@@ -26,6 +22,17 @@ def law_document(law: RegressionLaw, candidates: dict[str, Candidate], provenanc
             item["where"] = candidate.where
             item["position_m"] = None if any(math.isnan(v) for v in candidate.position) else list(candidate.position)
         inputs.append(item)
+    return inputs
+
+
+def law_document(law: RegressionLaw, candidates: dict[str, Candidate], provenance: dict | None = None) -> dict:
+    """The JSON-able document of ``law``: inputs with their part and position, weights, lags, bias.
+
+    Units are SI: inputs in kelvin, D in metres, weights in m/K, time constants in seconds; the
+    ``conditioning`` block (:mod:`.conditioning`) in µm/K and µm, for people.  A law of D stays a
+    document of version 1, which every evaluator reads.
+    """
+    inputs = _inputs(law, candidates)
     return {
         "format": FORMAT,
         "version": VERSION,
@@ -63,3 +70,39 @@ def adapted_law_document(adapted: AdaptedLaw, candidates: dict[str, Candidate], 
                   "maximum evidence on the adaptation data (§3.5)",
     }
     return document
+
+
+def stroke_law_document(law: StrokeLaw, candidates: dict[str, Candidate], provenance: dict | None = None,
+                        choice: dict | None = None, conditioning: dict | None = None) -> dict:
+    """The JSON-able document of a stroke law (:mod:`.stroke`, format version 2): E(x, t) [m] at a
+    table position x [m] from the inputs [K], their lags and a Legendre basis in the normalised x.
+
+    ``weights_m_per_K[s][f][m]``: input ``s``, feature ``f`` (its reading, then each lag), basis
+    order ``m`` [m/K]; ``bias_m[m]`` [m].  ``controller_cost``: multiply-adds per sample
+    (:func:`.stroke.controller_cost`); ``choice``: the order and ridge chosen on validation.
+    """
+    k, m = len(law.sensors), 1 + len(law.lags)
+    return {
+        "format": FORMAT,
+        "version": STROKE_VERSION,
+        "kind": "linear_regression_stroke",
+        "output": {"name": "E", "unit": "m",
+                   "meaning": "the positioning error at table position x (the screw's displacement under the nut, "
+                              "relative to [mechanics] positioning); correct the axis at x by -E(x)"},
+        "inputs": _inputs(law, candidates),
+        "position": {"name": "x", "unit": "m", "x_min_m": law.x_min, "x_max_m": law.x_max,
+                     "meaning": "table position: the nut's centre along x, the frame of positioning_error.csv; "
+                                "a law is valid for x_min_m <= x <= x_max_m only",
+                     "normalised": "xi = 2 (x - x_min_m) / (x_max_m - x_min_m) - 1"},
+        "basis": {"kind": "legendre", "order": law.order,
+                  "evaluation": "E = sum_m P_m(xi) (bias_m[m] + sum_s sum_f weights_m_per_K[s][f][m] feature[s][f])"},
+        "lags_s": list(law.lags),
+        "lag_start": "settled at the first reading",
+        "bias_m": [float(b) for b in law.bias],
+        "weights_m_per_K": law.weights.reshape(k, m, law.order + 1).tolist(),
+        "ridge_K": float(law.ridge) ** 0.5,
+        "controller_cost": {"multiply_adds_per_sample": law.cost["total"], **law.cost},
+        **({"choice": choice} if choice else {}),
+        **({"conditioning": conditioning} if conditioning else {}),
+        "provenance": provenance or {},
+    }

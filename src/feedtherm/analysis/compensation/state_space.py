@@ -73,6 +73,12 @@ class ReducedModel:
     ambient: str = "ambient"  # the name of the ambient reading, the model's input (room.ambient_sensor)
     #: each surface's conduction from its nodes to its face [m²·K/W], in series with h_s (BoundaryBasis.film)
     film: np.ndarray | None = None
+    #: the positioning error E along the stroke, ``E = C_stroke ζ + d_stroke`` [m] at the table positions
+    #: ``stroke_x`` [m] (:func:`.data.stroke_positions`); read through the same basis, not weighed in its
+    #: choice (None: a model without a table, or a law document written before them)
+    stroke_x: np.ndarray | None = None
+    C_stroke: np.ndarray | None = None
+    d_stroke: np.ndarray | None = None
 
     @property
     def order(self) -> int:
@@ -170,8 +176,28 @@ def reduce_model(loaded: LoadedSystem, outputs: list[str], reference: OperatingP
     Bq = Q.T @ (s[:, None] * distribution.T)
     Cy = (out_rows * s[None, :]) @ Q
     A0 = (A0 + A0.T) / 2
+    stroke_x, C_stroke, d_stroke = _stroke_rows(system, model, s, Q)
     return ReducedModel(list(basis.surfaces), list(basis.sources), list(outputs), A0, A_surface, f_surface, Bq, Cy,
-                        out_offset, Q.T @ uniform, hankel, system.room.ambient_sensor, basis.film)
+                        out_offset, Q.T @ uniform, hankel, system.room.ambient_sensor, basis.film,
+                        stroke_x, C_stroke, d_stroke)
+
+
+def _stroke_rows(system, model, s: np.ndarray, Q: np.ndarray):
+    """``(x [m], C (p, r), d (p,))``: E(x_j) of the reduced state ζ at the study's table positions, the
+    full model's displacement rows read under the nut (linear between the screw's section centres,
+    as :func:`~feedtherm.solution.pack.along_stroke`); ``(None, None, None)`` without a table."""
+    if system.kinematics is None:
+        return None, None, None
+    from ...system.geometry import nut_centre_x
+    from .data import stroke_positions
+
+    rows, offset = model.displacement_rows()
+    rows = rows.toarray() if sp.issparse(rows) else np.asarray(rows, dtype=float)
+    offset = np.asarray(offset, dtype=float)
+    x = stroke_positions(nut_centre_x(system) + np.asarray(model.positions, dtype=float))
+    centres = np.asarray(model.screw_centres, dtype=float)
+    W = np.column_stack([np.interp(x, centres, e) for e in np.eye(len(centres))])  # (p, sections)
+    return x, (W @ rows[1:] * s[None, :]) @ Q, W @ offset[1:]
 
 
 def _psd_root(M: np.ndarray) -> np.ndarray:

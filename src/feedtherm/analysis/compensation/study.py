@@ -6,7 +6,10 @@ noisy sensors (:mod:`.noise`: every set, each candidate with its kind's noise an
 chooses sensors greedily for the static and the lagged regression with the ridge chosen on the
 validation cycles (:mod:`.selection`), fits the law asked for, the law on the description's own
 sensors for comparison, judges each on the test cycles (:mod:`.metrics`) and states each law's
-conditioning (:mod:`.conditioning`).
+conditioning (:mod:`.conditioning`).  Along the stroke (:mod:`.stroke`): for the two regression
+laws asked for, a law of E(x, t) on the same sensors, its basis order and ridge chosen on the
+validation cycles, judged on the test cycles over positions and time beside every law of D applied
+at every x (the Kalman estimator's included: it stays a law of D).
 """
 
 from __future__ import annotations
@@ -31,6 +34,7 @@ from .operating_table import build_table
 from .regression import DEFAULT_LAGS, RegressionLaw
 from .selection import fit_validated, greedy_selection
 from .state_space import DEFAULT_ORDER, reduce_model
+from .stroke import StrokeChoice, fit_stroke_validated, stroke_residuals
 
 #: The error against K is shown for K = 1 … this (issue 16), or up to the K asked for.
 CURVE_SENSORS = 6
@@ -59,6 +63,21 @@ class LawResult:
 
 
 @dataclass(frozen=True)
+class StrokeResult:
+    """Along the stroke, for one law asked for: the law of D applied at every x (``d_only``, test
+    cycles) and, for a regression law, the stroke law on its sensors (``choice``, its ``validation``
+    and ``test`` residuals over positions and time); the Kalman estimator: no ``choice``, its state
+    read along the stroke (``validation``, ``test``), or None where its model has no such rows."""
+
+    kind: str
+    sensors: tuple[str, ...]
+    d_only: Residuals
+    choice: StrokeChoice | None = None
+    validation: Residuals | None = None
+    test: Residuals | None = None
+
+
+@dataclass(frozen=True)
 class StudyResult:
     settings: StudySettings
     candidates: dict[str, Candidate]
@@ -68,6 +87,7 @@ class StudyResult:
     declared: dict[str, LawResult]  # law kind -> the law on the description's own sensors
     request: int | tuple[str, ...]
     noise: SensorNoise | None = None  # the sensors' noise the sets were read with
+    stroke: dict[str, StrokeResult] = field(default_factory=dict)  # law kind -> along the stroke (:mod:`.stroke`)
 
     def best(self, max_sensors: int = 3) -> LawResult:
         """The law with the smallest validation RMS among the curves' laws of at most ``max_sensors`` sensors."""
@@ -144,7 +164,33 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
     chosen[KALMAN] = _with_kalman_conditioning(_judge(KALMAN, kalman(chosen["regression_lags"].sensors), sets), sets)
     if own:
         declared[KALMAN] = _with_kalman_conditioning(_judge(KALMAN, kalman(own), sets), sets)
-    return StudyResult(settings, candidates, sets, curves, chosen, declared, request, noise)
+    stroke = along_stroke(chosen, sets) if all(c.stroke_error is not None for c in sets["test"].cycles) else {}
+    return StudyResult(settings, candidates, sets, curves, chosen, declared, request, noise, stroke)
+
+
+def along_stroke(chosen: dict[str, LawResult], sets: dict[str, CycleSet]) -> dict[str, StrokeResult]:
+    """Per law asked for, its error along the stroke (:class:`StrokeResult`): every law's D applied
+    at every x; for the regressions, the stroke law on the same sensors and lags."""
+    names = sets["test"].names
+    out = {}
+    for kind, result in chosen.items():
+        d_only = stroke_residuals(lambda record, law=result.law: law.predict_record(record, names), sets["test"])
+        if kind not in LAWS:  # the Kalman estimator: its state read along the stroke, where its model can
+            law = result.law
+            stroke = getattr(law, "predict_stroke_record", None)
+            if stroke is None or stroke(sets["test"].cycles[0], names) is None:
+                out[kind] = StrokeResult(kind, result.sensors, d_only)
+            else:
+                out[kind] = StrokeResult(kind, result.sensors, d_only, None,
+                                         stroke_residuals(lambda record: stroke(record, names), sets["validation"]),
+                                         stroke_residuals(lambda record: stroke(record, names), sets["test"]))
+            continue
+        choice = fit_stroke_validated(sets["train"], sets["validation"], result.sensors, LAWS[kind])
+        law = choice.law
+        out[kind] = StrokeResult(kind, result.sensors, d_only, choice,
+                                 stroke_residuals(lambda record: law.predict_record(record, names), sets["validation"]),
+                                 stroke_residuals(lambda record: law.predict_record(record, names), sets["test"]))
+    return out
 
 
 def kalman_noise(noise: SensorNoise, base: KalmanNoise = KalmanNoise()) -> KalmanNoise:

@@ -54,6 +54,7 @@ def compensation_section(summary: dict, figures: dict[str, bytes]) -> str:
              for m in rows],
             caption=f"the measured bench: D from the measured {', '.join(block['sensors'])} "
                     f"({LAW_LABELS.get(kind, kind)}, trained on simulated cycles only), µm"))
+    body += _stroke(summary.get("stroke"))
     body += _leave_one_out(summary.get("leave_one_condition_out"))
     body += _adaptation(summary.get("adaptation"))
     return section("compensation", "Thermal-error compensation", "".join(body))
@@ -95,6 +96,31 @@ def _adaptation(block: dict | None) -> list[str]:
     return [table(["law", "sensors", "pairs", "prior width τ", "noise σ", "RMS before", "RMS after", "file"], rows,
                   caption=f"laws adapted to {block['file']} (residuals on the adaptation data itself, µm); "
                           f"the Kalman filter is {block['kalman']}")]
+
+
+def _stroke(block: dict | None) -> list[str]:
+    """The error along the stroke: each law of D applied at every x, and the stroke law (issue 34)."""
+    if not block:
+        return []
+    rows = []
+    for kind, entry in block["laws"].items():
+        d, law = entry["d_only"], entry.get("stroke_law")
+        state = entry.get("state_along_stroke")
+        if law is None and state is not None:  # the Kalman filter's state read along the stroke
+            law = {"test": state["test"], "order": "state", "multiply_adds_per_sample": "—"}
+        rows.append([LAW_LABELS.get(kind, kind), ", ".join(entry["sensors"]), number(d["rms_um"], 2),
+                     number(d["max_um"], 2),
+                     "—" if law is None else number(law["test"]["rms_um"], 2),
+                     "—" if law is None else number(law["test"]["max_um"], 2),
+                     "—" if law is None else str(law["order"]),
+                     "—" if law is None else str(law["multiply_adds_per_sample"])])
+    first = next(iter(block["laws"].values()))["d_only"]
+    return [table(["law", "sensors", "D at every x: RMS", "max", "E(x) law: RMS", "max", "order in x",
+                   "multiply-adds per sample"], rows,
+                  caption=f"the error along the stroke, over {block['positions']} table positions and every sample of "
+                          f"the test cycles (without compensation RMS {number(first['uncompensated_rms_um'], 1)} µm, max "
+                          f"{number(first['uncompensated_max_um'], 1)} µm); the E(x) law's Legendre order chosen on "
+                          f"the validation cycles; the Kalman filter: its state read along the stroke (its model's rows), µm")]
 
 
 def _noise(block: dict | None) -> list[str]:
