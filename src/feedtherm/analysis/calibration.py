@@ -67,6 +67,12 @@ Z95 = 1.959964
 
 #: Condition number of the Jacobian above which the fit cannot separate the parameters.
 SINGULAR_CONDITION_NUMBER = 1e8
+#: Correlation of two estimates beyond which the data determine only their combination.  The
+#: condition number above is in the parameters' units, so two parameters that act through one
+#: quantity (a thread's friction coefficient and its preload, through one torque) can stay below
+#: it when their units differ little; their estimates' correlation is ±1 to within the forward
+#: differences' second-order terms (1 − 5e-9 on the paper bench), whatever the units.
+COLLINEAR_CORRELATION = 0.9999
 
 
 @dataclass(frozen=True)
@@ -599,7 +605,8 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
                 break
         x = lower + u * span
         n = len(target)  # the data's residuals; the motors' duty penalties follow them
-        se, corr, identifiable, cov, s2, dof = _uncertainty(jac[:n] / span[None, :], result.fun[:n], x, n)
+        se, corr, identifiable, cov, s2, dof = _uncertainty(jac[:n] / span[None, :], result.fun[:n], x, n,
+                                                            [p.name for p in parameters])
         # scipy's trust-region reflective fit keeps its iterates strictly inside the bounds, so a
         # parameter the data push against one ends a little inside it: its active mask marks it
         # (within XTOL of the scaled range, 0.1 %)
@@ -740,7 +747,7 @@ def _prediction_intervals(model: _Model, x, lower, upper, rows: list[_Datum], co
     return base, intervals
 
 
-def _uncertainty(jac: np.ndarray, fun: np.ndarray, x: np.ndarray, m: int):
+def _uncertainty(jac: np.ndarray, fun: np.ndarray, x: np.ndarray, m: int, names: list[str] | None = None):
     """Standard errors, correlation and identifiability from the Jacobian at the optimum, and
     the covariance, residual variance and degrees of freedom they come from.
 
@@ -761,6 +768,10 @@ def _uncertainty(jac: np.ndarray, fun: np.ndarray, x: np.ndarray, m: int):
     for i in range(n):
         if cond > SINGULAR_CONDITION_NUMBER or not np.isfinite(cond):
             reasons.append(f"not identifiable: near-singular Jacobian (condition number {cond:.2g})")
+        elif (partner := _collinear_with(corr, i)) is not None:
+            other = names[partner] if names is not None else f"parameter {partner + 1}"
+            reasons.append(f"not identifiable: the data fix only its combination with {other} "
+                           f"(correlation {corr[i, partner]:+.6f})")
         elif se[i] > abs(x[i]):
             reasons.append("not identifiable: standard error larger than the value")
         elif singular[-1] == 0 or np.all(jac[:, i] == 0):
@@ -768,6 +779,12 @@ def _uncertainty(jac: np.ndarray, fun: np.ndarray, x: np.ndarray, m: int):
         else:
             reasons.append("")
     return se, corr, reasons, cov, s2, dof
+
+
+def _collinear_with(corr: np.ndarray, i: int) -> int | None:
+    """The parameter whose estimate is correlated with parameter i's beyond :data:`COLLINEAR_CORRELATION`."""
+    others = [j for j in range(len(corr)) if j != i and abs(corr[i, j]) > COLLINEAR_CORRELATION]
+    return max(others, key=lambda j: abs(corr[i, j])) if others else None
 
 
 def cross_validate(loaded: LoadedSystem, data: MeasurementSet, names: list[str], *,
