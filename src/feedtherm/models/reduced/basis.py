@@ -54,7 +54,7 @@ import scipy.sparse as sp
 from ...constants import cache_root
 from .. import pardiso
 from ..direct import EliminationOrder, factorize
-from ..interface import ThermalModel, cycle_weights, weighted_sum
+from ..interface import ThermalModel, cycle_weights, film_coefficient, weighted_sum
 from .disk import read_npz, write_npz
 
 #: [W/(m²·K)] film coefficient on every surface while the snapshots are taken: still air with
@@ -93,7 +93,8 @@ class Basis:
 
 
 def reference_coefficients(model: ThermalModel) -> np.ndarray:
-    """Each surface's film coefficient [W/(m²·K)] while the snapshots are taken.
+    """Each surface's film coefficient [W/(m²·K)] while the snapshots are taken (in series with the
+    model's conduction to the face, :attr:`BoundaryBasis.film`, where it has one).
 
     A surface whose coefficient the description fixes (``convection.kind = "fixed"``: a
     foundation, a cooled face) takes that coefficient, which no operating point or
@@ -102,12 +103,15 @@ def reference_coefficients(model: ThermalModel) -> np.ndarray:
     from ...system.surfaces import FixedConvection
 
     surfaces = model.system.surfaces
+    basis = model.boundary_basis(0)
     out = []
-    for name in model.boundary_basis(0).surfaces:
+    for name in basis.surfaces:
         surface = surfaces[name]
         fixed = isinstance(surface.convection, FixedConvection)
         out.append(surface.convection.coefficient * surface.chtc_factor if fixed else REFERENCE_HTC)
-    return np.array(out, dtype=float)
+    out = np.array(out, dtype=float)
+    # from the nodes to the air, as the model's links take them (a model with nodes inside its cells)
+    return out if basis.film is None else film_coefficient(out, basis.film)
 
 
 def reference_links(model: ThermalModel, k: int | None) -> np.ndarray:

@@ -15,7 +15,7 @@ import numpy as np
 
 from ...boundary import BoundaryConditions
 from ...system.schema import FeedSystem
-from ..interface import AmbientCoupling, HeatInput, ThermalModel, cycle_weights, source_powers, surface_coefficients
+from ..interface import AmbientCoupling, HeatInput, ThermalModel, cycle_weights, source_powers
 from .basis import Basis
 from .projection import Projection, project
 
@@ -78,7 +78,7 @@ class ProjectedModel(ThermalModel):
         return self.projection.conductance[k]
 
     def ambient_coupling(self, bc: BoundaryConditions, k: int | None) -> AmbientCoupling:
-        h, sinks = surface_coefficients(bc, self._surfaces)
+        h, sinks = self.projection.averaged.coefficients(bc)  # the full model's film in series, if it has one
         moving = self.projection.moving_surfaces
         matrix = self._weighted_exposure(h) + np.tensordot(h[moving], self._at("exposure_change", k), axes=1)
         rows = self._at("exposure_rows", k)

@@ -46,7 +46,7 @@ from .projection import Projection, project
 __all__ = ["cached_projected_model", "file_digest", "package_digest", "projection_key", "projection_cache_path"]
 
 #: Changes whenever the file layout below changes (the package digest covers it too; this names it).
-STORE_VERSION = 3
+STORE_VERSION = 4
 #: The distributions whose code builds a full model, its basis or its projection.
 LIBRARIES = ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "pymor")
 _PACKAGE = Path(__file__).resolve().parents[2]  # src/feedtherm
@@ -150,6 +150,8 @@ def _to_arrays(p: Projection, key: str) -> dict[str, np.ndarray]:
                "basis_tolerance": b.tolerance, "basis_snapshots": b.snapshots, "basis_seconds": b.seconds,
                "basis_cached": b.cached}
     arrays |= _sparse("averaged_exposure", p.averaged.exposure) | _sparse("averaged_distribution", p.averaged.distribution)
+    arrays["has_film"] = p.averaged.film is not None
+    arrays["averaged_film"] = np.zeros(0) if p.averaged.film is None else np.asarray(p.averaged.film, dtype=float)
     arrays["has_displacement_fields"] = p.displacement_basis is not None
     if p.displacement_basis is not None:
         arrays |= {"displacement_basis": p.displacement_basis, "displacement_origin": p.displacement_origin}
@@ -179,7 +181,8 @@ def _from_arrays(data, key: str) -> Projection | None:
         part_capacity=(dict(zip(names("part_names"), (float(c) for c in data["part_capacity"])))
                        if bool(data["has_part_capacity"]) else None),
         averaged=BoundaryBasis(list(surfaces), list(sources), _read_sparse(data, "averaged_exposure"),
-                               _read_sparse(data, "averaged_distribution")),
+                               _read_sparse(data, "averaged_distribution"),
+                               np.array(data["averaged_film"], dtype=float) if bool(data["has_film"]) else None),
         field_mesh=mesh, full_stats=json.loads(str(data["full_stats"])),
         displacement_basis=data["displacement_basis"] if bool(data["has_displacement_fields"]) else None,
         displacement_origin=data["displacement_origin"] if bool(data["has_displacement_fields"]) else None,
