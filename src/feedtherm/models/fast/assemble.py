@@ -326,12 +326,14 @@ class Network:
         if surface.part in self.layout.cells:
             weights = self._cell_samples(name, 0)
             total = weights.sum()
-            return float(weights @ self.sides[surface.part].resistance / total) if total > 0.0 else 0.0
+            # numpy's own sum, not a BLAS dot product: the same digits whatever the threads (a study's
+            # workers run single-threaded, its serial run may not)
+            return float(np.sum(weights * self.sides[surface.part].resistance) / total) if total > 0.0 else 0.0
         body = self.layout.bodies[surface.part]
         _, areas, resistances = self._body_patches(surface, body, self._body_along(surface, body, 0,
                                                                                    self.layout.positions[0]))
         areas, resistances = np.concatenate(areas), np.concatenate(resistances)
-        return float(areas @ resistances / areas.sum()) if areas.sum() > 0.0 else 0.0
+        return float(np.sum(areas * resistances) / areas.sum()) if areas.sum() > 0.0 else 0.0
 
     def _covered(self, body: AxialBody, offset: float) -> np.ndarray:
         """Length of each cell covered by parts seated on the body's surface (bearings, nut)."""
