@@ -160,14 +160,14 @@ def test_a_coupled_fe_run_closes_its_energy_balance(coupled, fe_cache):
     assert abs(run.energy.relative_error) < 1e-4
 
 
-def strongly_coupled(coupled):
-    """Copper windings whose resistance follows their temperature (IEC 60034-1) under a 3000 N
-    thread preload: the circulating torque, ~9 N·m, makes kilowatts that grow by 1/(235 + θ) per
-    kelvin, which plain Picard steps overshoot."""
+def strongly_coupled(coupled, preload=700.0):
+    """Copper windings whose resistance follows their temperature (IEC 60034-1) under a thread
+    preload of ``preload`` [N]: the circulating torque makes hundreds of watts that grow by
+    1/(235 + θ) per kelvin of the windings."""
     from feedtherm.system.sources import MotorSource
     from feedtherm.system.variants import with_values
 
-    changes = {"sources.screw_nut.preload": 3000.0}
+    changes = {"sources.screw_nut.preload": preload}
     for name in ("screw_motor", "nut_motor"):
         motor = coupled.system.sources[name]
         changes[f"sources.{name}"] = MotorSource.model_validate({
@@ -178,7 +178,7 @@ def strongly_coupled(coupled):
     return with_values(coupled, changes)
 
 
-def test_a_strong_coupling_converges_with_relaxed_steps(coupled):
+def test_a_strong_coupling_converges_to_its_fixed_point(coupled):
     solved = steady_solve(strongly_coupled(coupled), "I")
     integrator = solved.integrator
     bc = integrator.steady_boundary_conditions(0, solved.segment.bc, solved.state)
@@ -188,12 +188,27 @@ def test_a_strong_coupling_converges_with_relaxed_steps(coupled):
     assert bc.heats["screw_motor"].details["terminal_resistance_ohm"] > 5.70 * 1.2  # hot windings
 
 
-def test_a_diverging_steady_iteration_is_reported(coupled, monkeypatch):
-    """Without relaxed steps the same iteration diverges: reported in one line, never iterated forever."""
+def test_a_runaway_beyond_the_accepted_temperatures_is_reported_in_one_line(coupled):
+    """At 3000 N the iterates pass 1000 degC, where the air's and the oils' properties end:
+    reported as the runaway it is, naming the hot source, not as a correlation's refusal."""
     from feedtherm.errors import ModelError
+
+    with pytest.raises(ModelError, match=r"^temperatures.coupling = nonlinear: \w+ reaches [\d.]+ degC, outside "
+                                         r"-150 to 1000 degC .*thermal runaway") as caught:
+        steady_solve(strongly_coupled(coupled, preload=3000.0), "I")
+    assert "\n" not in str(caught.value)
+
+
+def test_a_diverging_steady_iteration_is_reported(coupled, monkeypatch):
+    """Plain Picard steps at 1500 N oscillate with a growing amplitude: the iteration's own
+    detector stops it after two growing changes, in one line, never iterating forever (the
+    range guard, which would stop it first, is widened to let the detector act)."""
+    from feedtherm.errors import ModelError
+    from feedtherm.system.quantities import Limit
     import feedtherm.models.integrator as integrator
 
+    monkeypatch.setattr(integrator, "TEMPERATURE_LIMIT", Limit(0.0, 1e5, "K", "degC", "widened"))
     monkeypatch.setattr(integrator, "MIN_RELAXATION", 1.0)
     monkeypatch.setattr(integrator, "RUNAWAY_ITERATIONS", 2)
     with pytest.raises(ModelError, match="the steady iteration diverges"):
-        steady_solve(strongly_coupled(coupled), "I")
+        steady_solve(strongly_coupled(coupled, preload=1500.0), "I")

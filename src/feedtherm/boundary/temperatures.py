@@ -31,6 +31,14 @@ class LocalTemperatures:
             return {name: mine[name] + fraction * (theirs[name] - mine[name]) for name in mine}
         return LocalTemperatures(blend(self.surfaces, other.surfaces), blend(self.sources, other.sources))
 
+    def outside(self, low: float, high: float) -> tuple[str, float] | None:
+        """The first surface or source whose temperature [K] is not finite within ``low``–``high``."""
+        for values in (self.sources, self.surfaces):
+            for name, value in values.items():
+                if not low <= value <= high:  # NaN included
+                    return name, value
+        return None
+
     def hottest(self) -> tuple[str, float]:
         """The source (or, with none, the surface) with the highest temperature [K]."""
         values = self.sources or self.surfaces

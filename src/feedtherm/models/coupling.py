@@ -6,10 +6,13 @@ integrator reads them from the state with a :class:`TemperatureReadout` and re-e
 boundary conditions (:class:`Coupling`) whenever a reading has moved by more than the
 coupling tolerance since the last evaluation, so a step uses coefficients lagged by at most
 that much; steady states iterate to a fixed point: Picard on the readings, with halved steps
-when the change grows and lengthened ones, 1/(1 − r), when it shrinks by a steady, slow ratio
-r; a change that keeps growing is reported as a divergence, the sign of a heat that grows with
-the temperature faster than the surfaces shed it.  Each step's heat and losses are the ones
-its equations used, so the energy account still closes.
+when the change grows, and steps scaled by 1/(1 − r) when successive steps keep a steady
+signed ratio r of magnitude above :data:`SLOW_CONTRACTION` (longer for a slow one-way
+contraction, shorter for a slowly fading oscillation, r < 0).  A change that keeps growing,
+or a reading that leaves the accepted temperatures (−150 to 1000 °C, where the air's and the
+oils' properties end), is reported as a divergence, the sign of a heat that grows with the
+temperature faster than the surfaces shed it.  Each step's heat and losses are the ones its
+equations used, so the energy account still closes.
 
 What a surface's temperature is: the area-weighted mean of its exposed nodes; a source's:
 the mean of the state weighted by where its heat enters (a bearing's seat, a motor's
@@ -45,7 +48,7 @@ STEADY_TOLERANCE = 1e-4
 STEADY_ITERATIONS = 100
 #: Smallest fraction of a Picard step the steady iteration takes when the change grows.
 MIN_RELAXATION = 1.0 / 16.0
-#: A change that shrinks by a steady ratio r above this is accelerated (steps of 1/(1 - r)) ...
+#: Successive steps with a steady signed ratio |r| above this are rescaled by 1/(1 - r) ...
 SLOW_CONTRACTION = 0.5
 #: ... up to this many plain steps at once.
 MAX_ACCELERATION = 4.0

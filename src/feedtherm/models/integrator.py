@@ -25,6 +25,7 @@ from scipy.sparse.linalg import cg
 
 from ..boundary import BoundaryConditions, LocalTemperatures
 from ..errors import ModelError
+from ..system.quantities import TEMPERATURE_LIMIT
 from .coupling import (
     LINK_REFACTOR,
     LINK_RATE_REFACTOR,
@@ -340,7 +341,7 @@ class Integrator:
             return self._steady_linear(seg_id, bc, k, rhs)
         state = self._steady_linear(seg_id, bc, k, None)
         current = factorised = bc
-        reading, fraction, growing = None, 1.0, 0
+        reading, fraction, growing, last_step = None, 1.0, 0, None
         change = previous = ratio = math.inf
         for _ in range(STEADY_ITERATIONS):
             now = self.readout(state)
@@ -350,24 +351,29 @@ class Integrator:
             loads = self.loads(seg_id, current, k)
             load = loads.heat + loads.ambient.source - self._link_change(seg_id, current, factorised, k, state)
             new = self._steady_linear(seg_id, factorised, k, load)
-            change = float(np.max(np.abs(new - state)))
-            state = new
+            step = new - state
+            change = float(np.max(np.abs(step)))
+            # the signed ratio of successive steps: an oscillation (r < 0) shrinking by |r| per
+            # step is not the slow one-way contraction that longer steps would shorten
+            contraction = _step_ratio(step, last_step)
+            state, last_step = new, step
             if change <= STEADY_TOLERANCE:
                 break
             growing = growing + 1 if change > previous else 0
             if growing and fraction > MIN_RELAXATION:
                 fraction /= 2.0
-            elif not growing and change > SLOW_CONTRACTION * previous and abs(change / previous - ratio) < 0.02:
-                # a steady, slow contraction r (a heat that grows with the temperature): the step
-                # 1/(1 - r) lands where the geometric series of plain steps would end
-                fraction = min(1.0 / (1.0 - change / previous), MAX_ACCELERATION)
+            elif not growing and abs(contraction) > SLOW_CONTRACTION and abs(contraction - ratio) < 0.02:
+                # a steady, slow contraction r (a heat that grows with the temperature) or a slowly
+                # fading oscillation (r < 0): the step 1/(1 - r) of the last one lands where the
+                # geometric series of plain steps would end (it shortens an oscillation's steps)
+                fraction = min(fraction / (1.0 - contraction), MAX_ACCELERATION)
             elif growing >= RUNAWAY_ITERATIONS or not np.all(np.isfinite(state)):
                 name, hottest = now.hottest()
                 raise ModelError(f"temperatures.coupling = nonlinear: the steady iteration diverges ({name} at "
                                  f"{hottest - 273.15:.0f} degC and rising): the heat grows with the temperature "
                                  "faster than the surfaces shed it (a thermal runaway), or the coupling is too "
                                  "strong for this iteration; a transient run shows where the temperatures go")
-            ratio = change / previous if previous > 0.0 else math.inf
+            ratio = contraction
             previous = change
         else:
             raise ModelError(f"temperatures.coupling = nonlinear: the steady state did not converge in "
@@ -392,6 +398,7 @@ class Integrator:
         steps take the difference on the right-hand side at the state of the step's start
         (stable, as the difference is a fraction of the implicit operator).
         """
+        _within_accepted_temperatures(now)
         evaluated = self.coupling.evaluate(base, now)
         if bc is not factorised:
             self._forget(seg_id, bc)
@@ -587,3 +594,31 @@ class Integrator:
         if dt > opts.max_step:  # slow table: smaller steps, fractional advance per step
             return opts.max_step, cells * opts.max_step / dt
         return dt, float(cells)
+
+
+def _step_ratio(step: np.ndarray, last: np.ndarray | None) -> float:
+    """The signed ratio r of two successive iteration steps, the projection of ``step`` on ``last``.
+
+    Near a fixed point a Picard iteration's steps shrink as s_{k+1} ~ r s_k: r in (0, 1) is a
+    one-way contraction, r < 0 an oscillation.  Infinite before there are two steps to compare.
+    """
+    if last is None:
+        return math.inf
+    norm = float(last @ last)
+    return float(step @ last) / norm if norm > 0.0 else math.inf
+
+
+def _within_accepted_temperatures(now: LocalTemperatures) -> None:
+    """A coupled reading outside the temperatures the properties hold for is a runaway, not a state.
+
+    The iterates of a steady state and the steps of a transient alike: evaluated there, a
+    correlation would refuse an argument or a heat pass a megawatt, and the message would name
+    a value and not the cause.
+    """
+    outside = now.outside(TEMPERATURE_LIMIT.low, TEMPERATURE_LIMIT.high)
+    if outside is not None:
+        name, value = outside
+        raise ModelError(f"temperatures.coupling = nonlinear: {name} reaches {value - 273.15:.4g} degC, outside "
+                         f"{TEMPERATURE_LIMIT.describe()}: the heat grows with the temperature faster than the "
+                         "surfaces shed it (a thermal runaway), or a value of the description is far from its "
+                         "machine's")
