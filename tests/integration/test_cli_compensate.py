@@ -113,6 +113,20 @@ def test_a_study_writes_its_files_and_one_line(study):
         with pytest.raises(ValueError, match="^x: .* outside the stroke"):
             law.at(x_max + 0.01)
     assert "along the stroke" in html and "along the stroke E(x) RMS" in lines[0]
+    # issue 34, item 2: the test machines draw every declared uncertainty; out-of-range cases apart
+    machine = summary["sets"]["test"]["machines"][0]
+    assert {"screw_expansion", "loop_expansion", "tcr_bolted", "front_bearing_preload"} <= set(machine["declared"])
+    outside = summary["out_of_range"]
+    assert list(outside["cases"]) == ["ambient_ramp", "ambient_step", "fast", "warm_start"]
+    assert outside["cycles_per_case"] == 1
+    for kind in ("regression", "regression_lags", "kalman"):
+        entry = outside["laws"][kind]
+        assert entry["sensors"] == summary["chosen"][kind]["sensors"]
+        for what in ("d", "stroke"):
+            assert list(entry[what]) == list(outside["cases"]), (kind, what)
+            for figures in entry[what].values():
+                assert 0 <= figures["rms_um"] <= figures["max_um"] and figures["uncompensated_rms_um"] > 0
+    assert "out of the training" in html and "; out of range, worst " in lines[0]
 
 
 @pytest.mark.parametrize("args, message", [

@@ -113,7 +113,30 @@ def summary(result: StudyResult, loaded: LoadedSystem, measured: dict[str, list[
             "metric": "RMS and max of E(x_j, t) - prediction over the recorded table positions and every sample of "
                       "the test cycles; d_only: the law of D applied at every x (correction -D everywhere)",
             "laws": {kind: _stroke_entry(s) for kind, s in result.stroke.items()}},
+        "out_of_range": _out_of_range_entry(result),
         **({} if adaptation is None else {"adaptation": adaptation}),
+    }
+
+
+def _out_of_range_entry(result: StudyResult) -> dict | None:
+    """Each law on each out-of-range case, µm: never mixed into the test figures."""
+    if not result.out_of_range:
+        return None
+    from ..analysis.compensation import data
+
+    def brief(r):
+        return {k: v for k, v in r.as_dict().items() if k != "per_cycle"}
+
+    return {
+        "cases": {"ambient_ramp": f"the room warms by {data.RAMP_K:g} K over the cycle",
+                  "ambient_step": f"the room jumps by +{data.STEP_K:g} K at {100 * data.STEP_AT:g} % of the cycle",
+                  "fast": f"every run {data.SPEED_FACTOR:g} times faster than the training's",
+                  "warm_start": f"the machine starts {data.WARM_K:g} K above its room"},
+        "cycles_per_case": min(data.OUT_OF_RANGE_CYCLES, result.settings.cycles),
+        "machines": "each cycle on its own variant drawn from every declared uncertainty, as the test cycles",
+        "laws": {kind: {"sensors": list((result.chosen[kind] if kind in result.chosen else result.best(3)).sensors),
+                        **{what: {case: brief(r) for case, r in cases.items()} for what, cases in entry.items()}}
+                 for kind, entry in result.out_of_range.items()},
     }
 
 
@@ -181,8 +204,13 @@ def summary_line(out_dir: Path, result: StudyResult, wall_time_s: float) -> str:
     along = "" if stroke is None or stroke.test is None else (
         f"; along the stroke E(x) RMS {stroke.test.rms * 1e6:.2f} µm, max {stroke.test.max * 1e6:.2f} µm "
         f"(-D everywhere: {stroke.d_only.rms * 1e6:.2f}, {stroke.d_only.max * 1e6:.2f} µm)")
+    outside = result.out_of_range.get("regression_lags", {}).get("d", {})
+    worst = max(outside, key=lambda case: outside[case].rms, default=None)
+    beyond = "" if worst is None else (f"; out of range, worst {worst}: RMS {outside[worst].rms * 1e6:.2f} µm, "
+                                       f"max {outside[worst].max * 1e6:.2f} µm")
     return (f"{out_dir}: law on {', '.join(chosen.sensors)}: held-out RMS {chosen.test.rms * 1e6:.2f} µm, "
-            f"max {chosen.test.max * 1e6:.2f} µm ({change} uncompensated){along}; written in {wall_time_s:.1f} s")
+            f"max {chosen.test.max * 1e6:.2f} µm ({change} uncompensated){along}{beyond}; "
+            f"written in {wall_time_s:.1f} s")
 
 
 FIGURES = ("error_vs_k.png", "sensor_map.png", "test_cycle.png")

@@ -74,8 +74,56 @@ def test_a_machine_variant_scales_every_heat_and_chtc_within_its_spread(paper):
     assert np.all(np.abs(factors - 1) <= DEFAULT_SPREAD) and factors.std() > 0.05
     variant = a.apply(paper)
     assert variant.system.sources["front_bearing"].heat_factor == a.heat["front_bearing"]
-    assert variant.system.surfaces["worktable"].chtc_factor == a.chtc["worktable"]
+    # the declared "chtc_moving" scale on the moving group's CHTCs, times the variant's own factor
+    assert variant.system.surfaces["worktable"].chtc_factor == pytest.approx(
+        a.declared["chtc_moving"] * a.chtc["worktable"], rel=1e-12)
+    assert variant.system.surfaces["guideways"].chtc_factor == pytest.approx(
+        a.declared["chtc_fixed"] * a.chtc["guideways"], rel=1e-12)
     assert variant.sha256 != paper.sha256
+
+
+def test_a_machine_variant_draws_every_declared_uncertainty_within_its_range(paper):
+    from feedtherm.analysis.uncertainty.declared import resolve_uncertainties
+
+    declared = {p.name: p for p in resolve_uncertainties(paper)}
+    assert {"screw_expansion", "loop_expansion", "screw_nut_preload", "tcr_bolted"} <= set(declared)
+    draws = [draw_variant(paper, np.random.default_rng(seed)) for seed in range(40)]
+    for name, parameter in declared.items():
+        values = np.array([d.declared[name] for d in draws])
+        assert np.all((parameter.low <= values) & (values <= parameter.high)), name
+        assert values.std() > 0.0, name
+    variant = draws[0].apply(paper)
+    assert variant.system.materials["gcr15"].expansion == draws[0].declared["screw_expansion"]
+    assert variant.system.materials["q345b"].expansion == draws[0].declared["loop_expansion"]
+    assert variant.system.sources["screw_nut"].preload == draws[0].declared["screw_nut_preload"]
+    # a bolted joint's resistance: the declared scale times its nominal value
+    assert variant.system.joints[9].tcr == pytest.approx(draws[0].declared["tcr_bolted"] * paper.system.joints[9].tcr)
+
+
+def test_the_heat_and_chtc_factors_of_a_seed_do_not_depend_on_the_declared_draws(paper):
+    full = draw_variant(paper, np.random.default_rng(5))
+    alone = draw_variant(paper, np.random.default_rng(5), declared=False)
+    assert alone.declared == {} and full.declared
+    assert (full.heat, full.chtc) == (alone.heat, alone.chtc)
+
+
+def test_each_out_of_range_case_changes_one_thing_of_its_cycle(paper):
+    from feedtherm.analysis.compensation.data import OUT_OF_RANGE, out_of_range_cycle
+
+    assert OUT_OF_RANGE == ("ambient_ramp", "ambient_step", "fast", "warm_start")
+    cycle = random_cycle(paper.system, cycle_seed(0, 3, 0))
+    first = cycle.segments[0].ambient
+    ramp = out_of_range_cycle("ambient_ramp", cycle)
+    # 8 K over the 8 h cycle: a segment starting at t has first + 8 * t / 28800
+    assert [s.ambient for s in ramp.segments] == pytest.approx([first + 8.0 * s.start / 28800.0 for s in ramp.segments])
+    assert [(s.screw_speed, s.nut_speed) for s in ramp.segments] == [(s.screw_speed, s.nut_speed) for s in cycle.segments]
+    step = out_of_range_cycle("ambient_step", cycle)
+    assert 7200.0 in [s.start for s in step.segments]
+    assert all(s.ambient == pytest.approx(first + (5.0 if s.start >= 7200.0 else 0.0)) for s in step.segments)
+    fast = out_of_range_cycle("fast", cycle)
+    assert [s.screw_speed for s in fast.segments] == pytest.approx([1.5 * s.screw_speed for s in cycle.segments])
+    assert max(abs(s.screw_speed) for s in fast.segments) > SpeedEnvelope.of(paper.system).screw[1] / RPM
+    assert _rows(out_of_range_cycle("warm_start", cycle)) == _rows(cycle)  # the machine starts warm, not the cycle
 
 
 def test_candidates_are_named_exposed_points_of_the_parts(paper):

@@ -8,7 +8,13 @@ Three sets of cycles, each drawn from its own stream of the study's seed
   :mod:`~feedtherm.analysis.machine_variants`, one draw per cycle) — what the sensor selection
   compares candidate sets on;
 - ``test`` (stream 2): further cycles on further variants — what the reported figures come from,
-  never seen while fitting or choosing.
+  never seen while fitting or choosing;
+- ``out_of_range`` (stream 3): cycles outside what the training cycles contain, on further
+  variants (:data:`OUT_OF_RANGE`), reported beside the test figures, never mixed into them.
+
+A variant draws every declared uncertainty and the heat and CHTC factors
+(:func:`~feedtherm.analysis.machine_variants.draw_variant`); the training set stays on the
+nominal machine.
 
 Every cycle runs with every candidate sensor (:mod:`~feedtherm.analysis.candidates`) through
 :func:`~feedtherm.analysis.sweep.run_batch`, the loop of ``feedtherm sweep``.
@@ -32,8 +38,24 @@ from ..random_cycles import CycleRanges, cycle_seed, random_cycle
 from ..execution import Execution, TaskFailure
 from ..sweep import SweepRun, run_batch
 
-#: The three sets of a study and their seed streams.
-STREAMS = {"train": 0, "validation": 1, "test": 2}
+#: The sets of a study and their seed streams.
+STREAMS = {"train": 0, "validation": 1, "test": 2, "out_of_range": 3}
+#: The out-of-range cases, each an assumption about what a machine meets that its training did
+#: not hold; every case changes one thing of a random cycle drawn as the training's are:
+#:
+#: - ``ambient_ramp``: the room warms by 8 K over the 8 h, from the cycle's first ambient (a
+#:   workshop whose air conditioning fails; the training drifts by at most 3 K);
+#: - ``ambient_step``: the room jumps by +5 K at a quarter of the cycle (2 h of 8) and stays (a
+#:   door to a hot hall opened; the training's ambient moves by under 0.4 K per 10 min);
+#: - ``fast``: every run 1.5 times faster, screw and relative speed alike (above every condition
+#:   the description states, where the training's speeds end);
+#: - ``warm_start``: the machine starts 8 K above its room, uniformly (stopped after work in a
+#:   warmer hall; the training starts at the ambient).
+OUT_OF_RANGE = ("ambient_ramp", "ambient_step", "fast", "warm_start")
+#: Cycles per out-of-range case (fewer when a study runs fewer cycles per set).
+OUT_OF_RANGE_CYCLES = 2
+#: The size of the cases' changes (see :data:`OUT_OF_RANGE`): K, K, share of the cycle, factor, K.
+RAMP_K, STEP_K, STEP_AT, SPEED_FACTOR, WARM_K = 8.0, 5.0, 0.25, 1.5, 8.0
 #: Offset of the streams the machine variants are drawn from (independent of the cycles' draws).
 VARIANT_STREAM = 100
 #: The name under which a cycle is added to the description's duty cycles.
@@ -144,31 +166,76 @@ def speeds_at(cycle: DutyCycle, times: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return screw[index], nut[index]
 
 
+def out_of_range_cycle(case: str, cycle: DutyCycle) -> DutyCycle:
+    """``cycle`` changed as out-of-range ``case`` says (:data:`OUT_OF_RANGE`; ``warm_start`` changes
+    the machine's start, not the cycle)."""
+    rows = []
+    first = cycle.segments[0].ambient
+    step_at = float(round(STEP_AT * cycle.duration))
+    for segment in cycle.segments:
+        ambient, screw, nut = segment.ambient, segment.screw_speed, segment.nut_speed
+        if case == "ambient_ramp":
+            ambient = first + RAMP_K * segment.start / cycle.duration
+        elif case == "ambient_step":
+            ambient = first + (STEP_K if segment.start >= step_at else 0.0)
+        elif case == "fast":
+            screw, nut = SPEED_FACTOR * screw, SPEED_FACTOR * nut
+        rows.append({"start": f"{segment.start!r} s", "screw_speed": f"{screw!r} rad/s", "nut_speed": f"{nut!r} rad/s",
+                     "ambient": f"{ambient!r} K"})
+    if case == "ambient_step" and step_at not in {s.start for s in cycle.segments}:
+        held = next(s for s in reversed(cycle.segments) if s.start < step_at)
+        rows.append({"start": f"{step_at!r} s", "screw_speed": f"{held.screw_speed!r} rad/s",
+                     "nut_speed": f"{held.nut_speed!r} rad/s", "ambient": f"{first + STEP_K!r} K"})
+        rows.sort(key=lambda row: float(row["start"].split()[0]))
+    return DutyCycle.model_validate({"segments": rows, "duration": f"{cycle.duration!r} s",
+                                     "description": f"{cycle.description}, out of range: {case}"})
+
+
+def _planned(loaded: LoadedSystem, settings: StudySettings, name: str) -> list[tuple[str, DutyCycle, int, str | None]]:
+    """``(label, cycle, index, out-of-range case)`` of every cycle of set ``name``."""
+    stream = STREAMS[name]
+    if name != "out_of_range":
+        return [(f"{name}-{index:03d}", random_cycle(loaded.system, cycle_seed(settings.seed, stream, index),
+                                                     settings.ranges,
+                                                     description=f"{name} cycle {index} of seed {settings.seed}"),
+                 index, None) for index in range(settings.cycles)]
+    out = []
+    for c, case in enumerate(OUT_OF_RANGE):
+        for k in range(min(OUT_OF_RANGE_CYCLES, settings.cycles)):
+            index = c * OUT_OF_RANGE_CYCLES + k
+            cycle = random_cycle(loaded.system, cycle_seed(settings.seed, stream, index), settings.ranges,
+                                 description=f"{name} cycle {index} of seed {settings.seed}")
+            out.append((f"{case}-{k:03d}", out_of_range_cycle(case, cycle), index, case))
+    return out
+
+
 def simulate_set(loaded: LoadedSystem, candidates: dict[str, Candidate], settings: StudySettings, name: str,
                  progress: Callable[[float], None] | None = None, execution: Execution = Execution()) -> CycleSet:
-    """Draw and simulate the cycles of set ``name`` (``train``, ``validation`` or ``test``).
+    """Draw and simulate the cycles of set ``name`` (a key of :data:`STREAMS`).
 
-    The training set runs the nominal description; the others run one machine variant per cycle.
+    The training set runs the nominal description; the others run one machine variant per cycle,
+    drawn from every declared uncertainty (:func:`~feedtherm.analysis.machine_variants.draw_variant`).
     """
     stream = STREAMS[name]
     base = with_candidates(loaded, candidates)
-    runs, cycles, variants = [], [], []
-    for index in range(settings.cycles):
-        cycle = random_cycle(loaded.system, cycle_seed(settings.seed, stream, index), settings.ranges,
-                             description=f"{name} cycle {index} of seed {settings.seed}")
+    runs, cycles, variants, labels = [], [], [], []
+    for label, cycle, index, case in _planned(loaded, settings, name):
         variant = None
         described = base
         if name != "train":
             variant = draw_variant(loaded, cycle_seed(settings.seed, VARIANT_STREAM + stream, index), settings.spread)
             described = variant.apply(base, label=f"{name} machine {index}")
-        described = with_values(described, {"duty_cycles": {**described.system.duty_cycles, CYCLE_NAME: cycle}},
-                                origin_suffix=f"{name} cycle {index}")
+        changes = {"duty_cycles": {**described.system.duty_cycles, CYCLE_NAME: cycle}}
+        if case == "warm_start":
+            changes["temperatures.initial"] = cycle.segments[0].ambient + WARM_K
+        described = with_values(described, changes, origin_suffix=f"{name} cycle {index}")
         runs.append(SweepRun(described, {"cycle": CYCLE_NAME, "model": settings.model,
                                          "motion": settings.motion, "mesh": settings.mesh,
                                          "sample_interval": settings.sample_interval},
                              label=f"{name} cycle {index} of seed {settings.seed}"))
         cycles.append(cycle)
         variants.append(variant)
+        labels.append(label)
     names = list(candidates)
     records = []
     for index, solution in enumerate(run_batch(runs, progress, execution)):
@@ -180,7 +247,7 @@ def simulate_set(loaded: LoadedSystem, candidates: dict[str, Candidate], setting
         screw, nut = speeds_at(cycles[index], solution.times)
         positions = stroke_positions(solution.table_x)
         records.append(CycleRecord(
-            f"{name}-{index:03d}", np.asarray(solution.times, float),
+            labels[index], np.asarray(solution.times, float),
             np.column_stack([solution.sensors[n] for n in names]), np.asarray(solution.elongation, float),
             screw, nut, None if variants[index] is None else variants[index].as_dict(), cycles[index],
             positions=positions if positions.size else None,

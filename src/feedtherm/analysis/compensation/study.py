@@ -9,7 +9,9 @@ sensors for comparison, judges each on the test cycles (:mod:`.metrics`) and sta
 conditioning (:mod:`.conditioning`).  Along the stroke (:mod:`.stroke`): for the two regression
 laws asked for, a law of E(x, t) on the same sensors, its basis order and ridge chosen on the
 validation cycles, judged on the test cycles over positions and time beside every law of D applied
-at every x (the Kalman estimator's included: it stays a law of D).
+at every x (the Kalman estimator's included: it stays a law of D).  Out of range
+(:data:`~.data.OUT_OF_RANGE`): each law asked for, and the best with at most 3 sensors, judged on
+each case's cycles apart, as a law of D and along the stroke (:func:`out_of_range`).
 """
 
 from __future__ import annotations
@@ -26,7 +28,7 @@ from ..candidates import Candidate, candidate_sensors, with_candidates
 from ..execution import Execution, progress_share
 from ..random_cycles import SpeedEnvelope
 from .conditioning import kalman_conditioning, regression_conditioning
-from .data import STREAMS, CycleSet, StudySettings, simulate_set
+from .data import OUT_OF_RANGE, STREAMS, CycleSet, StudySettings, simulate_set
 from .kalman import KalmanLaw, KalmanNoise, model_errors, sensor_sigma
 from .metrics import Residuals, residuals
 from .noise import SensorNoise, noisy_set
@@ -88,6 +90,8 @@ class StudyResult:
     request: int | tuple[str, ...]
     noise: SensorNoise | None = None  # the sensors' noise the sets were read with
     stroke: dict[str, StrokeResult] = field(default_factory=dict)  # law kind -> along the stroke (:mod:`.stroke`)
+    #: law kind (or "best") -> "d" / "stroke" -> out-of-range case -> residuals (:func:`out_of_range`)
+    out_of_range: dict[str, dict[str, dict[str, Residuals]]] = field(default_factory=dict)
 
     def best(self, max_sensors: int = 3) -> LawResult:
         """The law with the smallest validation RMS among the curves' laws of at most ``max_sensors`` sensors."""
@@ -140,7 +144,7 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
     kinds = {name: c.kind for name, c in candidates.items()}
     noise = SensorNoise.of(loaded.system, kinds) if settings.noise else SensorNoise.none(kinds)
     sets = {}
-    names = ("train", "validation", "test")
+    names = tuple(STREAMS)
     for i, name in enumerate(names):
         inner = None if progress is None else progress_share(progress, i, len(names))
         clean = simulate_set(loaded, candidates, settings, name, inner, execution)
@@ -164,8 +168,45 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
     chosen[KALMAN] = _with_kalman_conditioning(_judge(KALMAN, kalman(chosen["regression_lags"].sensors), sets), sets)
     if own:
         declared[KALMAN] = _with_kalman_conditioning(_judge(KALMAN, kalman(own), sets), sets)
-    stroke = along_stroke(chosen, sets) if all(c.stroke_error is not None for c in sets["test"].cycles) else {}
-    return StudyResult(settings, candidates, sets, curves, chosen, declared, request, noise, stroke)
+    has_stroke = all(c.stroke_error is not None for name in ("test", "out_of_range") for c in sets[name].cycles)
+    stroke = along_stroke(chosen, sets) if has_stroke else {}
+    result = StudyResult(settings, candidates, sets, curves, chosen, declared, request, noise, stroke)
+    return replace(result, out_of_range=out_of_range(result))
+
+
+def out_of_range(result: StudyResult) -> dict[str, dict[str, dict[str, Residuals]]]:
+    """Each law asked for, and the best with at most 3 sensors (``best``), on each out-of-range case
+    apart: ``d``, its residuals of D; ``stroke``, over positions and time, with the stroke law where
+    there is one (a regression's, the filter's state along the stroke) and else its D at every x."""
+    cycles = result.sets["out_of_range"]
+    names = cycles.names
+    cases = {case: replace(cycles, name=case, cycles=[c for c in cycles.cycles if c.label.startswith(f"{case}-")])
+             for case in OUT_OF_RANGE}
+    laws = {kind: r.law for kind, r in result.chosen.items()}
+    best = result.best(3)
+    if all(best.law is not law for law in laws.values()):
+        laws["best"] = best.law
+    out = {}
+    for kind, law in laws.items():
+        d = {case: residuals(lambda record, law=law: law.predict_record(record, names), subset)
+             for case, subset in cases.items() if subset.cycles}
+        entry = {"d": d}
+        if result.stroke:
+            along = _stroke_predictor(kind, law, result)
+            entry["stroke"] = {case: stroke_residuals(along, subset) for case, subset in cases.items() if subset.cycles}
+        out[kind] = entry
+    return out
+
+
+def _stroke_predictor(kind: str, law, result: StudyResult):
+    """record -> E(x_j, t) [m] as law ``kind`` predicts it along the stroke (see :func:`out_of_range`)."""
+    names = result.sets["test"].names
+    stroke = result.stroke.get(kind)
+    if stroke is not None and stroke.choice is not None:
+        return lambda record: stroke.choice.law.predict_record(record, names)
+    if stroke is not None and stroke.test is not None:
+        return lambda record: law.predict_stroke_record(record, names)
+    return lambda record: law.predict_record(record, names)
 
 
 def along_stroke(chosen: dict[str, LawResult], sets: dict[str, CycleSet]) -> dict[str, StrokeResult]:

@@ -20,7 +20,7 @@ def compensation_section(summary: dict, figures: dict[str, bytes]) -> str:
         f"Laws fitted on {settings['cycles']} random cycles of the nominal model ({settings['model']} model, "
         f"{settings['mode']} mode, seed {settings['seed']}), sensors chosen on {settings['cycles']} validation "
         f"cycles and judged on {settings['cycles']} test cycles, each on another machine of the same design "
-        f"(every heat and CHTC scaled by a factor within ±{100 * settings['spread']:.0f} %). Without compensation "
+        f"({_machines(summary)}). Without compensation "
         f"the RMS error over the test cycles is {number(test['uncompensated_rms_um'], 1)} µm, the largest "
         f"{number(test['uncompensated_max_um'], 1)} µm. Residuals in µm; reduction of the RMS error.")]
     body += _noise(summary.get("noise"))
@@ -55,6 +55,7 @@ def compensation_section(summary: dict, figures: dict[str, bytes]) -> str:
             caption=f"the measured bench: D from the measured {', '.join(block['sensors'])} "
                     f"({LAW_LABELS.get(kind, kind)}, trained on simulated cycles only), µm"))
     body += _stroke(summary.get("stroke"))
+    body += _out_of_range(summary.get("out_of_range"))
     body += _leave_one_out(summary.get("leave_one_condition_out"))
     body += _adaptation(summary.get("adaptation"))
     return section("compensation", "Thermal-error compensation", "".join(body))
@@ -121,6 +122,40 @@ def _stroke(block: dict | None) -> list[str]:
                           f"the test cycles (without compensation RMS {number(first['uncompensated_rms_um'], 1)} µm, max "
                           f"{number(first['uncompensated_max_um'], 1)} µm); the E(x) law's Legendre order chosen on "
                           f"the validation cycles; the Kalman filter: its state read along the stroke (its model's rows), µm")]
+
+
+def _machines(summary: dict) -> str:
+    """How the held-out machines differ from the nominal one."""
+    spread = f"{100 * summary['settings']['spread']:.0f} %"
+    machines = summary["sets"]["test"].get("machines") or [{}]
+    declared = sorted((machines[0] or {}).get("declared") or {})
+    if not declared:
+        return f"every heat and CHTC scaled by a factor within ±{spread}"
+    return (f"every declared uncertainty drawn from its distribution ({', '.join(declared)}), and every heat and "
+            f"CHTC scaled by a further factor within ±{spread}")
+
+
+def _out_of_range(block: dict | None) -> list[str]:
+    """Each law on each out-of-range case, beside (never inside) the test figures."""
+    if not block:
+        return []
+    cases = list(block["cases"])
+    rows = []
+    for kind, entry in block["laws"].items():
+        label = "best (≤ 3 sensors)" if kind == "best" else LAW_LABELS.get(kind, kind)
+        for what, title in (("d", "D"), ("stroke", "E(x, t)")):
+            if what not in entry:
+                continue
+            rows.append([label, ", ".join(entry["sensors"]), title,
+                         *(f"{number(entry[what][c]['rms_um'], 2)} / {number(entry[what][c]['max_um'], 1)}"
+                           f" ({number(entry[what][c]['reduction_percent'], 0)} %)" if c in entry[what] else "—"
+                           for c in cases)])
+    return [table(["law", "sensors", "error", *cases], rows,
+                  caption="out of the training's range, each case on its own "
+                          f"{block['cycles_per_case']} cycles and machine variants: "
+                          + "; ".join(f"{c}: {text}" for c, text in block["cases"].items())
+                          + ". RMS / max residual in µm (reduction of the RMS error); E(x, t) with the stroke law "
+                            "where the law has one, else its D at every x")]
 
 
 def _noise(block: dict | None) -> list[str]:
