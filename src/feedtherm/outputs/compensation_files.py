@@ -128,10 +128,7 @@ def _out_of_range_entry(result: StudyResult) -> dict | None:
         return {k: v for k, v in r.as_dict().items() if k != "per_cycle"}
 
     return {
-        "cases": {"ambient_ramp": f"the room warms by {data.RAMP_K:g} K over the cycle",
-                  "ambient_step": f"the room jumps by +{data.STEP_K:g} K at {100 * data.STEP_AT:g} % of the cycle",
-                  "fast": f"every run {data.SPEED_FACTOR:g} times faster than the training's",
-                  "warm_start": f"the machine starts {data.WARM_K:g} K above its room"},
+        "cases": data.out_of_range_cases(),
         "cycles_per_case": min(data.OUT_OF_RANGE_CYCLES, result.settings.cycles),
         "machines": "each cycle on its own variant drawn from every declared uncertainty, as the test cycles",
         "laws": {kind: {"sensors": list((result.chosen[kind] if kind in result.chosen else result.best(3)).sensors),

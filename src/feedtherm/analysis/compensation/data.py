@@ -56,6 +56,14 @@ OUT_OF_RANGE = ("ambient_ramp", "ambient_step", "fast", "warm_start")
 OUT_OF_RANGE_CYCLES = 2
 #: The size of the cases' changes (see :data:`OUT_OF_RANGE`): K, K, share of the cycle, factor, K.
 RAMP_K, STEP_K, STEP_AT, SPEED_FACTOR, WARM_K = 8.0, 5.0, 0.25, 1.5, 8.0
+
+
+def out_of_range_cases() -> dict[str, str]:
+    """Each out-of-range case and what it changes, in words (for the files and the report)."""
+    return {"ambient_ramp": f"the room warms by {RAMP_K:g} K over the cycle",
+            "ambient_step": f"the room jumps by +{STEP_K:g} K at {100 * STEP_AT:g} % of the cycle",
+            "fast": f"every run {SPEED_FACTOR:g} times faster than the training's",
+            "warm_start": f"the machine starts {WARM_K:g} K above its room"}
 #: Offset of the streams the machine variants are drawn from (independent of the cycles' draws).
 VARIANT_STREAM = 100
 #: The name under which a cycle is added to the description's duty cycles.
