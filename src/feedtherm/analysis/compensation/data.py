@@ -1,6 +1,6 @@
 """Training and held-out data of a compensation study: random cycles run through a model.
 
-Three sets of cycles, each drawn from its own stream of the study's seed
+Four sets of cycles, each drawn from its own stream of the study's seed
 (:func:`~feedtherm.analysis.random_cycles.cycle_seed`):
 
 - ``train`` (stream 0): cycles on the nominal description — what a law is fitted on;
