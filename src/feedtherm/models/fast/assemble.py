@@ -126,6 +126,9 @@ class Network:
                 fixed.add(*contact.links(0))
         self.fixed = laplacian(layout.n_nodes, fixed)
         self._surface_cache: dict[tuple[str, int], tuple[np.ndarray, np.ndarray]] = cache["surfaces"]
+        # this network's own: a film resistance goes with the conductivities, which the shared
+        # geometry cache does not key
+        self._film_cache: dict[str, float] = {}
 
     # ------------------------------------------------------------------ structure
     def _check_joints(self) -> None:
@@ -322,6 +325,11 @@ class Network:
         over ``k`` to an end face.  :func:`~feedtherm.models.interface.film_coefficient` puts it
         in series with the surface's coefficient.
         """
+        if name not in self._film_cache:
+            self._film_cache[name] = self._film_resistance(name)
+        return self._film_cache[name]
+
+    def _film_resistance(self, name: str) -> float:
         surface = self.system.surfaces[name]
         if surface.part in self.layout.cells:
             weights = self._cell_samples(name, 0)
