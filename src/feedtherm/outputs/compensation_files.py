@@ -64,7 +64,7 @@ def _entry(result: LawResult) -> dict:
 def _stroke_entry(stroke: StrokeResult) -> dict:
     """One law along the stroke, µm: its law of D at every x, and the stroke law where there is one."""
     entry = {"law": stroke.kind, "sensors": list(stroke.sensors),
-             "d_only": {k: v for k, v in stroke.d_only.as_dict().items() if k != "per_cycle"}}
+             "d_only": stroke.d_only.as_dict(per_cycle=False)}
     if stroke.choice is None:
         entry["stroke_law"] = None
         if stroke.test is not None:
@@ -124,15 +124,12 @@ def _out_of_range_entry(result: StudyResult) -> dict | None:
         return None
     from ..analysis.compensation import data
 
-    def brief(r):
-        return {k: v for k, v in r.as_dict().items() if k != "per_cycle"}
-
     return {
         "cases": data.out_of_range_cases(),
         "cycles_per_case": min(data.OUT_OF_RANGE_CYCLES, result.settings.cycles),
         "machines": "each cycle on its own variant drawn from every declared uncertainty, as the test cycles",
         "laws": {kind: {"sensors": list((result.chosen[kind] if kind in result.chosen else result.best(3)).sensors),
-                        **{what: {case: brief(r) for case, r in cases.items()} for what, cases in entry.items()}}
+                        **{what: {case: r.as_dict(per_cycle=False) for case, r in cases.items()} for what, cases in entry.items()}}
                  for kind, entry in result.out_of_range.items()},
     }
 

@@ -125,14 +125,7 @@ class CompensationLaw:
         """The normalised position ξ of ``x`` [m]; ValueError naming x when x is missing, not finite or outside the stroke."""
         if x is None:
             raise ValueError("x: a stroke law needs the table position x [m]")
-        try:
-            x = float(x)
-        except (TypeError, ValueError):
-            raise ValueError(f"x: {x!r} is not a table position in metres") from None
-        if not math.isfinite(x):
-            raise ValueError(f"x: {x} is not a finite table position [m]")
-        if not self.x_min - 1e-9 <= x <= self.x_max + 1e-9:
-            raise ValueError(f"x: {x:.6g} m is outside the stroke, [{self.x_min:.6g}, {self.x_max:.6g}] m")
+        x = table_position(x, self.x_min, self.x_max)
         return min(1.0, max(-1.0, 2.0 * (x - self.x_min) / (self.x_max - self.x_min) - 1.0))
 
     def _at(self, xi: float) -> float:
@@ -197,6 +190,25 @@ def _posterior(block: dict | None, n_features: int):
         raise ValueError(f"posterior: centre_K must have {n_features} entries and covariance "
                          f"{n_features + 1} x {n_features + 1}")
     return centre, covariance, float(block["noise_sigma_m"])
+
+
+def table_position(x, x_min: float, x_max: float) -> float:
+    """``x`` [m] as a float inside the stroke [x_min, x_max] (to 1 nm).
+
+    Raises
+    ------
+    ValueError
+        One line naming x: not a number, not finite, or outside the stroke.
+    """
+    try:
+        x = float(x)
+    except (TypeError, ValueError):
+        raise ValueError(f"x: {x!r} is not a table position in metres") from None
+    if not math.isfinite(x):
+        raise ValueError(f"x: {x} is not a finite table position [m]")
+    if not x_min - 1e-9 <= x <= x_max + 1e-9:
+        raise ValueError(f"x: {x:.6g} m is outside the stroke, [{x_min:.6g}, {x_max:.6g}] m")
+    return x
 
 
 def evaluate(document: dict, times, readings: dict[str, list[float]], x=None) -> list:

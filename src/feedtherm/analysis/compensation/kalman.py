@@ -33,6 +33,7 @@ import numpy as np
 import scipy.linalg as sl
 
 from ...constants import ELONGATION_PROBE
+from .evaluator import table_position
 from .operating_table import OperatingTable
 from .state_space import ReducedModel
 
@@ -178,21 +179,8 @@ class KalmanEstimator:
             raise ValueError("x: this law has no rows along the stroke (a law of D only)")
         if self.x is None:
             raise ValueError("no readings yet: call update() first")
-        try:
-            x = float(x)
-        except (TypeError, ValueError):
-            raise ValueError(f"x: {x!r} is not a table position in metres") from None
-        lo, hi = float(m.stroke_x[0]), float(m.stroke_x[-1])
-        if not np.isfinite(x):
-            raise ValueError(f"x: {x} is not a finite table position [m]")
-        if not lo - 1e-9 <= x <= hi + 1e-9:
-            raise ValueError(f"x: {x:.6g} m is outside the stroke, [{lo:.6g}, {hi:.6g}] m")
-        j = int(np.clip(np.searchsorted(m.stroke_x, x, side="right") - 1, 0, len(m.stroke_x) - 2))
-        w = (min(max(x, lo), hi) - m.stroke_x[j]) / (m.stroke_x[j + 1] - m.stroke_x[j])
-        zeta = self.x[:self.r]
-        left = float(m.C_stroke[j] @ zeta + m.d_stroke[j])
-        right = float(m.C_stroke[j + 1] @ zeta + m.d_stroke[j + 1])
-        return left + w * (right - left)
+        x = table_position(x, float(m.stroke_x[0]), float(m.stroke_x[-1]))
+        return float(np.interp(x, m.stroke_x, m.C_stroke @ self.x[:self.r] + m.d_stroke))
 
     @property
     def heat_errors(self) -> np.ndarray:

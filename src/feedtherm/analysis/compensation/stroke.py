@@ -42,7 +42,7 @@ from numpy.polynomial import legendre
 
 from ...errors import FeedthermError
 from .data import CycleRecord, CycleSet
-from .metrics import Residuals
+from .metrics import Residuals, summarise
 from .regression import RIDGE_GRID_K, features, ridge_weights
 
 #: The basis orders tried on the validation cycles: constant, linear, quadratic, cubic in x.
@@ -244,15 +244,13 @@ def fit_stroke_validated(train: CycleSet, validation: CycleSet, sensors: tuple[s
     positions and time; the law is refitted on ``train`` at that order and ridge."""
     x_min, x_max = stroke_range(train)
     alphas = [float(g) ** 2 for g in ridge_grid]
-    columns = [validation.names.index(s) for s in sensors]
     truth = np.concatenate([np.asarray(r.stroke_error, float).ravel() for r in validation.cycles])
     tried, best = [], {}
     for order in orders:
         X, Z, y = _design(train, tuple(sensors), lags, order, x_min, x_max)
         for alpha, (w, b) in zip(alphas, _fit(X, Z, y, alphas)):
             law = StrokeLaw(tuple(sensors), tuple(lags), order, w.reshape(-1, order + 1), b, x_min, x_max, alpha)
-            pred = np.concatenate([law.predict(r.times, r.sensors[:, columns], np.clip(r.positions, x_min, x_max)).ravel()
-                                   for r in validation.cycles])
+            pred = np.concatenate([law.predict_record(r, validation.names).ravel() for r in validation.cycles])
             rms = float(np.sqrt(np.mean((truth - pred) ** 2)))
             tried.append((order, math.sqrt(alpha), rms))
             if order not in best or rms < best[order][1]:
@@ -266,14 +264,5 @@ def stroke_residuals(predict, cycles: CycleSet) -> Residuals:
     """The residuals ``E(x_j, t) - predict(record)`` over every sample and recorded position of
     ``cycles`` (``predict``: record -> ``(n, p)`` [m], or ``(n,)`` for a law of D applied at every x);
     without compensation the error is E itself."""
-    errors, truth, per_cycle = [], [], []
-    for record in cycles.cycles:
-        E = np.asarray(record.stroke_error, dtype=float)
-        pred = np.asarray(predict(record), dtype=float)
-        error = E - (pred[:, None] if pred.ndim == 1 else pred)
-        errors.append(error.ravel())
-        truth.append(E.ravel())
-        per_cycle.append((record.label, float(np.sqrt(np.mean(error ** 2))), float(np.abs(error).max())))
-    e, d = np.concatenate(errors), np.concatenate(truth)
-    return Residuals(float(np.sqrt(np.mean(e ** 2))), float(np.abs(e).max()),
-                     float(np.sqrt(np.mean(d ** 2))), float(np.abs(d).max()), tuple(per_cycle))
+    return summarise((record.label, record.stroke_error, np.asarray(predict(record), dtype=float))
+                     for record in cycles.cycles)
