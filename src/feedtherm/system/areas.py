@@ -250,12 +250,31 @@ def joint_contact_area(system: FeedSystem, index: int) -> float:
     return sum(p.area for p in contact_patches(a, system.parts[a], b, system.parts[b]) if p.part == a)
 
 
+#: Exposed areas by the identity of the description (kept with them, as :data:`_CACHE`'s parts):
+#: a description is frozen, and the boundary conditions take every surface's area at each of the
+#: hundreds of evaluations of a coupled run.
+_EXPOSED: dict[int, tuple[FeedSystem, dict[str, float]]] = {}
+_EXPOSED_SIZE = 256
+
+
 def exposed_area(system: FeedSystem, name: str) -> float:
     """Area [m^2] of surface ``name``: its given ``area``, else its faces less what covers them.
 
     Covered: the patches on the selected faces where a part joined to this one touches it, or
     another primitive of the same part is fused to it (module docstring).
     """
+    hit = _EXPOSED.get(id(system))
+    if hit is None or hit[0] is not system:
+        if len(_EXPOSED) >= _EXPOSED_SIZE:
+            _EXPOSED.clear()
+        hit = _EXPOSED[id(system)] = (system, {})
+    areas = hit[1]
+    if name not in areas:
+        areas[name] = _exposed_area(system, name)
+    return areas[name]
+
+
+def _exposed_area(system: FeedSystem, name: str) -> float:
     surface = system.surfaces[name]
     part = system.parts[surface.part]
     faces = surface_area(surface, part)
