@@ -158,3 +158,18 @@ def test_importing_the_air_properties_does_not_import_coolprop():
             "import feedtherm.cli; print('CoolProp' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_the_table_interpolation_is_numpys_to_the_last_bit():
+    """properties_air's tabulated path interpolates on Python floats; it must give numpy.interp's
+    floats exactly (rows, the table's ends and random temperatures between them)."""
+    from feedtherm.physics import air
+    from feedtherm.physics.air_table import T_FIRST, T_LAST
+
+    grid, rho_T, cp, mu, k = air._table()
+    temperatures = np.concatenate([grid, np.random.default_rng(7).uniform(T_FIRST, T_LAST, 20000),
+                                   np.random.default_rng(8).uniform(280.0, 330.0, 20000)])
+    for T in temperatures.tolist():
+        expected = (float(np.interp(T, grid, rho_T)) / T, float(np.interp(T, grid, cp)),
+                    float(np.interp(T, grid, mu)), float(np.interp(T, grid, k)))
+        assert air._tabulated(T) == expected, T

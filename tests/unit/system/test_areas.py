@@ -140,3 +140,18 @@ def test_a_derived_area_follows_a_change_of_the_geometry_and_a_stated_one_does_n
     assert variant.system.joints[10].area == pytest.approx(60 * 110 * MM**2, rel=1e-12)
     stated = with_values(loaded, {"joints[10].area": 4e-3, "parts.front_housing.boxes": [wider]})
     assert stated.system.joints[10].area == 4e-3 and 10 not in stated.derived_joint_areas
+
+
+def test_an_exposed_area_follows_a_changed_description_and_not_an_earlier_ones(tmp_path):
+    """exposed_area keeps each description's areas; a variant (a new, frozen object) gets its own."""
+    from feedtherm.system.variants import with_values
+
+    loaded = load_text(tmp_path, template_text())
+    before = exposed_area(loaded.system, "screw")
+    assert exposed_area(loaded.system, "screw") == before  # the kept value
+    # the nut's body 80 mm -> 60 mm long leaves 20 mm more of the screw's Ø25 mm bare
+    body, flange = loaded.system.parts["nut"].cylinders
+    shorter = body.model_copy(update={"length": body.length - 0.020})
+    variant = with_values(loaded, {"parts.nut.cylinders": [shorter, flange]})
+    assert exposed_area(variant.system, "screw") == pytest.approx(before + math.pi * 25 * 20 * MM**2, rel=1e-9)
+    assert exposed_area(loaded.system, "screw") == before
