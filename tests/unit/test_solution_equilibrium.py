@@ -79,3 +79,17 @@ def test_a_quantity_that_never_settles_has_none():
     each = equilibrium_times(t, {"T1": t / 3600.0}, 20e-6 * t / 3600.0, {"T1": 0.0, "D": 0.0},
                              {"T1": 10.0, "D": 50e-6}, "D")
     assert each == {"T1": None, "D": None}
+
+
+@pytest.mark.parametrize("spacing", ["uniform", "uneven"])
+def test_the_trailing_range_is_each_windows_max_less_its_min(spacing):
+    """Against the windows taken one by one: [t - WINDOW_S, t] at every sample, both ends included."""
+    from feedtherm.solution.equilibrium import WINDOW_S, _trailing_range
+
+    rng = np.random.default_rng(3)
+    for n in (1, 2, 7, 64, 500):
+        step = WINDOW_S / 13
+        times = (np.arange(n) * step if spacing == "uniform" else np.cumsum(rng.uniform(0.0, 2.5 * step, n)))
+        values = rng.normal(size=n).cumsum()
+        expected = [np.ptp(values[(times >= t - WINDOW_S) & (times <= t)]) for t in times]
+        assert np.array_equal(_trailing_range(times, values), expected)

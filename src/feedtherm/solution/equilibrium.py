@@ -70,14 +70,29 @@ def equilibrium_times(times: np.ndarray, sensors: dict[str, np.ndarray], elongat
 
 
 def _trailing_range(times: np.ndarray, values: np.ndarray) -> np.ndarray:
-    """max - min of ``values`` over [t - WINDOW_S, t] at every t."""
-    out = np.empty_like(values)
-    start = 0
-    for i, t in enumerate(times):
-        while times[start] < t - WINDOW_S:
-            start += 1
-        window = values[start:i + 1]
-        out[i] = window.max() - window.min()
+    """max - min of ``values`` over [t - WINDOW_S, t] at every t (``times`` ascending).
+
+    Every window's extremes from two overlapping power-of-two spans of a sparse table (the
+    spans' max and min, doubled level by level): exact, and without a Python loop over samples.
+    """
+    values = np.asarray(values, dtype=float)
+    n = values.size
+    if n == 0:
+        return values.copy()
+    end = np.arange(n)
+    start = np.searchsorted(times, np.asarray(times, dtype=float) - WINDOW_S, side="left")
+    start = np.minimum(start, end)
+    highs, lows = [values], [values]
+    while 2 ** len(highs) <= n:
+        half = 2 ** (len(highs) - 1)
+        highs.append(np.maximum(highs[-1][:-half], highs[-1][half:]))
+        lows.append(np.minimum(lows[-1][:-half], lows[-1][half:]))
+    level = np.log2(end - start + 1).astype(int)  # the largest 2^level <= the window's length
+    out = np.empty(n)
+    for k in np.unique(level):
+        rows = np.nonzero(level == k)[0]
+        left, right = start[rows], end[rows] - 2 ** k + 1
+        out[rows] = (np.maximum(highs[k][left], highs[k][right]) - np.minimum(lows[k][left], lows[k][right]))
     return out
 
 
