@@ -35,8 +35,15 @@ def records(out):
     return sorted(p for p in folder.glob("*.json") if p.name != SETTINGS_JSON and not p.name.startswith("."))
 
 
+#: ``python -m feedtherm`` as a terminal's foreground job starts it, Ctrl-C raising KeyboardInterrupt:
+#: a suite started in the background (``make test &``, a job without a terminal) passes its children
+#: SIGINT ignored, the POSIX rule for background jobs, and Python then installs no handler of its own.
+FOREGROUND = ("import runpy, signal, sys; signal.signal(signal.SIGINT, signal.default_int_handler); "
+              "sys.argv[0] = 'feedtherm'; runpy.run_module('feedtherm', run_name='__main__', alter_sys=True)")
+
+
 def sweep(cwd, *args, **popen):
-    return subprocess.Popen([sys.executable, "-m", "feedtherm", "sweep", *args], cwd=cwd, env=environment(),
+    return subprocess.Popen([sys.executable, "-c", FOREGROUND, "sweep", *args], cwd=cwd, env=environment(),
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **popen)
 
 
