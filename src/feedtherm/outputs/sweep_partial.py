@@ -64,6 +64,7 @@ class PartialSweep:
         self.columns = list(columns)
         self._ready = False
         self._kept: set[str] = set()  # keys of this sweep's points known to be kept whole
+        self._saving: str | None = None  # the key whose record is being written
 
     # ------------------------------------------------------------------ before the runs
 
@@ -124,12 +125,21 @@ class PartialSweep:
             self.folder.mkdir(parents=True, exist_ok=True)
             self._write(self.folder / SETTINGS_JSON, {"format": FORMAT, **self.settings})
             self._ready = True
+        self._saving = key
         self._write(self.folder / f"{key}.json", {"format": FORMAT, "key": key, "row": row})
         self._kept.add(key)
+        self._saving = None
 
     def count(self) -> int:
-        """How many points of this sweep are kept whole: read back by :meth:`load`, or saved since."""
-        return len(self._kept)
+        """How many points of this sweep are kept whole: read back by :meth:`load`, or saved since.
+
+        A Ctrl-C can land between a record's rename into place and its key's entry here: a record
+        then on disk under its name is whole (written under a temporary name first), and counts.
+        """
+        kept = set(self._kept)
+        if self._saving is not None and (self.folder / f"{self._saving}.json").is_file():
+            kept.add(self._saving)
+        return len(kept)
 
     # ------------------------------------------------------------------ files
 

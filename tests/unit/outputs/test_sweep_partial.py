@@ -82,3 +82,24 @@ def test_a_failed_write_leaves_no_temporary_file(tmp_path, monkeypatch):
     with pytest.raises(OSError):
         store.save("1" * 64, ROW)
     assert sorted(p.name for p in (tmp_path / PARTIAL_DIR).iterdir()) == [f"{KEY}.json", "sweep.json"]
+
+
+@pytest.mark.parametrize("when", ["before the rename", "after the rename"])
+def test_a_ctrl_c_while_a_record_is_written_counts_it_only_once_it_is_on_disk(tmp_path, monkeypatch, when):
+    """The count the interrupted sweep's message gives is the records on disk, whatever line the
+    KeyboardInterrupt lands on."""
+    import os
+
+    store = kept(tmp_path)
+    real = os.replace
+
+    def interrupted(source, target):
+        if when == "after the rename":
+            real(source, target)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr("os.replace", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        store.save("1" * 64, ROW)
+    on_disk = [p for p in (tmp_path / PARTIAL_DIR).iterdir() if p.name != "sweep.json"]
+    assert store.count() == len(on_disk) == (2 if when == "after the rename" else 1)
