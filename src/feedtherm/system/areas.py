@@ -203,11 +203,25 @@ def _planes(part: Part) -> list[_Plane]:
             + [p for i, cyl in enumerate(part.cylinders) for p in _cylinder_planes(i, cyl)])
 
 
-#: Patches by the identity of the two Part objects; the objects are kept with them, so that an
-#: id is not reused while its entry stands.  Parts are frozen: the boundary conditions, evaluated
-#: many times a run, find a part pair's patches once.
-_CACHE: dict[tuple[int, int], tuple[Part, Part, list[tuple[str, int, str, float, str, int, str]]]] = {}
+#: Patches by the identity of the two Part objects (:func:`_kept`).  Parts are frozen: the boundary
+#: conditions, evaluated many times a run, find a part pair's patches once.
+_CACHE: dict[tuple[int, ...], tuple[tuple, list[tuple[str, int, str, float, str, int, str]]]] = {}
 _CACHE_SIZE = 4096
+
+
+def _kept(cache: dict, size: int, objects: tuple, make):
+    """What ``make()`` gives for ``objects``, kept in ``cache`` under their identities.
+
+    The objects are kept with their entry, so that an id is not reused while it stands; a full
+    cache (``size`` entries) starts afresh.
+    """
+    key = tuple(map(id, objects))
+    hit = cache.get(key)
+    if hit is None or any(kept is not obj for kept, obj in zip(hit[0], objects)):
+        if len(cache) >= size:
+            cache.clear()
+        hit = cache[key] = (objects, make())
+    return hit[1]
 
 
 def contact_patches(a_name: str, a: Part, b_name: str, b: Part) -> list[Patch]:
@@ -215,14 +229,9 @@ def contact_patches(a_name: str, a: Part, b_name: str, b: Part) -> list[Patch]:
 
     With ``a is b`` (one part), the faces where its own primitives are fused together.
     """
-    key = (id(a), id(b))
-    hit = _CACHE.get(key)
-    if hit is None or hit[0] is not a or hit[1] is not b:
-        if len(_CACHE) >= _CACHE_SIZE:
-            _CACHE.clear()
-        hit = _CACHE[key] = (a, b, _touching(a, b))
     patches = []
-    for kind_a, index_a, face_a, area, kind_b, index_b, face_b in hit[2]:
+    touching = _kept(_CACHE, _CACHE_SIZE, (a, b), lambda: _touching(a, b))
+    for kind_a, index_a, face_a, area, kind_b, index_b, face_b in touching:
         patches.append(Patch(a_name, kind_a, index_a, face_a, area))
         if a is not b:
             patches.append(Patch(b_name, kind_b, index_b, face_b, area))
@@ -250,10 +259,10 @@ def joint_contact_area(system: FeedSystem, index: int) -> float:
     return sum(p.area for p in contact_patches(a, system.parts[a], b, system.parts[b]) if p.part == a)
 
 
-#: Exposed areas by the identity of the description (kept with them, as :data:`_CACHE`'s parts):
-#: a description is frozen, and the boundary conditions take every surface's area at each of the
-#: hundreds of evaluations of a coupled run.
-_EXPOSED: dict[int, tuple[FeedSystem, dict[str, float]]] = {}
+#: Exposed areas by surface, by the identity of the description (:func:`_kept`): a description is
+#: frozen, and the boundary conditions take every surface's area at each of the hundreds of
+#: evaluations of a coupled run.
+_EXPOSED: dict[tuple[int, ...], tuple[tuple, dict[str, float]]] = {}
 _EXPOSED_SIZE = 256
 
 
@@ -263,12 +272,7 @@ def exposed_area(system: FeedSystem, name: str) -> float:
     Covered: the patches on the selected faces where a part joined to this one touches it, or
     another primitive of the same part is fused to it (module docstring).
     """
-    hit = _EXPOSED.get(id(system))
-    if hit is None or hit[0] is not system:
-        if len(_EXPOSED) >= _EXPOSED_SIZE:
-            _EXPOSED.clear()
-        hit = _EXPOSED[id(system)] = (system, {})
-    areas = hit[1]
+    areas = _kept(_EXPOSED, _EXPOSED_SIZE, (system,), dict)
     if name not in areas:
         areas[name] = _exposed_area(system, name)
     return areas[name]
