@@ -66,6 +66,11 @@ class BoundaryConditions:
         return sum(h.power for h in self.heats.values())
 
 
+#: A surface's last evaluation: (operating point, surface temperature [K], radiation on) → its
+#: transfer and its range warnings, by surface name (see :func:`boundary_conditions_at`).
+SurfaceMemo = dict[str, tuple[tuple[OperatingPoint, float, bool], SurfaceTransfer, list[str]]]
+
+
 def boundary_conditions(system: FeedSystem, condition: str, overlay: Overlay | None = None) -> BoundaryConditions:
     """Boundary conditions of ``condition`` (a name in the description), with ``overlay`` if given."""
     return boundary_conditions_at(system, operating_point(system, system.conditions[condition]), overlay,
@@ -74,20 +79,23 @@ def boundary_conditions(system: FeedSystem, condition: str, overlay: Overlay | N
 
 def boundary_conditions_at(
     system: FeedSystem, point: OperatingPoint, overlay: Overlay | None = None, *, label: str = "",
-    temperatures: LocalTemperatures | None = None,
+    temperatures: LocalTemperatures | None = None, memo: SurfaceMemo | None = None,
 ) -> BoundaryConditions:
     """Boundary conditions at any operating point (a duty-cycle segment, a standstill, ...).
 
     ``overlay``: printed values to lay over the physics (None: the physics alone).
     ``temperatures``: the surfaces' and sources' own temperatures; None takes them all at the
     frozen temperature (:func:`frozen_surface_temperature`).
+    ``memo``: the surfaces' evaluations of earlier calls for the same ``system`` and overlay
+    (a coupled run's): a surface at the operating point and temperature of its last
+    evaluation takes that evaluation's coefficients and range warnings.
     """
     if overlay is not None and not isinstance(overlay, Overlay):
         raise TypeError(f"overlay must be a feedtherm.system.overlay.Overlay or None, got {overlay!r}; a mode "
                         f"becomes an overlay in feedtherm.plan.with_mode")
     caught: list[str] = []
     heats, surfaces = _physics(system, point, with_radiation=overlay is None, caught=caught,
-                               temperatures=temperatures)
+                               temperatures=temperatures, memo=memo)
     if overlay is not None:
         heats, surfaces = _overlaid(system, overlay, heats, surfaces)
     for name, heat in heats.items():  # the physics' and an overlay's alike
@@ -105,7 +113,7 @@ def frozen_surface_temperature(system: FeedSystem, point: OperatingPoint) -> flo
 
 
 def _physics(system: FeedSystem, point: OperatingPoint, *, with_radiation: bool, caught: list[str] | None = None,
-             temperatures: LocalTemperatures | None = None):
+             temperatures: LocalTemperatures | None = None, memo: SurfaceMemo | None = None):
     """Physics-mode heats and surface transfer; range warnings go to ``caught``, labelled."""
     sink = [] if caught is None else caught
     frozen = frozen_surface_temperature(system, point)
@@ -115,9 +123,17 @@ def _physics(system: FeedSystem, point: OperatingPoint, *, with_radiation: bool,
     surfaces = {}
     with numeric_errors():  # an overflow raises, for named_failure to name
         for name in system.surfaces:
-            with _collect(f"surfaces.{name}", sink), named_failure(f"surfaces.{name}"):
-                surfaces[name] = surface_transfer(system, name, point, local.surfaces.get(name, frozen),
-                                                  with_radiation=with_radiation)
+            inputs = (point, local.surfaces.get(name, frozen), with_radiation)
+            kept = None if memo is None else memo.get(name)
+            if kept is not None and kept[0] == inputs:
+                surfaces[name], messages = kept[1], kept[2]
+            else:
+                messages = []
+                with _collect(f"surfaces.{name}", messages), named_failure(f"surfaces.{name}"):
+                    surfaces[name] = surface_transfer(system, name, point, inputs[1], with_radiation=with_radiation)
+                if memo is not None:
+                    memo[name] = (inputs, surfaces[name], messages)
+            sink.extend(message for message in messages if message not in sink)
     return heats, surfaces
 
 
@@ -167,6 +183,7 @@ __all__ = [
     "PHYSICS",
     "OperatingPoint",
     "SourceHeat",
+    "SurfaceMemo",
     "SurfaceTransfer",
     "boundary_conditions",
     "boundary_conditions_at",

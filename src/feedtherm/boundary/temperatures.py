@@ -25,6 +25,18 @@ class LocalTemperatures:
         pairs = [(self.surfaces, other.surfaces), (self.sources, other.sources)]
         return max((abs(mine[name] - theirs[name]) for mine, theirs in pairs for name in mine), default=0.0)
 
+    def lagging(self, evaluated: "LocalTemperatures", tolerance: float) -> "LocalTemperatures":
+        """This reading with every value within ``tolerance`` [K] of ``evaluated``'s (same names) left at that value.
+
+        A coupled transient's re-evaluation moves the readings that have moved further; the
+        others keep the temperature they were evaluated at, so that their coefficients need not
+        be recomputed (:mod:`feedtherm.models.coupling`).
+        """
+        def lag(mine, theirs):
+            return {name: value if abs(value - theirs[name]) > tolerance else theirs[name]
+                    for name, value in mine.items()}
+        return LocalTemperatures(lag(self.surfaces, evaluated.surfaces), lag(self.sources, evaluated.sources))
+
     def toward(self, other: "LocalTemperatures", fraction: float) -> "LocalTemperatures":
         """The reading ``fraction`` of the way from this one to ``other`` (same names)."""
         def blend(mine, theirs):

@@ -31,6 +31,7 @@ from .coupling import (
     LINK_RATE_REFACTOR,
     MAX_ACCELERATION,
     MIN_RELAXATION,
+    REFRESH_SHARE,
     RUNAWAY_ITERATIONS,
     SLOW_CONTRACTION,
     STEADY_ITERATIONS,
@@ -498,6 +499,8 @@ class Integrator:
                 if coupled and (reading is None or not resolved or path.u - checked >= period):
                     checked, now = path.u, self.readout(T)
                     if reading is None or now.largest_change(reading) > self.coupling.tolerance:
+                        if reading is not None:  # the readings that have hardly moved stay (:mod:`.coupling`)
+                            now = now.lagging(reading, REFRESH_SHARE * self.coupling.tolerance)
                         bc, factorised = self._reevaluate(seg_id, seg.bc, now, bc, factorised, transient=True)
                         steps = {}
                         reading = now

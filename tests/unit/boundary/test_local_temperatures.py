@@ -110,3 +110,45 @@ def test_a_coupling_not_named_is_refused():
     data["temperatures"]["coupling"] = "sometimes"
     with pytest.raises(DescriptionError, match="coupling"):
         validate_data(data, "variant")
+
+
+def test_a_lagging_reading_moves_only_the_values_beyond_the_tolerance():
+    evaluated = LocalTemperatures(surfaces={"a": 300.0, "b": 300.0}, sources={"m": 310.0})
+    now = LocalTemperatures(surfaces={"a": 300.09, "b": 299.8}, sources={"m": 310.25})
+    lagging = now.lagging(evaluated, 0.1)
+    # a moved by 0.09 K (within 0.1 K): kept at 300; b by 0.2 K and m by 0.25 K: moved
+    assert lagging.surfaces == {"a": 300.0, "b": 299.8}
+    assert lagging.sources == {"m": 310.25}
+    assert lagging.largest_change(now) <= 0.1
+
+
+def test_a_memo_recomputes_only_the_surfaces_whose_temperature_or_point_changed(paper, monkeypatch):
+    import feedtherm.boundary as boundary
+
+    system = paper.system
+    point = point_of(system)
+    reading = {name: 300.0 + 0.1 * i for i, name in enumerate(system.surfaces)}
+    plain = boundary_conditions_at(system, point, temperatures=LocalTemperatures(surfaces=reading))
+    memo = {}
+    first = boundary_conditions_at(system, point, temperatures=LocalTemperatures(surfaces=reading), memo=memo)
+    computed = []
+    surface_transfer = boundary.surface_transfer
+
+    def counted(*args, **kwargs):
+        computed.append(args[1])
+        return surface_transfer(*args, **kwargs)
+
+    monkeypatch.setattr(boundary, "surface_transfer", counted)
+    moved = dict(reading, worktable=reading["worktable"] + 1.0)
+    second = boundary_conditions_at(system, point, temperatures=LocalTemperatures(surfaces=moved), memo=memo)
+    assert computed == ["worktable"]
+    assert all(second.surfaces[n] is first.surfaces[n] for n in system.surfaces if n != "worktable")
+    assert second.surfaces["worktable"].convection > first.surfaces["worktable"].convection  # warmer: larger h
+    # the values and the labelled range warnings are those of an evaluation without the memo
+    assert first.surfaces == plain.surfaces and first.warnings == plain.warnings
+    assert second.warnings == boundary_conditions_at(system, point,
+                                                     temperatures=LocalTemperatures(surfaces=moved)).warnings
+    # another operating point recomputes every surface
+    computed.clear()
+    boundary_conditions_at(system, point_of(system, "I"), temperatures=LocalTemperatures(surfaces=moved), memo=memo)
+    assert sorted(computed) == sorted(system.surfaces)
