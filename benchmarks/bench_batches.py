@@ -5,11 +5,12 @@ Run:  .venv/bin/python benchmarks/bench_batches.py [--repeat 1] [--only compensa
 Each command runs in a child process (`python -m feedtherm ...`, output to a temporary folder),
 as a user types it; the figure is the whole command's wall time, the median of --repeat runs:
 
-- ``compensate paper --sensors 3`` (serial, the command's default; aim <= 30 s);
+- ``compensate paper --sensors 3`` (serial, the command's default) and with ``--workers 2``
+  (both cores; aim <= 30 s);
 - ``uncertainty paper --workers 2`` (the command's defaults on both cores: 128 points, Sobol'
   base 64; aim <= 3 min).
 
-Printed and written as JSON to benchmarks/results/batches.json.  Takes 5 minutes per repeat;
+Printed and written as JSON to benchmarks/results/batches.json.  Takes 6 minutes per repeat;
 run nothing else beside it.
 """
 
@@ -31,6 +32,7 @@ ROOT = Path(__file__).resolve().parent.parent
 RESULTS = ROOT / "benchmarks" / "results"
 COMMANDS = {
     "compensate": ["compensate", "paper", "--sensors", "3"],
+    "compensate_two_cores": ["compensate", "paper", "--sensors", "3", "--workers", "2"],
     "uncertainty": ["uncertainty", "paper", "--workers", "2"],
 }
 

@@ -147,7 +147,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     with _naming(loaded.origin):
         plan = plan_run(loaded, condition=args.condition, cycle=args.cycle, model=args.model,
                         duration=args.duration, single_drive=args.single_drive, sample_interval=args.sample_interval,
-                        motion=args.motion, mesh=args.mesh, solver=args.solver)
+                        motion=args.motion, mesh=args.mesh, solver=args.solver, factor_memory=args.factor_memory)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, plan.label, plan.mode)
     check_output_dir(out_dir)
     # Imported only now: every input error above is reported without loading the model.
@@ -254,6 +254,11 @@ def _grid_position(text: str) -> int:
 def _positive_seconds(text: str) -> float:
     """argparse type: a finite number of seconds > 0."""
     return _positive_number(text, "number of seconds")
+
+
+def _gigabytes(text: str) -> float:
+    """argparse type: a finite number of gigabytes > 0, as bytes."""
+    return _positive_number(text, "number of GB") * 1e9
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:
@@ -680,6 +685,10 @@ def build_parser() -> argparse.ArgumentParser:
                           "Cholesky where installed, SuperLU otherwise), Jacobi-preconditioned conjugate gradients "
                           "(cg), or auto: direct within half the free memory (without PARDISO: up to 60,000 "
                           "unknowns), cg beyond")
+    run.add_argument("--factor-memory", type=_gigabytes, metavar="GB",
+                     help="with --solver auto: the most the FE steps' factors may hold [GB] (default: half the "
+                          "memory free when the run starts); the positions beyond step by conjugate gradients "
+                          "preconditioned with the nearest position's factor")
     run.add_argument("--sample-interval", type=_positive_seconds, default=10.0, metavar="S",
                      help="spacing of the written samples [s] (default: 10)")
     run.add_argument("--no-plots", action="store_true",

@@ -108,7 +108,8 @@ def plan_run(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
              model: str = "fast", duration: float | None = None,
              single_drive: bool = False, sample_interval: float = 10.0, motion: str | None = None,
              mesh: str | None = None, solver: str | None = None, start: str = "initial",
-             options: ModelOptions | None = None, allow_overload: bool = False) -> RunPlan:
+             options: ModelOptions | None = None, allow_overload: bool = False,
+             factor_memory: float | None = None) -> RunPlan:
     """Check a run's arguments and build its segments (see :func:`feedtherm.simulate.simulate`).
 
     A motor whose shaft needs more than its declared ``continuous_torque`` at a segment is
@@ -117,10 +118,12 @@ def plan_run(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
     conditions take the overlay ``loaded`` carries (:func:`with_mode`).
     """
     entry = _check_arguments(model, duration, sample_interval, motion, mesh, solver, start)
+    if factor_memory is not None and not (math.isfinite(factor_memory) and factor_memory > 0.0):
+        raise FeedthermError(f"--factor-memory: must be a positive number of GB, got {factor_memory / 1e9!r}")
     label, segments, end = _profile(loaded, condition, cycle, duration)
     opts = options or ModelOptions()
-    opts = replace(opts, **{name: value for name, value in (("motion", motion), ("mesh", mesh), ("solver", solver))
-                            if value is not None})
+    opts = replace(opts, **{name: value for name, value in (("motion", motion), ("mesh", mesh), ("solver", solver),
+                                                            ("factor_memory", factor_memory)) if value is not None})
     planned = _segments(loaded, segments, end, single_drive)
     _check_duration(loaded, planned, end, opts, duration is not None)
     _check_step_count(loaded, planned, opts)

@@ -47,6 +47,8 @@ def assert_one_line_error_and_nothing_written(result, tmp_path, *fragments, inpu
         (["--cycle", "missing.csv"], ["'missing.csv'", "nor an existing CSV file"]),
         (["--condition", "I", "--model", "ansys"], ["--model", "no model 'ansys'", "fast, fem"]),
         (["--condition", "I", "--model", "fem", "--mesh", "huge"], ["--mesh", "invalid choice: 'huge'"]),
+        (["--condition", "I", "--model", "fem", "--factor-memory", "-2"], ["--factor-memory", "positive", "GB", "'-2'"]),
+        (["--condition", "I", "--model", "fem", "--factor-memory", "0"], ["--factor-memory", "positive", "'0'"]),
         (["ballscrew_example", "--condition", "v10", "--mode", "paper"], ["--mode paper", "no overlay of printed values"]),
         (["no_such_bench.toml", "--condition", "I"], ["no_such_bench.toml: no such file"]),
     ],

@@ -25,6 +25,9 @@ class ModelOptions:
     motion: Literal["resolved", "averaged"] = "resolved"  # position over time, or cycle-averaged
     averaged_step: float = 10.0  # [s] time step of the cycle-averaged motion
     solver: Literal["auto", "direct", "cg"] = "auto"  # cached factors per position, or conjugate gradients
+    # [bytes] what "auto"'s PARDISO factors of one run may hold; None: half the memory available
+    # when the run starts (models/pardiso.py); the positions beyond step by conjugate gradients
+    factor_memory: float | None = None
     snapshot_interval: float = 600.0  # [s] full-field snapshots kept for field output (FE)
     # nonlinear coupling (temperatures.coupling = "nonlinear")
     # [K] largest lag of a surface's or source's temperature before re-evaluation: at 0.5 K the
