@@ -687,8 +687,7 @@ def build_parser() -> argparse.ArgumentParser:
                           "unknowns), cg beyond")
     run.add_argument("--factor-memory", type=_gigabytes, metavar="GB",
                      help="with --solver auto: the most the FE steps' factors may hold [GB] (default: half the "
-                          "memory free when the run starts); the positions beyond step by conjugate gradients "
-                          "preconditioned with the nearest position's factor")
+                          "memory free when the run starts); the positions beyond step by conjugate gradients")
     run.add_argument("--sample-interval", type=_positive_seconds, default=10.0, metavar="S",
                      help="spacing of the written samples [s] (default: 10)")
     run.add_argument("--no-plots", action="store_true",

@@ -22,21 +22,18 @@ def test_resolved_motion_stays_at_the_cycle_averaged_steady_state(paper):
     assert abs(resolved.energy.relative_error) < 1e-3 and abs(averaged.energy.relative_error) < 1e-3
 
 
-def test_positions_beyond_the_factor_memory_follow_the_direct_run_with_the_nearest_factor(paper, monkeypatch):
+def test_positions_beyond_the_factor_memory_follow_the_direct_run(paper, monkeypatch):
     """With --factor-memory below two factors, "auto" factorises the first position it visits and steps every
-    other position by conjugate gradients preconditioned with that factor: the transient of one factor per
-    position, in a few iterations a step (the coarse mesh under PARDISO, which it otherwise leaves to SuperLU)."""
+    other position by conjugate gradients: the transient of one factor per position (the coarse mesh under
+    PARDISO, which it otherwise leaves to SuperLU)."""
     pytest.importorskip("pypardiso")
     from feedtherm.models import pardiso
 
     monkeypatch.setattr(pardiso, "MIN_UNKNOWNS", 0)
     direct = simulate(paper, condition="I", model="fem", mesh="coarse", duration=60.0, solver="direct")
-    plan = plan_run(paper, condition="I", model="fem", mesh="coarse", duration=60.0, factor_memory=1.0)
-    lean = execute(plan)
-    assert "preconditioned by the nearest position's factor" in lean.info["solver"], lean.info["solver"]
-    jacobi = simulate(paper, condition="I", model="fem", mesh="coarse", duration=60.0, solver="cg")
-    # measured: 5 iterations a step with the factor of one position, 19 with the diagonal
-    assert 0 < lean.info["cg_iterations"] < 0.5 * jacobi.info["cg_iterations"]
+    lean = execute(plan_run(paper, condition="I", model="fem", mesh="coarse", duration=60.0, factor_memory=1.0))
+    assert "beyond the memory budget" in lean.info["solver"], lean.info["solver"]
+    assert lean.info["cg_iterations"] > 0
     for name in ["T1", "T2", "T3", "T4", "T5"]:
         assert lean.sensors[name] == pytest.approx(direct.sensors[name], abs=1e-4), name
     assert lean.elongation == pytest.approx(direct.elongation, abs=1e-10)

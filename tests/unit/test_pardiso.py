@@ -66,8 +66,7 @@ def test_a_run_with_pardiso_equals_the_run_with_superlu(paper, monkeypatch):
 def test_positions_beyond_the_memory_budget_are_stepped_by_conjugate_gradients(paper, monkeypatch):
     monkeypatch.setattr(pardiso, "memory_budget", lambda: 1.0)  # room for the first factorisation only
     reference, budgeted = superlu_and_pardiso(paper, monkeypatch)
-    assert "cg preconditioned by the nearest position's factor for" in budgeted.info["solver"]
-    assert "beyond the memory budget" in budgeted.info["solver"]
+    assert "cg for" in budgeted.info["solver"] and "beyond the memory budget" in budgeted.info["solver"]
     for name in ("T1", "T2", "T3", "T4", "T5"):
         assert budgeted.summary_values("final")[name] == pytest.approx(reference.summary_values("final")[name],
                                                                          abs=1e-3)

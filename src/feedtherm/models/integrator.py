@@ -213,8 +213,8 @@ class Integrator:
         self.uses_pardiso = not self.dense and solver != "cg" and pardiso.suits(model.n_nodes)
         self.direct = self.dense or solver == "direct" or (
             solver == "auto" and (model.n_nodes <= DIRECT_SOLVER_LIMIT or self.uses_pardiso))
-        # "auto" keeps PARDISO's factors within a budget and steps the positions beyond it by cg, preconditioned
-        # by the held factor of the nearest position (docs/fem-model.md, "Memory")
+        # "auto" keeps PARDISO's factors within a budget (options.factor_memory, or a share of the memory) and
+        # steps the positions beyond it by cg
         if self.uses_pardiso and solver == "auto":
             self._budget = pardiso.memory_budget() if options.factor_memory is None else float(options.factor_memory)
         else:
@@ -236,8 +236,7 @@ class Integrator:
             return "cg (Jacobi-preconditioned conjugate gradients)"
         if not self.uses_pardiso:
             return "direct (LU per position)"
-        beyond = (f"; cg preconditioned by the nearest position's factor for {self.over_budget} step matrices beyond "
-                  "the memory budget") if self.over_budget else ""
+        beyond = f"; cg for {self.over_budget} step matrices beyond the memory budget" if self.over_budget else ""
         return f"direct (PARDISO Cholesky per position{beyond})"
 
     @property
@@ -304,59 +303,19 @@ class Integrator:
             return lu.solve(rhs)
         key = (self._matrix_key(seg_id, bc, k), round(dt, 12))
         if key not in self._cg:
-            self._cg[key] = StepCG(self._step_matrix(seg_id, bc, k, dt), self._coarse,
-                                   self._nearest_factor(seg_id, bc, k, dt)[1])
+            self._cg[key] = StepCG(self._step_matrix(seg_id, bc, k, dt), self._coarse)
         solver = self._cg[key]
         before = solver.iterations
         state = solver.solve(rhs, start, guess)
         self.cg_iterations += solver.iterations - before
         return state
 
-    def _nearest_factor(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float) -> tuple[float, object]:
-        """The held factors of the step matrix, with the boundary conditions ``bc`` and step ``dt``, of the
-        position nearest k, and how many positions away they are; ``(inf, None)`` when there are none.
-
-        Two positions' step matrices differ in the rows of the sliding contacts and of the faces
-        they cover alone, so the factors of one precondition conjugate gradients at the other
-        (docs/fem-model.md, *Memory*).
-        """
-        if k is None:
-            return math.inf, None
-        held = []
-        for (segment, evaluated, position), matrix_key in self._matrix_keys.items():
-            if segment == seg_id and evaluated == id(bc) and position is not None:
-                factor = self._lu.get((matrix_key, round(dt, 12)))
-                if factor is not None:
-                    held.append((abs(position - k), factor))
-        return min(held, key=lambda pair: pair[0]) if held else (math.inf, None)
-
-    def _spread_over_budget(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float) -> bool:
-        """Whether position k goes without factors of its own so that the budget's few spread over the stroke.
-
-        When the budget holds m factors of the ``K + 1`` positions, a position gets its own only if
-        no held one lies within ``K/m`` positions of it: the positions between are then a few
-        positions from a factor, where it preconditions in 3–5 iterations (the first m positions
-        visited would leave the far end of the stroke 30 positions away).
-        """
-        if self._budget is None or k is None:
-            return False
-        held = [f.memory for f in self._lu.values() if isinstance(f, pardiso.PardisoCholesky)]
-        fits = int(self._budget // max(held)) if held else 0
-        positions = len(self.model.positions)
-        if not held or fits >= positions:
-            return False
-        return self._nearest_factor(seg_id, bc, k, dt)[0] < (positions - 1) / max(fits, 1)
-
     def factors(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float):
         """The (cached) factors of the step matrix at position k (direct solver): ``.solve(rhs)``;
         None where they would exceed the memory budget."""
         key = (self._matrix_key(seg_id, bc, k), round(dt, 12))
         if key not in self._lu:
-            if self._spread_over_budget(seg_id, bc, k, dt):
-                self.over_budget += 1
-                self._lu[key] = None
-            else:
-                self._lu[key] = self._factorize(self._step_matrix(seg_id, bc, k, dt))
+            self._lu[key] = self._factorize(self._step_matrix(seg_id, bc, k, dt))
         return self._lu[key]
 
     def _matrix_key(self, seg_id: int, bc: BoundaryConditions, k: int | None) -> tuple:

@@ -87,7 +87,7 @@ def matrix_operator(A: sp.csr_matrix) -> sp.csr_matrix | LinearOperator:
 
 
 class StepCG:
-    """Preconditioned conjugate gradients on a step's increment, corrected in a coarse space (module notes).
+    """Jacobi-preconditioned conjugate gradients on a step's increment, corrected in a coarse space (module notes).
 
     Parameters
     ----------
@@ -96,20 +96,15 @@ class StepCG:
     coarse : sparse matrix, optional
         Columns of the fields each step is corrected in (each part's uniform field,
         :meth:`~feedtherm.models.interface.ThermalModel.coarse_space`); None: the uniform field.
-    preconditioner : object with ``.solve(v)``, optional
-        The factors of a matrix close to ``A`` (another position's step matrix, whose contact
-        under the nut differs): 3–5 iterations a step on the fine mesh where the diagonal needs
-        about 50 (docs/fem-model.md, *Memory*); None: Jacobi.
     """
 
-    def __init__(self, A: sp.spmatrix, coarse: sp.spmatrix | None = None, preconditioner=None):
+    def __init__(self, A: sp.spmatrix, coarse: sp.spmatrix | None = None):
         self.A = A.tocsr()
         n = self.A.shape[0]
         self.Z = sp.csr_matrix(np.ones((n, 1))) if coarse is None else sp.csr_matrix(coarse)
         self._ZT = self.Z.T.tocsr()
         self.operator = matrix_operator(self.A)
-        self.preconditioner = jacobi(self.A) if preconditioner is None else \
-            LinearOperator(self.A.shape, matvec=preconditioner.solve, dtype=float)
+        self.preconditioner = jacobi(self.A)
         self._coarse = np.linalg.inv((self._ZT @ self.A @ self.Z).toarray())  # one column per part
         self.iterations = 0  # over every solve, for the run's statistics
 
