@@ -13,10 +13,11 @@ temperature and operating point are those of its last evaluation keeps that eval
 coefficients without recomputing them.  Each reading's lag stays bounded by the tolerance;
 one motor warming by the tolerance no longer recomputes the other twenty surfaces (in
 `compensate`, one to five of the paper bench's 28 readings move by the tolerance between two
-re-evaluations, and the surfaces were two thirds of the evaluation's cost).  Steady states iterate to a fixed point: Picard on the readings, with halved steps
-when the change grows, and steps scaled by 1/(1 − r) when successive steps keep a steady
-signed ratio r of magnitude above :data:`SLOW_CONTRACTION` (longer for a slow one-way
-contraction, shorter for a slowly fading oscillation, r < 0).  A change that keeps growing,
+re-evaluations, and the surfaces were two thirds of the evaluation's cost).  Steady states
+iterate to a fixed point: Picard on the readings, with halved steps when the change grows,
+and steps scaled by 1/(1 − r) when successive steps keep a steady signed ratio r of
+magnitude above :data:`SLOW_CONTRACTION` (longer for a slow one-way contraction, shorter for
+a slowly fading oscillation, r < 0).  A change that keeps growing,
 or a reading that leaves the accepted temperatures (−150 to 1000 °C, where the air's and the
 oils' properties end), is reported as a divergence, the sign of a heat that grows with the
 temperature faster than the surfaces shed it.  Each step's heat and losses are the ones its
@@ -98,9 +99,11 @@ class TemperatureReadout:
         self._names = [("surface", n) for n in basis.surfaces] + [("source", n) for n in basis.sources]
         self._names = [name for name, keep in zip(self._names, used) if keep]
         self._weights = model.restrict(sp.diags(1.0 / totals[used]) @ weights[used])
+        # the surfaces' rows come first: one split of the values, no test of each name's kind
+        self._surfaces = [n for kind, n in self._names if kind == "surface"]
+        self._sources = [n for kind, n in self._names if kind == "source"]
 
     def __call__(self, state: np.ndarray) -> LocalTemperatures:
-        values = self._weights @ state
-        surfaces = {n: float(v) for (kind, n), v in zip(self._names, values) if kind == "surface"}
-        sources = {n: float(v) for (kind, n), v in zip(self._names, values) if kind == "source"}
-        return LocalTemperatures(surfaces, sources)
+        values = (self._weights @ state).tolist()
+        split = len(self._surfaces)
+        return LocalTemperatures(dict(zip(self._surfaces, values[:split])), dict(zip(self._sources, values[split:])))
