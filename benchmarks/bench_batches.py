@@ -1,6 +1,6 @@
 """Benchmark of the batch commands issue 36 sets aims for: `compensate` and `uncertainty`, end to end.
 
-Run:  .venv/bin/python benchmarks/bench_batches.py [--repeat 1] [--only compensate|uncertainty]
+Run:  .venv/bin/python benchmarks/bench_batches.py [--repeat 1] [--only compensate|compensate_two_cores|uncertainty]
 
 Each command runs in a child process (`python -m feedtherm ...`, output to a temporary folder),
 as a user types it; the figure is the whole command's wall time, the median of --repeat runs:
