@@ -16,7 +16,7 @@ run's step (1.67 s):
   ambient, then one step): iterations to the integrator's tolerance (1e-5 of the step's
   forcing), wall time, and the error against the direct answer; and Jacobi's at k0 + 10 beside them.
 
-Printed and written as JSON to benchmarks/results/fem_memory_<mesh>.json.  Takes 3 minutes at
+Printed and written as JSON to benchmarks/results/fem_memory_<mesh>.json.  Takes 4 minutes at
 the fine mesh (14 s to build the model from the mesh cache, 5 factorisations); run nothing else
 beside it.
 """
