@@ -17,7 +17,7 @@ run's step (1.67 s):
   forcing), wall time, and the error against the direct answer; and Jacobi's at k0 + 10 beside them.
 
 Printed and written as JSON to benchmarks/results/fem_memory_<mesh>.json.  Takes 4 minutes at
-the fine mesh (14 s to build the model from the mesh cache, 5 factorisations); run nothing else
+the fine mesh (14 s to build the model from the mesh cache, 8 factorisations); run nothing else
 beside it.
 """
 
