@@ -137,3 +137,20 @@ def paper_equations():
 def ballscrew():
     """The bundled single-drive ball-screw axis."""
     return load_system("ballscrew_example")
+
+
+@pytest.fixture
+def surface_evaluations(monkeypatch):
+    """The names of the surfaces whose transfer the boundary conditions compute, in order, from now on
+    (``feedtherm.boundary.surface_transfer`` wrapped to record them)."""
+    from feedtherm import boundary
+
+    computed = []
+    surface_transfer = boundary.surface_transfer
+
+    def counted(*args, **kwargs):
+        computed.append(args[1])
+        return surface_transfer(*args, **kwargs)
+
+    monkeypatch.setattr(boundary, "surface_transfer", counted)
+    return computed

@@ -101,20 +101,12 @@ def test_link_changes_kept_on_the_right_hand_side_give_the_refactorised_answer(c
     assert np.max(np.abs(kept.elongation - every.elongation)) < 0.01e-6
 
 
-def test_refreshing_only_the_readings_that_moved_gives_the_answer_of_refreshing_all(coupled, monkeypatch):
+def test_refreshing_only_the_readings_that_moved_gives_the_answer_of_refreshing_all(coupled, monkeypatch,
+                                                                                       surface_evaluations):
     """A transient's re-evaluation moves the readings beyond REFRESH_SHARE of the tolerance and keeps the
     others (and their surfaces' coefficients) as last evaluated: each reading still lags by at most the
     tolerance, and the answer is that of refreshing every reading at every re-evaluation."""
-    from feedtherm import boundary
-
-    computed = []
-    surface_transfer = boundary.surface_transfer
-
-    def counted(*args, **kwargs):
-        computed.append(args[1])
-        return surface_transfer(*args, **kwargs)
-
-    monkeypatch.setattr(boundary, "surface_transfer", counted)
+    computed = surface_evaluations
     kept = simulate(coupled, condition="I")
     kept_count = len(computed)
     monkeypatch.setattr(integrator_module, "REFRESH_SHARE", 0.0)  # every reading that moved at all

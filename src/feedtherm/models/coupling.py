@@ -96,12 +96,11 @@ class TemperatureReadout:
         totals = np.asarray(weights.sum(axis=1)).ravel()
         # a surface never exposed, or a source with no place to enter, keeps the frozen value
         used = totals > 0.0
-        self._names = [("surface", n) for n in basis.surfaces] + [("source", n) for n in basis.sources]
-        self._names = [name for name, keep in zip(self._names, used) if keep]
         self._weights = model.restrict(sp.diags(1.0 / totals[used]) @ weights[used])
-        # the surfaces' rows come first: one split of the values, no test of each name's kind
-        self._surfaces = [n for kind, n in self._names if kind == "surface"]
-        self._sources = [n for kind, n in self._names if kind == "source"]
+        # the surfaces' rows come first, then the sources': one split of the values
+        surfaces = len(basis.surfaces)
+        self._surfaces = [n for n, keep in zip(basis.surfaces, used[:surfaces]) if keep]
+        self._sources = [n for n, keep in zip(basis.sources, used[surfaces:]) if keep]
 
     def __call__(self, state: np.ndarray) -> LocalTemperatures:
         values = (self._weights @ state).tolist()

@@ -122,23 +122,15 @@ def test_a_lagging_reading_moves_only_the_values_beyond_the_tolerance():
     assert lagging.largest_change(now) <= 0.1
 
 
-def test_a_memo_recomputes_only_the_surfaces_whose_temperature_or_point_changed(paper, monkeypatch):
-    import feedtherm.boundary as boundary
-
+def test_a_memo_recomputes_only_the_surfaces_whose_temperature_or_point_changed(paper, surface_evaluations):
     system = paper.system
     point = point_of(system)
     reading = {name: 300.0 + 0.1 * i for i, name in enumerate(system.surfaces)}
     plain = boundary_conditions_at(system, point, temperatures=LocalTemperatures(surfaces=reading))
     memo = {}
     first = boundary_conditions_at(system, point, temperatures=LocalTemperatures(surfaces=reading), memo=memo)
-    computed = []
-    surface_transfer = boundary.surface_transfer
-
-    def counted(*args, **kwargs):
-        computed.append(args[1])
-        return surface_transfer(*args, **kwargs)
-
-    monkeypatch.setattr(boundary, "surface_transfer", counted)
+    computed = surface_evaluations
+    computed.clear()  # what the second evaluation computes
     moved = dict(reading, worktable=reading["worktable"] + 1.0)
     second = boundary_conditions_at(system, point, temperatures=LocalTemperatures(surfaces=moved), memo=memo)
     assert computed == ["worktable"]
