@@ -1,6 +1,7 @@
 """Benchmark of calibration: one fit and the leave-one-condition-out study, wall time and runs.
 
 Run:  .venv/bin/python benchmarks/bench_calibration.py [--params a,b,c] [--fit I,II,IV] [--workers N]
+          [--model fast|reduced] [--mesh coarse|medium|fine]
 
 It times exactly what ``feedtherm calibrate <system> --fit ... --params ... --cross-validate``
 computes (the consistency check, the fit, the prediction intervals, then one fit per left-out
@@ -24,7 +25,7 @@ from feedtherm.analysis.validation import measurements_of
 from feedtherm.outputs.calibration_files import worst
 from feedtherm.system.load import load_system
 
-DEFAULT_PARAMS = "screw_nut_preload,front_bearing_preload,foundation,chtc_screw,elongation_read_at"
+DEFAULT_PARAMS = "screw_nut_preload,front_bearing_preload,foundation,chtc_screw,tcr"
 
 
 def largest(rows) -> dict:
@@ -42,6 +43,8 @@ def main() -> None:
     parser.add_argument("--params", default=DEFAULT_PARAMS)
     parser.add_argument("--fit", default="I,II,IV")
     parser.add_argument("--workers", type=int, default=os.cpu_count() or 1)
+    parser.add_argument("--model", default="fast", help="a model of `feedtherm models` (reduced: the parametric one)")
+    parser.add_argument("--mesh", default=None, help="its FE mesh (fem, reduced)")
     parser.add_argument("--json", action="store_true", help="print the figures as JSON")
     args = parser.parse_args()
     loaded = load_system(args.system)
@@ -53,7 +56,8 @@ def main() -> None:
     consistency = check_description_measurements(loaded.system, data)
     # As the command does: one local cluster (--workers > 1) for the fit and every fold.
     with kept_open(Execution(workers=args.workers) if args.workers > 1 else Execution()) as running:
-        options = {"consistency": consistency, "execution": running, "cache": RunCache()}
+        options = {"consistency": consistency, "execution": running, "cache": RunCache(), "model": args.model,
+                   "mesh": args.mesh}
         result = calibrate(loaded, data, fit, names, **options)
         first = time.perf_counter() - started
         folds = cross_validate(loaded, data, names, start=result.fitted, **options)
@@ -64,6 +68,8 @@ def main() -> None:
         "system": args.system,
         "params": names,
         "workers": args.workers,
+        "model": args.model,
+        "mesh": args.mesh,
         "fit_wall_s": round(first, 1),
         "fit_model_runs": result.model_runs,
         "leave_one_out_wall_s": round(total - first, 1),

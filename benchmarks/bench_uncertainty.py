@@ -2,7 +2,7 @@
 and on a local Dask cluster of N worker processes, and whether the two give the same files.
 
 Run:  .venv/bin/python benchmarks/bench_uncertainty.py [--workers 2] [--samples 128] [--sobol-base 64]
-      [--update-with I,II,IV] [--only serial|parallel]
+      [--update-with I,II,IV] [--only serial|parallel] [--model reduced --mesh medium]
 
 Each execution is the command as a user types it, in a child process (interpreter, imports, the
 cluster's start-up, the runs, the files): its wall time from start to exit.  The runs are the
@@ -39,6 +39,8 @@ def uncertainty(out: Path, args: argparse.Namespace, extra: list[str]) -> float:
                "--sobol-base", str(args.sobol_base), "--out", str(out), *extra]
     if args.update_with:
         command += ["--update-with", args.update_with]
+    if args.model != "fast":
+        command += ["--model", args.model, "--mesh", args.mesh]
     start = time.perf_counter()
     process = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env)
     wall = time.perf_counter() - start
@@ -70,12 +72,15 @@ def main() -> None:
     parser.add_argument("--samples", type=int, default=128)
     parser.add_argument("--sobol-base", type=int, default=64)
     parser.add_argument("--update-with", default=None, metavar="CONDITIONS")
+    parser.add_argument("--model", default="fast", help="a model of `feedtherm models` (reduced: the parametric one)")
+    parser.add_argument("--mesh", default="coarse", help="its FE mesh (with --model fem or reduced)")
     parser.add_argument("--only", choices=["serial", "parallel"], default=None,
                         help="time one execution only (no comparison of the files)")
     args = parser.parse_args()
     result = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "machine": platform.machine(),
               "cpus": os.cpu_count(), "python": platform.python_version(), "samples": args.samples,
-              "sobol_base": args.sobol_base, "update_with": args.update_with, "workers": args.workers}
+              "sobol_base": args.sobol_base, "update_with": args.update_with, "workers": args.workers,
+              "model": args.model, "mesh": args.mesh if args.model != "fast" else None}
     with tempfile.TemporaryDirectory() as tmp:
         folders = {}
         for name, extra in (("serial", ["--workers", "1"]), ("parallel", ["--workers", str(args.workers)])):
@@ -93,6 +98,7 @@ def main() -> None:
     out = Path(__file__).parent / "results"
     out.mkdir(exist_ok=True)
     tag = f"{args.samples}x{args.sobol_base}" + (f"_update_{args.update_with.replace(',', '-')}" if args.update_with else "")
+    tag += f"_{args.model}_{args.mesh}" if args.model != "fast" else ""
     (out / f"bench_uncertainty_{tag}{'_' + args.only if args.only else ''}.json").write_text(
         json.dumps(result, indent=2) + "\n")
 

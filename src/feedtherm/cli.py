@@ -400,6 +400,15 @@ def cmd_validate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _model_and_mesh(args: argparse.Namespace) -> dict:
+    """``--model`` checked against the registry (an unknown name: one line naming ``--model``) and
+    ``--mesh`` where that model takes one: the ``model``/``mesh`` keywords of a study."""
+    from .models.registry import model_entry
+
+    entry = model_entry(args.model)
+    return {"model": entry.name, "mesh": args.mesh if entry.uses_mesh else None}
+
+
 def cmd_calibrate(args: argparse.Namespace) -> int:
     from .outputs.files import check_output_dir
     from .outputs.run_files import default_out_dir
@@ -413,6 +422,7 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
         cores = os.cpu_count() or 1
         execution = Execution(workers=cores) if cores > 1 else execution
     loaded = _load_in_mode(args)
+    model = _model_and_mesh(args)  # an unknown model fails before any run
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "calibration", args.mode)
     check_output_dir(out_dir)
     from .analysis.calibration import RunCache, calibrate, cross_validate, resolve_parameters
@@ -429,7 +439,7 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     # a calibration is hundreds of short runs in small batches.
     with kept_open(execution) as running:
         options = {"consistency": consistency, "equilibrium": not args.no_equilibrium,
-                   "execution": running, "cache": RunCache()}
+                   "execution": running, "cache": RunCache(), **model}
         with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
             result = calibrate(loaded, data, fit, names, progress=progress, **options)
         cross = None
@@ -548,6 +558,7 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
         args.condition = next(iter(loaded.system.conditions))
     if not args.no_sobol:
         _condition(loaded, args.condition)
+    model = _model_and_mesh(args)  # an unknown model fails before any run
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, "uncertainty", args.mode)
     check_output_dir(out_dir)
     from .analysis.consistency import check_description_measurements
@@ -575,13 +586,14 @@ def cmd_uncertainty(args: argparse.Namespace) -> int:
         from .analysis.uncertainty.update import bayesian_update
 
         posterior = bayesian_update(loaded, data, update_with, consistency=consistency,
-                                    execution=execution)
+                                    execution=execution, **model)
     from .outputs.uncertainty_files import print_uncertainty, write_uncertainty
 
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
         study = run_uncertainty(loaded, samples=args.samples, sobol_base=None if args.no_sobol else args.sobol_base,
                                 seed=args.seed, sobol_condition=args.condition, data=data,
-                                consistency=consistency, posterior=posterior, execution=execution, progress=progress)
+                                consistency=consistency, posterior=posterior, execution=execution, progress=progress,
+                                **model)
     write_uncertainty(study, out_dir)
     print_uncertainty(study, out_dir)
     return 0
@@ -801,8 +813,8 @@ def build_parser() -> argparse.ArgumentParser:
                            help="also leave each measured condition out in turn and predict it")
     calibrate.add_argument("--no-equilibrium", action="store_true",
                            help="fit the final values only, not the measured equilibrium times")
-    calibrate.add_argument("--model", choices=("fast",), default="fast",
-                           help="calibration runs the fast model (hundreds of runs)")
+    calibrate.add_argument("--model", default="fast", help="a model of `feedtherm models` (default fast)")
+    calibrate.add_argument("--mesh", choices=MESHES, default="coarse", help="FE mesh density (with --model fem)")
     _mode_argument(calibrate)
     _execution_arguments(calibrate, default="one worker per CPU, kept for the whole calibration; 1: serial")
     _out_argument(calibrate, "out/<system>_calibration_<mode>")
@@ -848,6 +860,8 @@ def build_parser() -> argparse.ArgumentParser:
                              help="comma-separated measured conditions: also the bands after a "
                                   "Bayesian update of every declared prior with their measured final values "
                                   "(docs/uncertainty.md); not with --calibration")
+    uncertainty.add_argument("--model", default="fast", help="a model of `feedtherm models` (default fast)")
+    uncertainty.add_argument("--mesh", choices=MESHES, default="coarse", help="FE mesh density (with --model fem)")
     _measured_argument(uncertainty)
     _mode_argument(uncertainty)
     _execution_arguments(uncertainty)

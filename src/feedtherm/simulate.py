@@ -121,6 +121,17 @@ def execute(plan: RunPlan, progress: Callable[[float], None] | None = None,
     return solution
 
 
+def prepare(system: FeedSystem, model: str, mesh: str | None = None) -> None:
+    """Build ``model`` once for ``system`` here when it keeps what a build makes for later runs
+    (``ModelEntry.prepares``: the reduced model's projection, trained over the ranges ``system``
+    declares), so that the runs of a batch, on Dask workers too, read it instead of each building
+    one, and from a variant's description."""
+    from .models.registry import model_entry
+
+    if model_entry(model).prepares:
+        build_model(model, system, ModelOptions() if mesh is None else ModelOptions(mesh=mesh))
+
+
 def discretize(system: FeedSystem, model: str, options: ModelOptions | None = None) -> ThermalModel:
     """The registry's model ``model`` built for ``system`` (the operators the integrator uses)."""
     return build_model(model, system, options or ModelOptions())

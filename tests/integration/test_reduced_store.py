@@ -124,13 +124,13 @@ def test_the_key_changes_with_anything_the_projection_is_built_from(paper, fe_ke
     material = system.parts[system.kinematics.screw].material
     box = system.parts["base"].boxes[0]
     variants = {
-        "a material's conductivity": fe_key(_with(system, materials={
-            **system.materials, material: _with(system.materials[material], conductivity=50.0)})),
+        "a material's heat capacity": fe_key(_with(system, materials={
+            **system.materials, material: _with(system.materials[material], specific_heat=500.0)})),
         "a part's geometry": fe_key(_with(system, parts={
             **system.parts, "base": _with(system.parts["base"], boxes=[_with(box, size=(1.01, *box.size[1:])),
                                                                        *system.parts["base"].boxes[1:]])})),
-        "a joint's resistance": fe_key(_with(system, joints=[_with(system.joints[0], tcr=system.joints[0].tcr * 2),
-                                                             *system.joints[1:]])),
+        "a joint's area": fe_key(_with(system, joints=[_with(system.joints[0], area=system.joints[0].area * 2),
+                                                       *system.joints[1:]])),
         "the mesh file": fe_key(mesh_bytes=b"another mesh"),
         "the mesh density": fe_key(options=ModelOptions(mesh="medium")),
         "the screw's sections": fe_key(options=ModelOptions(axial_cells=120)),
@@ -138,8 +138,8 @@ def test_the_key_changes_with_anything_the_projection_is_built_from(paper, fe_ke
         "the tolerance": fe_key(options=ModelOptions(reduction_tolerance=2e-4)),
     }
     with monkeypatch.context() as m:
-        m.setattr(store, "package_digest", lambda: "another feedtherm")
-        variants["the package's code"] = fe_key()
+        m.setattr(store, "operator_code_digest", lambda: "another feedtherm")
+        variants["the operators' code"] = fe_key()
     with monkeypatch.context() as m:
         versions = {**store.library_versions(), "scipy": "0.0"}
         m.setattr(store, "library_versions", lambda: versions)
@@ -149,6 +149,21 @@ def test_the_key_changes_with_anything_the_projection_is_built_from(paper, fe_ke
     assert len(set(variants.values())) == len(variants)
     # what the full model is not built from leaves the key alone: the solver of the time steps
     assert fe_key(options=ModelOptions(solver="direct", coupling_tolerance=0.5)) == base
+    # and so do the numbers the projection takes as parameters, and what only the boundary conditions read
+    foundation = system.surfaces["base_bottom"]
+    alike = {
+        "a material's conductivity and expansion": _with(system, materials={
+            **system.materials, material: _with(system.materials[material], conductivity=50.0, expansion=1.3e-5)}),
+        "a joint's resistance": _with(system, joints=[_with(system.joints[0], tcr=system.joints[0].tcr * 2),
+                                                      *system.joints[1:]]),
+        "a fixed coefficient": _with(system, surfaces={**system.surfaces, "base_bottom": _with(
+            foundation, convection=_with(foundation.convection, coefficient=100.0), chtc_factor=1.5)}),
+        "a loss model's number": _with(system, sources={**system.sources, "screw_nut": _with(
+            system.sources["screw_nut"], friction_coefficient=0.1)}),
+        "the conditions and declared ranges": _with(system, conditions={}, uncertainty=None, calibration=None),
+    }
+    for name, changed in alike.items():
+        assert fe_key(changed) == base, name
 
 
 def test_without_its_mesh_file_the_key_waits_for_the_build(paper, tmp_path, monkeypatch):
@@ -156,23 +171,27 @@ def test_without_its_mesh_file_the_key_waits_for_the_build(paper, tmp_path, monk
     assert registry._reduced_inputs(paper.system, ModelOptions()) is None
 
 
-def test_the_package_digest_covers_every_module(monkeypatch, tmp_path):
+def test_the_code_digest_covers_the_code_that_makes_operators_only(monkeypatch, tmp_path):
     package = tmp_path / "feedtherm"
-    (package / "models").mkdir(parents=True)
-    (package / "models" / "a.py").write_text("x = 1\n")
-    (package / "__pycache__").mkdir()
-    (package / "__pycache__" / "a.cpython-311.pyc").write_bytes(b"compiled")
+    (package / "models" / "fem").mkdir(parents=True)
+    (package / "analysis").mkdir()
+    (package / "models" / "fem" / "a.py").write_text("x = 1\n")
+    (package / "analysis" / "b.py").write_text("y = 1\n")
+    (package / "models" / "fem" / "__pycache__").mkdir()
+    (package / "models" / "fem" / "__pycache__" / "a.cpython-311.pyc").write_bytes(b"compiled")
     monkeypatch.setattr(store, "_PACKAGE", package)
     digests = []
-    for change in (None, "bytecode", "code", "new module"):
+    for change in (None, "bytecode", "analysis", "code", "new module"):
         if change == "bytecode":
-            (package / "__pycache__" / "a.cpython-311.pyc").write_bytes(b"recompiled")
+            (package / "models" / "fem" / "__pycache__" / "a.cpython-311.pyc").write_bytes(b"recompiled")
+        elif change == "analysis":
+            (package / "analysis" / "b.py").write_text("y = 2\n")
         elif change == "code":
-            (package / "models" / "a.py").write_text("x = 2\n")
+            (package / "models" / "fem" / "a.py").write_text("x = 2\n")
         elif change == "new module":
-            (package / "b.py").write_text("")
-        store.package_digest.cache_clear()
-        digests.append(store.package_digest())
-    store.package_digest.cache_clear()
-    assert digests[0] == digests[1]  # bytecode is not code
-    assert len({digests[1], digests[2], digests[3]}) == 3
+            (package / "models" / "fem" / "c.py").write_text("")
+        store.operator_code_digest.cache_clear()
+        digests.append(store.operator_code_digest())
+    store.operator_code_digest.cache_clear()
+    assert digests[0] == digests[1] == digests[2]  # bytecode is not code; an analysis makes no operator
+    assert len({digests[2], digests[3], digests[4]}) == 3

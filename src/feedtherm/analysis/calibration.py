@@ -6,8 +6,10 @@ reflective) on residuals ``(simulated - measured) / sigma`` of the final values 
 conditions, with ``sigma`` the declared temperature and elongation weights.  Where the
 measurements state equilibrium times, the simulated time to 95 % of the steady rise is fitted
 too (the transient information; weight ``equilibrium_sigma``).  Each model evaluation is a full
-transient run of the fast model with the cycle-averaged motion (60 s steps, see
-``CALIBRATION_OPTIONS``).
+transient run with the cycle-averaged motion (60 s steps, see ``CALIBRATION_OPTIONS``) of the
+model the caller chooses (``model``/``mesh``: a model of the registry,
+:mod:`feedtherm.models.registry`; by default the fast one, whose runs are cheap enough for the
+hundreds a fit takes).
 
 Where a condition's measurements are time series (:mod:`.measurement_series`), every sample is a
 residual instead of the final value: the run, in 10 s steps (``SERIES_OPTIONS``), interpolated
@@ -46,7 +48,8 @@ from ..boundary import boundary_conditions
 from ..boundary.heat import motor_duties
 from ..errors import FeedthermError
 from ..models.options import ModelOptions
-from ..simulate import simulate
+from ..models.registry import model_entry
+from ..simulate import prepare, simulate
 from ..solution.equilibrium import rise_time
 from ..system.load import LoadedSystem
 from ..system.overlay import mode_of
@@ -147,6 +150,8 @@ class CalibrationResult:
     # the residuals), and those of the held-out conditions against their predictions
     series_fit: list[TransientComparison] = field(default_factory=list)
     series_held_out: list[TransientComparison] = field(default_factory=list)
+    model: str = "fast"  # the model of the registry the runs took
+    mesh: str | None = None  # its FE mesh (None: the model takes none, or the options' own)
 
     @property
     def series_conditions(self) -> list[str]:
@@ -211,14 +216,14 @@ def apply(loaded: LoadedSystem, parameters: list[FitParameter], x) -> LoadedSyst
 #: fewer steps make the hundreds of runs of a fit affordable.
 CALIBRATION_STEP_S = 60.0
 CALIBRATION_OPTIONS = ModelOptions(motion="averaged", averaged_step=CALIBRATION_STEP_S,
-                                   max_step=CALIBRATION_STEP_S)
+                                   max_step=CALIBRATION_STEP_S, fields=False)
 #: Time stepping of the runs of conditions fitted as series.  Implicit Euler lags a transient by
 #: about half a step: on ballscrew_example's v10 (tests/data/ballscrew_v10_series.csv) 60 s steps
 #: differ from 10 s steps by up to 0.16 K and 1.0 µm within the first 20 min, as much as the
 #: samples' own uncertainties (0.2 K, 1 µm), where the finals differ by hundredths.  10 s steps
 #: are what ``validate`` scores a series with; a run costs 1.3 to 2.5 times a 60 s one.
 SERIES_STEP_S = 10.0
-SERIES_OPTIONS = ModelOptions(motion="averaged", averaged_step=SERIES_STEP_S, max_step=SERIES_STEP_S)
+SERIES_OPTIONS = ModelOptions(motion="averaged", averaged_step=SERIES_STEP_S, max_step=SERIES_STEP_S, fields=False)
 
 
 def series_key(quantity: str) -> tuple[str, str]:
@@ -231,7 +236,8 @@ def series_key(quantity: str) -> tuple[str, str]:
 SERIES_TIMES = ("series times",)
 
 
-def _final_values(loaded: LoadedSystem, condition: str, series: Sequence[str] | None = None) -> dict:
+def _final_values(loaded: LoadedSystem, condition: str, series: Sequence[str] | None = None, *,
+                  model: str = "fast", mesh: str | None = None) -> dict:
     """One condition's final values, its time to 95 % of the steady rise [min] and its series.
 
     Parameters
@@ -244,6 +250,11 @@ def _final_values(loaded: LoadedSystem, condition: str, series: Sequence[str] | 
         Measured quantities (sensors, or ``D_um``) whose series to return: the run is then
         stepped and sampled every :data:`SERIES_STEP_S`.  Without it the run takes 60 s steps and
         returns finals only.
+    model : str
+        The model of the registry that runs it (default ``"fast"``).
+    mesh : {"coarse", "medium", "fine"}, optional
+        The FE mesh of a model that takes one (``fem``, ``reduced``); None: the options' own
+        (``ModelOptions.mesh``, coarse).
 
     Returns
     -------
@@ -255,7 +266,7 @@ def _final_values(loaded: LoadedSystem, condition: str, series: Sequence[str] | 
         measured samples; the fit interpolates them to the measured times.
     """
     step, options = (SERIES_STEP_S, SERIES_OPTIONS) if series else (CALIBRATION_STEP_S, CALIBRATION_OPTIONS)
-    run = simulate(loaded, condition=condition, motion="averaged", options=options,
+    run = simulate(loaded, condition=condition, model=model, mesh=mesh, motion="averaged", options=options,
                    sample_interval=step, allow_overload=True)  # the fit reports overloads
     values: dict = {k: float(v) for k, v in run.summary_values("final").items()}
     initial = {name: float(trace[0]) for name, trace in run.sensors.items()}
@@ -275,6 +286,8 @@ class _CalibrationRun:
     loaded: LoadedSystem  # with the overlay the fit runs in
     condition: str
     series: tuple[str, ...] = ()  # the measured quantities whose series the run returns
+    model: str = "fast"  # the model of the registry that runs it
+    mesh: str | None = None  # its FE mesh (None: the options' own)
 
     def describe(self) -> str:
         return f"condition {self.condition} of {self.loaded.origin}"
@@ -282,9 +295,10 @@ class _CalibrationRun:
 
 def _calibration_run(run: _CalibrationRun) -> dict:
     """One run, wherever it executes (a worker imports this by name)."""
+    how = {"model": run.model, "mesh": run.mesh}
     if run.series:
-        return _final_values(run.loaded, run.condition, run.series)
-    return _final_values(run.loaded, run.condition)
+        return _final_values(run.loaded, run.condition, run.series, **how)
+    return _final_values(run.loaded, run.condition, **how)
 
 
 def _value(result):
@@ -295,7 +309,7 @@ def _value(result):
 
 
 class RunCache:
-    """Final values of runs already made, by parameter values and condition.
+    """Final values of runs already made, by parameter values, condition and model (and mesh).
 
     A calibration evaluates the same points more than once: the prediction intervals start
     from the optimum the fit has just evaluated, and every leave-one-out fold starts from the
@@ -332,13 +346,17 @@ class _Model:
     are the same wherever the runs go.  ``cache`` keeps every run's values for later requests of
     the same point.  ``series``: condition → the measured quantities whose series its runs also
     return (:func:`_final_values`, in 10 s steps); their cache keys name them, so a finals-only
-    request never gets a series run's values, nor the reverse.
+    request never gets a series run's values, nor the reverse.  ``model``/``mesh``: the model of
+    the registry the runs take (default the fast one) and its FE mesh; the cache keys name them
+    too, so one cache never hands one model's values to another.
     """
 
     def __init__(self, loaded: LoadedSystem, parameters: list[FitParameter], workers: int = 1,
                  cache: RunCache | None = None, execution: Execution | None = None,
-                 series: Mapping[str, Sequence[str]] | None = None):
+                 series: Mapping[str, Sequence[str]] | None = None, *, model: str = "fast",
+                 mesh: str | None = None):
         self.loaded, self.parameters = loaded, parameters
+        self.model, self.mesh = model, mesh
         self.series = {c: tuple(sorted(quantities)) for c, quantities in (series or {}).items() if quantities}
         self.runs = 0
         if execution is None:
@@ -359,7 +377,8 @@ class _Model:
         # 12 significant digits: a point that went through the fit's [0, 1] scaling and back
         # differs from itself in the last bit
         names = tuple(p.name for p in self.parameters)
-        key = (mode_of(self.loaded), condition, names, tuple(float(f"{float(v):.12g}") for v in x))
+        how = (mode_of(self.loaded), self.model, self.mesh)  # the overlay, the model and its mesh
+        key = (how, condition, names, tuple(float(f"{float(v):.12g}") for v in x))
         quantities = self.series.get(condition)
         return key if quantities is None else (*key, quantities)  # a finals-only run keys as it always did
 
@@ -374,7 +393,8 @@ class _Model:
         if missing:
             variants = {i: apply(self.loaded, self.parameters, points[i]) for i in {i for i, _ in missing}}
             self.runs += len(missing)
-            runs = [_CalibrationRun(variants[i], c, self.series.get(c, ())) for i, c in missing]
+            runs = [_CalibrationRun(variants[i], c, self.series.get(c, ()), self.model, self.mesh)
+                    for i, c in missing]
             if self.execution.serial or len(runs) == 1:
                 values = [_calibration_run(run) for run in runs]
             else:
@@ -524,7 +544,8 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
               progress: Callable[[float], None] | None = None,
               consistency: ConsistencyReport | None = None, equilibrium: bool = True,
               start: np.ndarray | None = None, workers: int = 1, cache: RunCache | None = None,
-              execution: Execution | None = None) -> CalibrationResult:
+              execution: Execution | None = None, model: str = "fast",
+              mesh: str | None = None) -> CalibrationResult:
     """Fit the parameters ``names`` to the conditions ``fit``; predict every other condition.
 
     ``consistency``: values it flags are left out of the fit (and reported with their reason).
@@ -538,9 +559,13 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
     cluster once for many calibrations); ``workers`` > 1 without it: a local cluster of that many
     processes for this calibration.  The numbers are the same either way.
     ``cache``: runs already made (shared with a later :func:`cross_validate`).
+    ``model``: the model of the registry every run takes (default the fast one; an unknown name
+    fails before any run), ``mesh`` its FE mesh (``fem``, ``reduced``; None: the options' own).
     The runs take the overlay ``loaded`` carries (:func:`feedtherm.plan.with_mode`).
     """
     started = time.perf_counter()
+    model_entry(model)  # an unknown model fails before any run
+    prepare(loaded.system, model, mesh)
     measured = data.conditions()
     missing = [c for c in fit if c not in measured]
     if missing:
@@ -560,7 +585,8 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
                              for r in rows]) if rows else np.zeros(0)
     if len(target) < len(parameters):
         raise FeedthermError(f"--fit: {len(target)} measured values cannot determine {len(parameters)} parameters")
-    with _Model(loaded, parameters, workers, cache, execution, series=_series_quantities(every)) as model:
+    with _Model(loaded, parameters, workers, cache, execution, series=_series_quantities(every), model=model,
+                mesh=mesh) as runner:
         lower = np.array([p.lower for p in parameters])
         upper = np.array([p.upper for p in parameters])
         span = upper - lower
@@ -574,17 +600,17 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
 
         def report_progress() -> None:
             if progress is not None:
-                progress(min(0.9, model.runs / (len(fit) * (len(parameters) + 1) * 8)))
+                progress(min(0.9, runner.runs / (len(fit) * (len(parameters) + 1) * 8)))
 
         def residuals(u):  # u: parameters scaled to [0, 1] within their bounds
             x = lower + u * span
-            out = np.concatenate([values(model.finals(x, fit)), duty(x)])
+            out = np.concatenate([values(runner.finals(x, fit)), duty(x)])
             report_progress()
             return out
 
         def jacobian(u):  # the same forward differences as the prediction intervals', in u
             x = lower + u * span
-            base, steps, moved = model.sensitivities(x, lower, upper, fit)
+            base, steps, moved = runner.sensitivities(x, lower, upper, fit)
             report_progress()
             f0 = np.concatenate([values(base), duty(x)])
             columns = []
@@ -613,7 +639,7 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
         active = result.active_mask
         at_bound = ["lower" if ui <= 1e-6 or a < 0 else "upper" if ui >= 1 - 1e-6 or a > 0 else ""
                     for ui, a in zip(u, active)]
-        finals, intervals = _prediction_intervals(model, x, lower, upper, every, cov, s2, dof, loaded)
+        finals, intervals = _prediction_intervals(runner, x, lower, upper, every, cov, s2, dof, loaded)
         calibrated = apply(loaded, parameters, x)
         if progress is not None:
             progress(1.0)
@@ -623,13 +649,14 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
             at_bound=at_bound, fit_conditions=list(fit),
             residuals=_predictions(finals, [r for r in fitted_rows if not r.flag], intervals),
             held_out=_predictions(finals, [r for r in every if r.condition not in fit], intervals),
-            cost=0.5 * float(result.fun[:n] @ result.fun[:n]), model_runs=model.runs,
+            cost=0.5 * float(result.fun[:n] @ result.fun[:n]), model_runs=runner.runs,
             wall_time_s=time.perf_counter() - started,
             measurement_source=data.source, calibrated=calibrated, status=result.message,
             excluded=_predictions(finals, [r for r in fitted_rows if r.flag], intervals),
             motor_duty=motor_duty(calibrated),
             series_fit=_series_scores(finals, fitted_rows),
             series_held_out=_series_scores(finals, [r for r in every if r.condition not in fit]),
+            model=model, mesh=mesh,
         )
 
 
@@ -791,13 +818,16 @@ def cross_validate(loaded: LoadedSystem, data: MeasurementSet, names: list[str],
                    progress: Callable[[float], None] | None = None, consistency: ConsistencyReport | None = None,
                    equilibrium: bool = True, start: np.ndarray | None = None,
                    workers: int = 1, cache: RunCache | None = None,
-                   execution: Execution | None = None) -> list[tuple[str, CalibrationResult]]:
+                   execution: Execution | None = None, model: str = "fast",
+                   mesh: str | None = None) -> list[tuple[str, CalibrationResult]]:
     """Leave each measured condition out in turn: fit on the rest, predict the one left out.
 
     ``start``: where every fold's fit starts (a fit on all the conditions is a good start:
     a fold differs from it by one condition's data).  ``cache``: pass the first fit's, so the
-    folds reuse its values and sensitivities at their common start.
+    folds reuse its values and sensitivities at their common start.  ``model``/``mesh``: the
+    model every fold's runs take (:func:`calibrate`).
     """
+    model_entry(model)  # an unknown model fails before any run
     cache = cache if cache is not None else RunCache()
     if execution is None:
         execution = Execution(workers=workers) if workers > 1 else Execution()
@@ -807,7 +837,8 @@ def cross_validate(loaded: LoadedSystem, data: MeasurementSet, names: list[str],
         for i, left_out in enumerate(conditions):
             fit = [c for c in conditions if c != left_out]
             out.append((left_out, calibrate(loaded, data, fit, names, consistency=consistency,
-                                            equilibrium=equilibrium, start=start, cache=cache, execution=running)))
+                                            equilibrium=equilibrium, start=start, cache=cache, execution=running,
+                                            model=model, mesh=mesh)))
             if progress is not None:
                 progress((i + 1) / len(conditions))
     return out

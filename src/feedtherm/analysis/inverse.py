@@ -243,7 +243,7 @@ def transient_transfer(loaded: LoadedSystem, condition: str, groups: dict[str, t
     """
     frozen = loaded if loaded.system.temperatures.coupling == "frozen" else \
         with_values(loaded, {"temperatures.coupling": "frozen"}, origin_suffix="frozen coefficients")
-    options = ModelOptions(motion="averaged", averaged_step=TRANSIENT_STEP_S, max_step=TRANSIENT_STEP_S)
+    options = ModelOptions(motion="averaged", averaged_step=TRANSIENT_STEP_S, max_step=TRANSIENT_STEP_S, fields=False)
     plan = plan_run(frozen, condition=condition, model=model, motion="averaged", options=options,
                     sample_interval=TRANSIENT_STEP_S, allow_overload=True)  # heats are what is asked
     disc = plan.model.build(frozen.system, plan.options)

@@ -541,7 +541,7 @@ class Integrator:
                     # the ledger's heats as the state: the step's share up to the sample
                     trace.sample_heat_in.append(heat_in + step.heats * (w * dt))
                     trace.sample_heat_lost.append(heat_lost + lost * (w * dt))
-                    if next_sample >= next_snapshot - 1e-9 or next_sample >= t_end - 1e-9:
+                    if self.options.fields and (next_sample >= next_snapshot - 1e-9 or next_sample >= t_end - 1e-9):
                         trace.snapshots.append((next_sample, state, m.positions[k_probe]))
                         next_snapshot = next_sample + self.options.snapshot_interval
                     next_sample = next(samples, None)

@@ -57,6 +57,43 @@ class AmbientCoupling:
 
 
 @dataclass(frozen=True)
+class AffineParameter:
+    """A number of the description that a model's operators are linear in.
+
+    ``kind`` says which operator: ``"conductance"``, ``G_k = Σ_q θ_q ∂G_k/∂θ_q`` over the model's
+    conductance parameters (:meth:`ThermalModel.conductance_term`); ``"expansion"``, the
+    displacement rows and offsets are linear in it (:meth:`ThermalModel.displacement_term`).
+    A parametric reduced model projects each term once and weighs it by another description's
+    value (:func:`affine_value`), without building the full model again.
+    """
+
+    name: str  # :func:`affine_value`'s name: "materials.<m>.conductivity", "joints[<i>].conductance", ...
+    kind: str  # "conductance" or "expansion"
+    value: float  # at the model's own description [SI]
+    moves: bool = False  # its term changes with the moving group's position
+
+
+def affine_value(system: FeedSystem, name: str) -> float:
+    """The value in ``system`` of the affine parameter ``name`` [SI].
+
+    ``materials.<m>.conductivity`` [W/(m·K)] and ``materials.<m>.expansion`` [1/K] as declared;
+    ``joints[<i>].conductance`` [W/(m²·K)] is the joint's ``1 / tcr``, what its interface matrix
+    is linear in; ``surfaces.<s>.coefficient`` [W/(m²·K)] is a fixed-coefficient surface's
+    coefficient times its ``chtc_factor`` (it enters the boundary conditions, not an operator:
+    a reduced model's basis is trained over it).
+    """
+    head, _, field = name.rpartition(".")
+    if head.startswith("materials."):
+        return float(getattr(system.materials[head.removeprefix("materials.")], field))
+    if head.startswith("joints[") and field == "conductance":
+        return 1.0 / float(system.joints[int(head[len("joints["):-1])].tcr)
+    if head.startswith("surfaces.") and field == "coefficient":
+        surface = system.surfaces[head.removeprefix("surfaces.")]
+        return float(surface.convection.coefficient) * float(surface.chtc_factor)
+    raise KeyError(name)
+
+
+@dataclass(frozen=True)
 class HeatInput:
     """A share of a source's heat into one part [W], and where it enters.
 
@@ -344,6 +381,21 @@ class ThermalModel(ABC):
     def displacement_rows(self) -> tuple[Operator, np.ndarray]:
         """``(rows, offset)``: ``rows @ state + offset`` is D, then the screw's axial displacement at
         ``screw_centres`` relative to the positioning reference [m] (see the class notes)."""
+
+    # ------------------------------------------------------------------ affine parameters
+    def affine_parameters(self) -> list[AffineParameter]:
+        """The description's numbers this model's operators are linear in (:class:`AffineParameter`);
+        none by default: a model whose conductances are not linear in its materials' and joints'
+        numbers (the fast model's cells in series) is reduced for its own description only."""
+        return []
+
+    def conductance_term(self, name: str, k: int) -> Operator:
+        """``∂G_k/∂θ`` of the conductance parameter ``name`` [W/K per unit of θ]."""
+        raise NotImplementedError(f"{type(self).__name__} has no affine parameter {name!r}")
+
+    def displacement_term(self, name: str) -> tuple[Operator, np.ndarray]:
+        """``∂(rows, offset)/∂θ`` of :meth:`displacement_rows` for the expansion parameter ``name``."""
+        raise NotImplementedError(f"{type(self).__name__} has no affine parameter {name!r}")
 
     def displacements(self, state: np.ndarray) -> np.ndarray:
         """D, then the screw's axial displacement profile [m], of ``state`` (:meth:`displacement_rows`)."""

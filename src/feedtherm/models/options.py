@@ -29,6 +29,9 @@ class ModelOptions:
     # when the run starts (models/pardiso.py); the positions beyond step by conjugate gradients
     factor_memory: float | None = None
     snapshot_interval: float = 600.0  # [s] full-field snapshots kept for field output (FE)
+    # full-field snapshots and their displacement fields at all: the runs of a batch, which read
+    # sensors and D only, leave them out (a reduced model's fields can cost its full model)
+    fields: bool = True
     # nonlinear coupling (temperatures.coupling = "nonlinear")
     # [K] largest lag of a surface's or source's temperature before re-evaluation: at 0.5 K the
     # lagging heats moved the paper bench's time to 95 % of the rise at 396 rpm by 2.3 min,

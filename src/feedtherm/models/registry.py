@@ -31,6 +31,9 @@ class ModelEntry:
     summary: str
     factory: Factory | str
     uses_mesh: bool = False  # does it take ``--mesh``?
+    #: built once before a batch's runs (:func:`feedtherm.simulate.prepare`): it keeps on disk what a
+    #: build makes for the runs that follow (the reduced model's projection)
+    prepares: bool = False
 
     def build(self, system: FeedSystem, options: ModelOptions) -> ThermalModel:
         factory = self.factory
@@ -69,15 +72,16 @@ def _reduced(system: FeedSystem, options: ModelOptions) -> ThermalModel:
 
 def _reduced_inputs(system: FeedSystem, options: ModelOptions) -> dict | None:
     """What the reduced model's full FE model is built from (models/reduced/store.py): the description's
-    content, the mesh file's digest (None while it does not exist) and the FE model's arguments."""
+    structure (models/reduced/training.py), the mesh file's digest (None while it does not exist)
+    and the FE model's arguments."""
     from .fem.geometry import mesh_cache_path
     from .reduced.store import file_digest
+    from .reduced.training import structure
 
     mesh = file_digest(mesh_cache_path(system, options.mesh))
     if mesh is None:
         return None
-    return {"system": system.model_dump(mode="json"), "mesh_file": mesh,
-            "full_model": {"name": "fem", **_fem_arguments(options)}}
+    return {"system": structure(system), "mesh_file": mesh, "full_model": {"name": "fem", **_fem_arguments(options)}}
 
 
 _BUILT_IN = (
@@ -86,7 +90,8 @@ _BUILT_IN = (
     ModelEntry("fem", "3D finite elements (gmsh + scikit-fem), every part meshed, joints as interface "
                       "conductances (docs/fem-model.md)", _fem, uses_mesh=True),
     ModelEntry("reduced", "the FE model projected onto a moment-matching basis: the same mesh and moving nut, "
-                          "a few hundred unknowns (docs/reduced-model.md)", _reduced, uses_mesh=True),
+                          "a few hundred unknowns (docs/reduced-model.md)", _reduced, uses_mesh=True,
+               prepares=True),
 )
 _registered: dict[str, ModelEntry] = {}
 

@@ -147,7 +147,8 @@ def calibration_summary(result: CalibrationResult) -> dict:
         "wall_time_s": result.wall_time_s,
         "optimizer_status": result.status,
         "measurements": result.measurement_source,
-        "model": "fast, cycle-averaged motion",
+        "model": f"{result.model}, cycle-averaged motion",
+        "mesh": result.mesh,  # the FE mesh of a model that takes one, else null
         **({"series": series_summary(result)} if result.series_fit or result.series_held_out else {}),
     }
 

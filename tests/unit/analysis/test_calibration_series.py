@@ -38,7 +38,7 @@ def runs(monkeypatch):
     """The fake model in place of the thermal model; the list of (condition, series asked for)."""
     made = []
 
-    def run(loaded, condition, series=None):
+    def run(loaded, condition, series=None, *, model="fast", mesh=None):
         made.append((condition, series))
         end = float(loaded.system.conditions[condition].duration)
         values = {q: float(v[0]) for q, v in fake_transient(loaded, condition, np.array([end])).items()}

@@ -33,7 +33,7 @@ def counted(monkeypatch):
     """The fake model in place of the thermal model, and the list of the runs it made."""
     runs = []
 
-    def run(loaded, condition):
+    def run(loaded, condition, *, model="fast", mesh=None):
         runs.append(condition)
         return fake_finals(loaded, condition)
 

@@ -29,6 +29,8 @@ import numpy as np
 
 from ...constants import RPM_PER_RAD_S
 from ...errors import FeedthermError
+from ...models.options import ModelOptions
+from ...simulate import prepare
 from ...system.load import LoadedSystem
 from ...system.schema import DutyCycle
 from ...system.variants import with_values
@@ -239,13 +241,15 @@ def simulate_set(loaded: LoadedSystem, candidates: dict[str, Candidate], setting
         described = with_values(described, changes, origin_suffix=f"{name} cycle {index}")
         runs.append(SweepRun(described, {"cycle": CYCLE_NAME, "model": settings.model,
                                          "motion": settings.motion, "mesh": settings.mesh,
-                                         "sample_interval": settings.sample_interval},
+                                         "sample_interval": settings.sample_interval,
+                                         "options": ModelOptions(fields=False)},  # sensors and D only
                              label=f"{name} cycle {index} of seed {settings.seed}"))
         cycles.append(cycle)
         variants.append(variant)
         labels.append(label)
     names = list(candidates)
     records = []
+    prepare(base.system, settings.model, settings.mesh)
     for index, solution in enumerate(run_batch(runs, progress, execution)):
         if isinstance(solution, TaskFailure):  # a study needs every cycle: the first failure ends it
             raise FeedthermError(str(solution))

@@ -1,9 +1,11 @@
 """One sampled point of an uncertainty study: its runs, wherever they execute.
 
-A :class:`SampleRun` carries the variant description as data; :func:`run_sample` (module
-level, so a Dask worker imports it by name) runs its conditions with the fast model and the
-cycle-averaged motion in 60 s steps, as calibration does (``CALIBRATION_OPTIONS``), and returns
-the series of the sensors [°C] and D [µm] on a fixed grid and the final values.
+A :class:`SampleRun` carries the variant description as data, and the model that runs it by
+name (a model of the registry, :mod:`feedtherm.models.registry`: the fast one by default, and
+its FE mesh for the models that take one); :func:`run_sample` (module level, so a Dask worker
+imports it by name) runs its conditions with that model and the cycle-averaged motion in 60 s
+steps, as calibration does (``CALIBRATION_OPTIONS``), and returns the series of the sensors [°C]
+and D [µm] on a fixed grid and the final values.
 """
 
 from __future__ import annotations
@@ -28,6 +30,8 @@ class SampleRun:
     conditions: tuple[str, ...]
     label: str  # "prior sample 17", "Sobol point 3", "calibrated nominal"
     values: tuple[tuple[str, float], ...] = ()  # the parameters' values at this point [SI or factor]
+    model: str = "fast"  # the model of the registry that runs it
+    mesh: str | None = None  # its FE mesh (None: the options' own)
 
     def describe(self) -> str:
         shown = ", ".join(f"{name}={value:.4g}" for name, value in self.values)
@@ -53,7 +57,7 @@ def run_sample(run: SampleRun) -> SampleResult:
 
     series, finals = {}, {}
     for condition in run.conditions:
-        solution = simulate(run.loaded, condition=condition, motion="averaged",
+        solution = simulate(run.loaded, condition=condition, model=run.model, mesh=run.mesh, motion="averaged",
                             options=CALIBRATION_OPTIONS, sample_interval=GRID_STEP_S,
                             allow_overload=True)  # a sampled machine is run as declared, overloaded or not
         times = grid(run.loaded.system.conditions[condition].duration)

@@ -4,12 +4,13 @@ For each state of knowledge (the declared priors; after a calibration, its poste
 priors it left, or the priors updated with measured finals, :mod:`.update`), ``samples``
 scrambled Sobol' points of the unit hypercube are mapped through the parameters' inverse
 distribution functions (:mod:`.sampling`; the update's through its posterior), and every point's variant of the
-description runs every condition with the fast model (cycle-averaged motion, 60 s steps, as
-calibration runs).  The bands are the 5 %, 50 % and 95 % quantiles over the points, at each time
-of a 60 s grid and of the final values, beside the run at the declared values and the
-measurements.  After a Bayesian update a third set, "predictive", widens the updated finals'
-bands by the model error N(0, s²σ²) the update measured (:mod:`.predictive`): the band a
-measured value is expected in, where the calibrated set's is the model's prediction alone.
+description runs every condition with the chosen model (``model``/``mesh``, a model of the
+registry: by default the fast one; cycle-averaged motion, 60 s steps, as calibration runs).
+The bands are the 5 %, 50 % and 95 % quantiles over the points, at each time of a 60 s grid and
+of the final values, beside the run at the declared values and the measurements.  After a
+Bayesian update a third set, "predictive", widens the updated finals' bands by the model error
+N(0, s²σ²) the update measured (:mod:`.predictive`): the band a measured value is expected in,
+where the calibrated set's is the model's prediction alone.
 For one condition (default I), Saltelli's scheme gives the Sobol' indices of the final values
 under the priors (:mod:`.sobol`).
 
@@ -28,6 +29,8 @@ from typing import Callable
 import numpy as np
 
 from ...errors import FeedthermError
+from ...models.registry import model_entry
+from ...simulate import prepare
 from ...system.load import LoadedSystem
 from ...system.overlay import mode_of
 from ..consistency import ConsistencyReport
@@ -55,7 +58,8 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
                     data: MeasurementSet | None = None, consistency: ConsistencyReport | None = None,
                     posterior: Posterior | BayesianUpdate | None = None, execution: Execution = Execution(),
                     progress: Callable[[float], None] | None = None,
-                    conditions: list[str] | None = None) -> UncertaintyStudy:
+                    conditions: list[str] | None = None, model: str = "fast",
+                    mesh: str | None = None) -> UncertaintyStudy:
     """Bands of every condition (``conditions``, default all) under the priors and, with
     ``posterior``, after calibration (a calibration folder's :class:`~.posterior.Posterior`, or
     the declared priors updated with measurements, :class:`~.update.BayesianUpdate`; the set is
@@ -63,11 +67,15 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
     None: none).
 
     ``data``/``consistency``: the measurements the final values are judged against, with the
-    consistency check's flags.  Raises :class:`~feedtherm.errors.FeedthermError` (one line)
-    for a system without declared uncertainties, an unknown condition, a sample count that is
-    not a power of 2, or a failed run.
+    consistency check's flags.  ``model``/``mesh``: the model of the registry every run takes
+    (default the fast one) and its FE mesh (``fem``, ``reduced``; None: the options' own); the
+    settings record both.  Raises :class:`~feedtherm.errors.FeedthermError` (one line)
+    for a system without declared uncertainties, an unknown condition or model, a sample count
+    that is not a power of 2, or a failed run.
     """
     started = time.perf_counter()
+    model_entry(model)  # an unknown model fails before any run
+    prepare(loaded.system, model, mesh)
     prior = resolve_uncertainties(loaded)
     conditions = list(loaded.system.conditions) if conditions is None else list(conditions)
     if sobol_condition is None:
@@ -85,8 +93,8 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
     for label, base, nominal, parameters, sampler in states:
         points = sampler(unit_points(samples, len(parameters), seed))
         start = len(items)
-        items.append(SampleRun(nominal, tuple(conditions), f"{label} nominal"))
-        items.extend(_point(base, parameters, x, tuple(conditions), f"{label} sample {i}")
+        items.append(SampleRun(nominal, tuple(conditions), f"{label} nominal", model=model, mesh=mesh))
+        items.extend(_point(base, parameters, x, tuple(conditions), f"{label} sample {i}", model, mesh)
                      for i, x in enumerate(points))
         slices[label] = (start, len(items))
     sobol_points = None
@@ -94,7 +102,7 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
         unit = saltelli_points([p.name for p in prior], sobol_base, seed)
         sobol_points = to_values(prior, unit)
         start = len(items)
-        items.extend(_point(loaded, prior, x, (sobol_condition,), f"Sobol point {i}")
+        items.extend(_point(loaded, prior, x, (sobol_condition,), f"Sobol point {i}", model, mesh)
                      for i, x in enumerate(sobol_points))
         slices["sobol"] = (start, len(items))
     results = _run_all(items, execution, progress)
@@ -115,7 +123,7 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
         "samples": samples, "seed": seed, "sampler": "scrambled Sobol' points (scipy.stats.qmc), inverse CDFs",
         "sobol_base": sobol_base, "sobol_runs": 0 if sobol_points is None else len(sobol_points),
         "sobol_scheme": None if sobol_points is None else "Saltelli 2010 (SALib), first-order and total, no second order",
-        "model": "fast", "motion": "averaged", "time_step_s": GRID_STEP_S, "mode": mode_of(loaded),
+        "model": model, "mesh": mesh, "motion": "averaged", "time_step_s": GRID_STEP_S, "mode": mode_of(loaded),
         "conditions": conditions, "ambient_sensor": loaded.system.room.ambient_sensor,
         "duration_s": {c: loaded.system.conditions[c].duration for c in conditions},
         "band": list(BAND), "execution": execution.describe(),
@@ -126,9 +134,10 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
     return UncertaintyStudy(system=loaded.origin, settings=settings, sets=sets)
 
 
-def _point(base: LoadedSystem, parameters: list[UncertainParameter], x, conditions, label) -> SampleRun:
+def _point(base: LoadedSystem, parameters: list[UncertainParameter], x, conditions, label, model: str = "fast",
+           mesh: str | None = None) -> SampleRun:
     values = tuple((p.name, float(v)) for p, v in zip(parameters, x))
-    return SampleRun(variant(base, parameters, x, label), conditions, label, values)
+    return SampleRun(variant(base, parameters, x, label), conditions, label, values, model, mesh)
 
 
 def _run_all(items: list[SampleRun], execution: Execution, progress) -> list[SampleResult]:

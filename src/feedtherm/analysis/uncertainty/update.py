@@ -54,6 +54,8 @@ from scipy import stats
 from scipy.optimize import least_squares
 
 from ...errors import FeedthermError
+from ...models.registry import model_entry
+from ...simulate import prepare
 from ...system.load import LoadedSystem
 from ..calibration import FTOL, XTOL, _data, _sigma
 from ..consistency import ConsistencyReport
@@ -206,12 +208,14 @@ class _ModelResiduals:
     conditions: tuple[str, ...]
     execution: Execution
     runs: int = 0
+    model: str = "fast"  # the model of the registry every run takes
+    mesh: str | None = None  # its FE mesh (None: the options' own)
 
     def __call__(self, z: np.ndarray) -> np.ndarray:
         x = to_x(self.prior, z)
         items = [SampleRun(variant(self.loaded, self.prior, xi, f"update point {self.runs + k}"), self.conditions,
                            f"update point {self.runs + k}",
-                           tuple((p.name, float(v)) for p, v in zip(self.prior, xi)))
+                           tuple((p.name, float(v)) for p, v in zip(self.prior, xi)), self.model, self.mesh)
                  for k, xi in enumerate(x)]
         self.runs += len(items)
         out, failures = [], []
@@ -241,6 +245,8 @@ class BayesianUpdate:
     excluded: list[dict]
     conditions_runs: int  # model runs (points × fit conditions)
     summary: dict = field(default_factory=dict)
+    model: str = "fast"  # the model of the registry the update's runs took
+    mesh: str | None = None  # its FE mesh (None: the options' own)
 
     def values(self, u: np.ndarray) -> np.ndarray:
         """The posterior's parameter values (n, d) at the unit points ``u`` (n, d)."""
@@ -255,17 +261,20 @@ class BayesianUpdate:
 def bayesian_update(loaded: LoadedSystem, data: MeasurementSet, fit_conditions: list[str], *,
                     consistency: ConsistencyReport | None = None,
                     execution: Execution = Execution(), s2: float | None = None,
-                    max_nfev: int | None = None) -> BayesianUpdate:
+                    max_nfev: int | None = None, model: str = "fast", mesh: str | None = None) -> BayesianUpdate:
     """Update every declared uncertainty of ``loaded`` with the measured finals of ``fit_conditions``.
 
     The data: the sensors' and D_um finals (whatever ``data`` measures at those conditions) but the
     values ``consistency`` flags, as calibration leaves them out (:func:`..calibration._data`,
-    without the equilibrium times, which the fast runs of a study do not give).  The runs: the
-    fast model with the cycle-averaged motion in 60 s steps (:func:`.runs.run_sample`), each
-    Jacobian one batch through ``execution``.  Raises :class:`FeedthermError` (one line) for an
-    unknown condition or one without measurements.
+    without the equilibrium times, which the fast runs of a study do not give).  The runs:
+    ``model`` (a model of the registry, default the fast one; ``mesh`` its FE mesh) with the
+    cycle-averaged motion in 60 s steps (:func:`.runs.run_sample`), each Jacobian one batch
+    through ``execution``.  Raises :class:`FeedthermError` (one line) for an unknown condition
+    or model, or a condition without measurements.
     """
     started = time.perf_counter()
+    model_entry(model)  # an unknown model fails before any run
+    prepare(loaded.system, model, mesh)
     prior = resolve_uncertainties(loaded)
     unknown = [c for c in fit_conditions if c not in loaded.system.conditions]
     if unknown:
@@ -281,8 +290,8 @@ def bayesian_update(loaded: LoadedSystem, data: MeasurementSet, fit_conditions: 
     excluded = [{"condition": r.condition, "quantity": r.quantity, "measured": r.measured, "reason": r.flag}
                 for r in every if r.flag]
     with kept_open(execution) as where:  # one cluster for every Jacobian
-        model = _ModelResiduals(loaded, prior, rows, tuple(fit_conditions), where)
-        fit = laplace_update(model, len(prior), s2=s2, max_nfev=max_nfev)
+        residuals = _ModelResiduals(loaded, prior, rows, tuple(fit_conditions), where, model=model, mesh=mesh)
+        fit = laplace_update(residuals, len(prior), s2=s2, max_nfev=max_nfev)
     x_map = to_x(prior, fit.z)[0]
     k = stats.norm.ppf(BAND[1])  # the band's quantile in z: a one-dimensional normal's 5–95 % range
     low = to_x(prior, fit.z - k * fit.sd)[0]
@@ -299,7 +308,7 @@ def bayesian_update(loaded: LoadedSystem, data: MeasurementSet, fit_conditions: 
     nominal = variant(loaded, prior, x_map, f"posterior mode ({on})")
     update = BayesianUpdate(loaded=loaded, nominal=nominal, prior=prior, parameters=parameters, fit=fit,
                             x_map=x_map, fit_conditions=list(fit_conditions), rows=rows, excluded=excluded,
-                            conditions_runs=model.runs * len(fit_conditions))
+                            conditions_runs=residuals.runs * len(fit_conditions), model=model, mesh=mesh)
     update.summary = _summary(update) | {"wall_time_s": time.perf_counter() - started}
     return update
 
@@ -329,6 +338,8 @@ def _summary(update: BayesianUpdate) -> dict:
         "jacobians": fit.jacobians,
         "points": fit.evaluations,
         "model_runs": update.conditions_runs,
+        "model": update.model,
+        "mesh": update.mesh,
         "jacobian_step_z": JACOBIAN_STEP,
         "parameters": {p.name: {"prior": _prior_text(p), "map": float(update.x_map[i]), "z_map": float(fit.z[i]),
                                 "sd_z": float(fit.sd[i]), "p05": update.parameters[i].low,

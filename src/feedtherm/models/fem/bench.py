@@ -29,7 +29,7 @@ from ...errors import ModelError
 from ...system.geometry import bounds
 from ...system.schema import FeedSystem
 from ..fields import FieldMesh
-from ..interface import HeatInput, ThermalModel
+from ..interface import AffineParameter, HeatInput, ThermalModel
 from .conduction import cell_basis, conduction_matrix
 from .coupling import CONTACT_TOLERANCE, Contact, ContactQuadrature, interface_matrix, side_load, touching
 from .deformation import Deformation, elastic_constants
@@ -162,11 +162,16 @@ class FemDiscretization(ThermalModel):
         self.capacity = np.bincount(mesh.tets.ravel(), weights=np.tile(rho_c * vol / 4.0, 4), minlength=self.n_nodes)
         self.part_volume = {name: float(vol[mesh.part_tets(name)].sum()) for name in mesh.parts}
 
-    def _conduction(self) -> sp.csr_matrix:
+    def _cell_basis(self):
         from skfem import MeshTet
 
-        skmesh = MeshTet(np.ascontiguousarray(self.mesh.points), np.ascontiguousarray(self.mesh.tets))
-        return conduction_matrix(cell_basis(skmesh), self.conductivity)
+        if getattr(self, "_basis", None) is None:
+            skmesh = MeshTet(np.ascontiguousarray(self.mesh.points), np.ascontiguousarray(self.mesh.tets))
+            self._basis = cell_basis(skmesh)
+        return self._basis
+
+    def _conduction(self) -> sp.csr_matrix:
+        return conduction_matrix(self._cell_basis(), self.conductivity)
 
     def _setup_joints(self) -> None:
         self.joints: list[_Joint] = []
@@ -340,6 +345,54 @@ class FemDiscretization(ThermalModel):
                 share = side_load(self.n_nodes, self._cq(j, k), "a" if part == j.a else "b")
             self._heat_shares[key] = share
         return self._heat_shares[key]
+
+    # ------------------------------------------------------------------ affine parameters
+    def _parts_of_material(self) -> dict[str, list[str]]:
+        out: dict[str, list[str]] = {}
+        for name in self.part_names:
+            out.setdefault(self.system.parts[name].material, []).append(name)
+        return out
+
+    def affine_parameters(self) -> list[AffineParameter]:
+        """Every material's conductivity and expansion and every joint's conductance ``1/tcr``:
+        conduction is linear in each tetrahedron's conductivity, a joint's interface matrix in its
+        conductance, the thermal load of the elastic solve in each part's expansion (and a part's
+        nodes are its own: the parts' meshes meet only through the joints)."""
+        materials = self.system.materials
+        out = [AffineParameter(f"materials.{m}.conductivity", "conductance", float(materials[m].conductivity))
+               for m in self._parts_of_material()]
+        out += [AffineParameter(f"joints[{j.index}].conductance", "conductance", 1.0 / float(j.joint.tcr), moves=j.moves)
+                for j in self.joints]
+        out += [AffineParameter(f"materials.{m}.expansion", "expansion", float(materials[m].expansion))
+                for m in self._parts_of_material()]
+        return out
+
+    def conductance_term(self, name: str, k: int) -> sp.csr_matrix:
+        head, _, field = name.rpartition(".")
+        if head.startswith("materials.") and field == "conductivity":
+            material = head.removeprefix("materials.")
+            terms = self.__dict__.setdefault("_material_terms", {})
+            if material not in terms:
+                per_tet = np.zeros(self.tets.shape[1])
+                for part in self._parts_of_material()[material]:
+                    per_tet[self.mesh.part_tets(part)] = self.conductivity_factor.get(part, 1.0)
+                terms[material] = conduction_matrix(self._cell_basis(), per_tet)
+            return terms[material]
+        if head.startswith("joints[") and field == "conductance":
+            j = self.joints[int(head[len("joints["):-1])]
+            return self._joint_matrix(j, k) * float(j.joint.tcr)
+        return super().conductance_term(name, k)
+
+    def displacement_term(self, name: str) -> tuple[np.ndarray, np.ndarray]:
+        head, _, field = name.rpartition(".")
+        if not (head.startswith("materials.") and field == "expansion"):
+            return super().displacement_term(name)
+        material = head.removeprefix("materials.")
+        rows, _ = self.displacement_rows()
+        nodes = np.concatenate([self.mesh.part_nodes(p) for p in self._parts_of_material()[material]])
+        term = np.zeros_like(rows)
+        term[:, nodes] = rows[:, nodes] / float(self.system.materials[material].expansion)
+        return term, -self.system.temperatures.reference * term.sum(axis=1)
 
     # ------------------------------------------------------------------ readout
     def screw_mean(self, states: np.ndarray) -> np.ndarray:

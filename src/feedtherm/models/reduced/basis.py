@@ -54,7 +54,7 @@ import scipy.sparse as sp
 from ...constants import cache_root
 from .. import pardiso
 from ..direct import EliminationOrder, factorize
-from ..interface import ThermalModel, cycle_weights, film_coefficient, weighted_sum
+from ..interface import ThermalModel, affine_value, cycle_weights, film_coefficient, weighted_sum
 from .disk import read_npz, write_npz
 
 #: [W/(m²·K)] film coefficient on every surface while the snapshots are taken: still air with
@@ -92,31 +92,91 @@ class Basis:
         return self.vectors.shape[1]
 
 
-def reference_coefficients(model: ThermalModel) -> np.ndarray:
+def reference_coefficients(model: ThermalModel, coefficients: dict[str, float] | None = None) -> np.ndarray:
     """Each surface's film coefficient [W/(m²·K)] while the snapshots are taken (in series with the
     model's conduction to the face, :attr:`BoundaryBasis.film`, where it has one).
 
     A surface whose coefficient the description fixes (``convection.kind = "fixed"``: a
     foundation, a cooled face) takes that coefficient, which no operating point or
-    temperature changes; every other surface :data:`REFERENCE_HTC`.
+    temperature changes, or the one ``coefficients`` gives it (``"surfaces.<name>.coefficient"``,
+    a training point of a parametric basis); every other surface :data:`REFERENCE_HTC`.
     """
     from ...system.surfaces import FixedConvection
 
     surfaces = model.system.surfaces
+    coefficients = coefficients or {}
     basis = model.boundary_basis(0)
     out = []
     for name in basis.surfaces:
         surface = surfaces[name]
-        fixed = isinstance(surface.convection, FixedConvection)
-        out.append(surface.convection.coefficient * surface.chtc_factor if fixed else REFERENCE_HTC)
+        if isinstance(surface.convection, FixedConvection):
+            out.append(coefficients.get(f"surfaces.{name}.coefficient",
+                                        surface.convection.coefficient * surface.chtc_factor))
+        else:
+            out.append(REFERENCE_HTC)
     out = np.array(out, dtype=float)
     # from the nodes to the air, as the model's links take them (a model with nodes inside its cells)
     return out if basis.film is None else film_coefficient(out, basis.film)
 
 
-def reference_links(model: ThermalModel, k: int | None) -> np.ndarray:
-    """Node-to-air conductances [W/K] with :func:`reference_coefficients` at position k."""
-    return model.boundary_basis(k).exposure_by_node @ reference_coefficients(model)
+def film_parameters(model: ThermalModel) -> dict[str, float]:
+    """The fixed-coefficient surfaces' coefficients (``"surfaces.<name>.coefficient"``: :func:`affine_value`)."""
+    from ...system.surfaces import FixedConvection
+
+    return {f"surfaces.{name}.coefficient": affine_value(model.system, f"surfaces.{name}.coefficient")
+            for name, surface in model.system.surfaces.items() if isinstance(surface.convection, FixedConvection)}
+
+
+class TrainingOperators:
+    """The full model's conductances and reference links at one point of its parameters.
+
+    ``point`` gives some of the model's conductance parameters (:meth:`ThermalModel.affine_parameters`)
+    and fixed surfaces' coefficients (:func:`film_parameters`) other values; ``G_k`` is the
+    model's own plus ``Σ_q (θ_q − θ_q⁰) ∂G_k/∂θ_q`` (exact: the conductances are linear in them).
+    """
+
+    def __init__(self, model: ThermalModel, point: dict[str, float] | None = None):
+        point = dict(point or {})
+        own = {p.name: p for p in model.affine_parameters() if p.kind == "conductance"}
+        films = film_parameters(model)
+        unknown = sorted(set(point) - set(own) - set(films))
+        if unknown:
+            raise KeyError(f"not a conductance parameter or fixed coefficient of the model: {', '.join(unknown)}")
+        self.model = model
+        changes = {name: value - own[name].value for name, value in point.items() if name in own and value != own[name].value}
+        self.moving = {name: change for name, change in changes.items() if own[name].moves}
+        self.static = None  # Σ over the parameters whose terms do not move
+        for name, change in changes.items():
+            if name not in self.moving:
+                term = change * model.conductance_term(name, 0)
+                self.static = term if self.static is None else self.static + term
+        self.coefficients = reference_coefficients(model, {n: v for n, v in point.items() if n in films})
+
+    def _plus(self, G, moving_term):
+        for name, change in self.moving.items():
+            G = G + change * moving_term(name)
+        if self.static is not None:
+            G = G + self.static
+        return G.tocsr() if sp.issparse(G) else G
+
+    def conductance(self, k: int):
+        return self._plus(self.model.conductance(k), lambda name: self.model.conductance_term(name, k))
+
+    def mean_conductance(self):
+        """The cycle average of :meth:`conductance` (the model's own average and the moving terms' are kept on it)."""
+        model = self.model
+        kept = model.__dict__.setdefault("_cycle_averaged_terms", {})
+        weights = cycle_weights(len(model.positions))
+        if None not in kept:
+            kept[None] = weighted_sum(weights, [model.conductance(k) for k in range(len(model.positions))])
+        for name in self.moving:
+            if name not in kept:
+                kept[name] = weighted_sum(weights, [model.conductance_term(name, k) for k in range(len(model.positions))])
+        return self._plus(kept[None], lambda name: kept[name])
+
+    def links(self, k: int | None) -> np.ndarray:
+        """Node-to-air conductances [W/K] at position k (None: the cycle average)."""
+        return self.model.boundary_basis(k).exposure_by_node @ self.coefficients
 
 
 def inputs(model: ThermalModel, k: int) -> sp.csc_matrix:
@@ -137,24 +197,34 @@ def split_inputs(model: ThermalModel) -> tuple[sp.csc_matrix, list[sp.csc_matrix
     return first[:, np.flatnonzero(same)], [b[:, np.flatnonzero(~same)] for b in per_position]
 
 
-def basis_key(model: ThermalModel, tolerance: float, time_constants: tuple[float, ...]) -> str:
-    """A digest of everything :func:`moment_basis` reads: the operators at every position and its settings."""
+def basis_key(model: ThermalModel, tolerance: float, time_constants: tuple[float, ...],
+              points: tuple[dict[str, float], ...] = ()) -> str:
+    """A digest of everything :func:`moment_basis` reads: the operators at every position, the terms
+    its training ``points`` change, and its settings."""
     h = hashlib.blake2b(digest_size=20)
     settings = (BASIS_VERSION, tuple(reference_coefficients(model).tolist()), CORRECTED_POSITIONS,
                 SHIFT_TOLERANCE_FACTOR, float(tolerance), tuple(map(float, time_constants)),
-                model.n_nodes, len(model.positions))
+                model.n_nodes, len(model.positions), tuple(tuple(sorted(p.items())) for p in points))
     h.update(repr(settings).encode())
 
     def add(array: np.ndarray) -> None:
         h.update(np.ascontiguousarray(array).tobytes())
 
+    def add_matrix(matrix) -> None:
+        matrix = sp.csr_matrix(matrix)
+        matrix.sort_indices()
+        for array in (matrix.indptr, matrix.indices, matrix.data):
+            add(array)
+
     add(np.asarray(model.capacity, dtype=float))
     for k in range(len(model.positions)):
         for matrix in (model.conductance(k), model.boundary_basis(k).exposure, model.boundary_basis(k).distribution):
-            matrix = sp.csr_matrix(matrix)
-            matrix.sort_indices()
-            for array in (matrix.indptr, matrix.indices, matrix.data):
-                add(array)
+            add_matrix(matrix)
+    changed = sorted({name for p in points for name in p if not name.startswith("surfaces.")})
+    moving = {p.name: p.moves for p in model.affine_parameters()}
+    for name in changed:
+        for k in (range(len(model.positions)) if moving[name] else (0,)):
+            add_matrix(model.conductance_term(name, k))
     return h.hexdigest()
 
 
@@ -174,23 +244,30 @@ def _write_cached(path: Path, basis: Basis) -> None:
 
 
 def moment_basis(model: ThermalModel, tolerance: float = TOLERANCE,
-                 time_constants: tuple[float, ...] = TIME_CONSTANTS, *, use_cache: bool = True) -> Basis:
-    """The basis of :mod:`this module <.basis>` for ``model`` (module notes), from the disk cache when it holds it."""
+                 time_constants: tuple[float, ...] = TIME_CONSTANTS, *,
+                 points: tuple[dict[str, float], ...] = (), use_cache: bool = True) -> Basis:
+    """The basis of :mod:`this module <.basis>` for ``model`` (module notes), from the disk cache when it holds it.
+
+    ``points``: training points beyond the model's own description, each giving some of its
+    conductance parameters and fixed coefficients other values (:class:`TrainingOperators`): the
+    basis then spans the answers at those too (a parametric reduced model, :mod:`.training`).
+    """
     started = time.perf_counter()
+    points = tuple(dict(p) for p in points)
     if not use_cache:
-        return _build(model, tolerance, time_constants)
-    path = basis_cache_path(basis_key(model, tolerance, time_constants))
+        return _build(model, tolerance, time_constants, points)
+    path = basis_cache_path(basis_key(model, tolerance, time_constants, points))
     cached = _read_cached(path, started)
     if cached is not None:
         return cached
-    basis = _build(model, tolerance, time_constants)
+    basis = _build(model, tolerance, time_constants, points)
     _write_cached(path, basis)
     return basis
 
 
-def _build(model: ThermalModel, tolerance: float, time_constants: tuple[float, ...]) -> Basis:
+def _build(model: ThermalModel, tolerance: float, time_constants: tuple[float, ...],
+           points: tuple[dict[str, float], ...]) -> Basis:
     from pymor.algorithms.gram_schmidt import gram_schmidt
-    from pymor.algorithms.pod import pod
     from pymor.core.logger import set_log_levels
     from pymor.operators.numpy import NumpyMatrixOperator
     from pymor.vectorarrays.numpy import NumpyVectorSpace
@@ -200,35 +277,79 @@ def _build(model: ThermalModel, tolerance: float, time_constants: tuple[float, .
     started = time.perf_counter()
     C = np.asarray(model.capacity, dtype=float)
     n_positions = len(model.positions)
-    averaged_links = reference_links(model, None)
-    links = [reference_links(model, k) for k in range(n_positions)]
-    G_mean = weighted_sum(cycle_weights(n_positions), [model.conductance(k) for k in range(n_positions)])
     fixed, moving = split_inputs(model)
+    fixed = fixed.toarray()  # (n, fixed inputs): a few, dense
     # the fixed inputs' answers are corrected at a few positions, the moving inputs' at every one
     corrected_at = sorted({round(i * (n_positions - 1) / (CORRECTED_POSITIONS - 1)) for i in range(CORRECTED_POSITIONS)})
     space = NumpyVectorSpace(model.n_nodes)
     product = NumpyMatrixOperator(sp.diags(C).tocsr())
     ones = np.ones(model.n_nodes) / np.sqrt(C.sum())
-    order = None  # every shift's matrix has one pattern: its elimination order is computed once
+    order = [None]  # every matrix has one pattern: its elimination order is computed once
+    kept, count = None, 0
+    for index, point in enumerate(({}, *points)):
+        # another training point than the model's own: the moving inputs at the corrected positions
+        # only (their shapes at the others are the first point's, moved)
+        moving_at = range(n_positions) if index == 0 else corrected_at
+        blocks, snapshots = _point_snapshots(TrainingOperators(model, point), C, fixed, moving, corrected_at,
+                                             moving_at, time_constants, tolerance, space, product, ones, order)
+        count += snapshots
+        if kept is None:
+            kept = np.hstack(blocks)
+        else:  # another point's modes with those so far, compressed far below the tolerance (module notes)
+            kept = _compress(np.hstack([kept, *blocks]), space, product, SHIFT_TOLERANCE_FACTOR * tolerance)
+        del blocks
+    modes, singular_values = _pod(kept, space, product, tolerance)
+    vectors = gram_schmidt(space.from_numpy(np.column_stack([ones, modes])), product=product)
+    return Basis(vectors.to_numpy(), np.asarray(singular_values), tolerance, count,
+                 time.perf_counter() - started)
+
+
+def _pod(X: np.ndarray, space, product, rtol: float) -> tuple[np.ndarray, np.ndarray]:
+    """POD modes and singular values of ``X`` above ``rtol`` of the largest.
+
+    Without pyMOR's re-orthonormalisation of the modes (``orth_tol=inf``): what is kept of them is
+    their span (weighted, between the steps; the basis is Gram–Schmidt'ed once at the end), and
+    re-orthonormalising each step's modes vector by vector took two thirds of a basis's build.
+    """
+    from pymor.algorithms.pod import pod
+
+    modes, values = pod(space.from_numpy(X), product=product, rtol=rtol, orth_tol=np.inf)
+    return modes.to_numpy(), values
+
+
+def _compress(X: np.ndarray, space, product, rtol: float) -> np.ndarray:
+    """The POD modes of ``X`` above ``rtol`` of the largest, weighted by their singular values."""
+    modes, values = _pod(X, space, product, rtol)
+    return modes * values
+
+
+def _point_snapshots(ops: TrainingOperators, C, fixed, moving, corrected_at, moving_at, time_constants,
+                     tolerance, space, product, ones, order) -> tuple[list[np.ndarray], int]:
+    """One training point's snapshots, compressed per shift: (blocks, snapshots taken)."""
+    model = ops.model
+    n_positions = len(model.positions)
+    averaged_links = ops.links(None)
+    conductances = {k: ops.conductance(k) for k in sorted({*corrected_at, *moving_at})}
+    G_mean = ops.mean_conductance()
+    links = {k: ops.links(k) for k in conductances}
     blocks, count = [], 0
-    fixed = fixed.toarray()  # (n, fixed inputs): a few, dense
     for tau in (None, *time_constants):
         shift = 0.0 if tau is None else 1.0 / tau
         A = (G_mean + sp.diags(averaged_links + shift * C)).tocsc()
         if pardiso.suits(model.n_nodes):  # 1.5 s, not SuperLU's 22 s, at the fine mesh
             mean = pardiso.PardisoCholesky(A)
         else:
-            mean = factorize(A, order)
-            if order is None:
-                order = EliminationOrder(mean)
+            mean = factorize(A, order[0])
+            if order[0] is None:
+                order[0] = EliminationOrder(mean)
         x_fixed = mean.solve(fixed)
         snapshots = [x_fixed]
-        for k in range(n_positions):
+        for k in conductances:
             # one block step toward position k's own operator (its sliding contact and exposure)
-            M_k = model.conductance(k) + sp.diags(links[k] + shift * C)
+            M_k = conductances[k] + sp.diags(links[k] + shift * C)
             if k in corrected_at:
                 snapshots.append(x_fixed + mean.solve(fixed - M_k @ x_fixed))
-            if moving[k].shape[1]:
+            if k in moving_at and moving[k].shape[1]:
                 b = moving[k].toarray()
                 x = mean.solve(b)
                 snapshots.append(x + mean.solve(b - M_k @ x))
@@ -242,14 +363,6 @@ def _build(model: ThermalModel, tolerance: float, time_constants: tuple[float, .
         kept = norms > 1e-12 * norms.max()  # an input with no response beyond the uniform one
         X = X[:, kept] / norms[kept]
         count += X.shape[1]
-        # compressed per shift, far below the tolerance (module notes): only its modes are kept
-        modes, values = pod(space.from_numpy(X), product=product, rtol=SHIFT_TOLERANCE_FACTOR * tolerance)
+        blocks.append(_compress(X, space, product, SHIFT_TOLERANCE_FACTOR * tolerance))
         del X
-        blocks.append(modes.to_numpy() * values)
-    Y = np.hstack(blocks)
-    del blocks
-    modes, singular_values = pod(space.from_numpy(Y), product=product, rtol=tolerance)
-    del Y
-    vectors = gram_schmidt(space.from_numpy(np.column_stack([ones, modes.to_numpy()])), product=product)
-    return Basis(vectors.to_numpy(), np.asarray(singular_values), tolerance, count,
-                 time.perf_counter() - started)
+    return blocks, count

@@ -15,7 +15,8 @@ import numpy as np
 
 from ...boundary import BoundaryConditions
 from ...system.schema import FeedSystem
-from ..interface import AmbientCoupling, HeatInput, ThermalModel, cycle_weights, source_powers
+from ...constants import ELONGATION_PROBE
+from ..interface import AmbientCoupling, HeatInput, ThermalModel, affine_value, cycle_weights, source_powers
 from .basis import Basis
 from .projection import Projection, project
 
@@ -56,6 +57,31 @@ class ProjectedModel(ThermalModel):
         self._weights = cycle_weights(len(p.positions))
         self._averaged: dict[str, np.ndarray] = {}
         self._weighted = (None, None)  # (coefficients, Σ h_i Vᵀ diag(e_i0) V) of the latest evaluation
+        self._take_values(system)
+
+    def _take_values(self, system: FeedSystem) -> None:
+        """The operators and displacement rows at ``system``'s values of the affine parameters: the
+        projection's, plus each term times the change of its parameter (exact, as the full model's)."""
+        p = self.projection
+        self._conductance = p.conductance
+        self._displacements = (p.displacement_rows, p.displacement_offsets)
+        self._probes = (p.probe_rows, p.probe_offsets)
+        self.expansion_changed = False
+        dq = np.array([affine_value(system, name) for name in p.conductance_parameters]) - p.conductance_values
+        if np.any(dq != 0.0):
+            moved = np.tensordot(p.conductance_term_change, dq[p.conductance_moving], axes=([1], [0]))
+            self._conductance = p.conductance + np.tensordot(dq, p.conductance_terms, axes=1) + moved
+        da = np.array([affine_value(system, name) for name in p.expansion_parameters]) - p.expansion_values
+        if np.any(da != 0.0):
+            self.expansion_changed = True
+            rows = p.displacement_rows + np.tensordot(da, p.displacement_terms, axes=1)
+            offsets = p.displacement_offsets + da @ p.displacement_offset_terms
+            self._displacements = (rows, offsets)
+            if self.probe_names and self.probe_names[-1] == ELONGATION_PROBE:  # D is the last probe, row 0
+                probe_rows, probe_offsets = p.probe_rows.copy(), p.probe_offsets.copy()
+                probe_rows[:, -1] = rows[0]
+                probe_offsets[:, -1] = offsets[0]
+                self._probes = (probe_rows, probe_offsets)
 
     @property
     def full(self) -> ThermalModel:
@@ -75,7 +101,7 @@ class ProjectedModel(ThermalModel):
         return self._averaged[name]
 
     def conductance(self, k: int) -> np.ndarray:
-        return self.projection.conductance[k]
+        return self._conductance[k]
 
     def ambient_coupling(self, bc: BoundaryConditions, k: int | None) -> AmbientCoupling:
         h, sinks = self.projection.averaged.coefficients(bc)  # the full model's film in series, if it has one
@@ -122,19 +148,21 @@ class ProjectedModel(ThermalModel):
 
     # ------------------------------------------------------------------ readout
     def _probe_rows(self, k: int) -> tuple[np.ndarray, np.ndarray]:
-        return self.projection.probe_rows[k], self.projection.probe_offsets[k]
+        return self._probes[0][k], self._probes[1][k]
 
     def probe(self, state: np.ndarray, k: int = 0) -> np.ndarray:
         rows, offset = self._probe_rows(k)
         return rows @ state + offset
 
     def displacement_rows(self) -> tuple[np.ndarray, np.ndarray]:
-        return self.projection.displacement_rows, self.projection.displacement_offsets
+        return self._displacements
 
     def displacement_field(self, state: np.ndarray) -> np.ndarray | None:
         p = self.projection
         if p.displacement_basis is None:
             return None
+        if self.expansion_changed:  # the kept fields are of the projection's expansions: the full model's own
+            return self.full.displacement_field(self.V @ np.asarray(state, dtype=float))
         return (p.displacement_basis @ np.asarray(state, dtype=np.float32) + p.displacement_origin).reshape(-1, 3)
 
     def screw_mean(self, states: np.ndarray) -> np.ndarray:

@@ -24,7 +24,7 @@ kept on disk (:mod:`.store`) and a run of a cached model never builds the full o
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
@@ -70,6 +70,20 @@ class Projection:
     screw_centres: np.ndarray
     field_mesh: FieldMesh | None
     full_stats: dict
+    # the full model's affine parameters (ThermalModel.affine_parameters): Q conductance ones, Qm of
+    # them moving, E expansions; the arrays above are at ``*_values``
+    conductance_parameters: tuple[str, ...] = ()
+    conductance_values: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (Q,) θ⁰ [SI]
+    conductance_terms: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 0)))  # (Q, r, r) Vᵀ ∂G_0/∂θ_q V
+    conductance_moving: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))  # (Qm,) indices of the moving ones
+    conductance_term_change: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 0, 0)))  # (K, Qm, r, r) Vᵀ (∂G_k/∂θ − ∂G_0/∂θ) V
+    expansion_parameters: tuple[str, ...] = ()
+    expansion_values: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (E,) [1/K]
+    displacement_terms: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 0)))  # (E, 1 + sections, r) ∂rows/∂α V
+    displacement_offset_terms: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))  # (E, 1 + sections)
+    #: [SI] the parameters' ranges the basis was trained over (name → (low, high)); a description
+    #: outside them is another model (models/reduced/store.py)
+    domain: dict | None = None
 
     @property
     def V(self) -> np.ndarray:
@@ -153,6 +167,7 @@ def project(full: ThermalModel, basis: Basis) -> Projection:
     rows, offsets = _probes(full, V, K)
     d_rows, d_offsets = full.displacement_rows()
     field_basis, field_origin = _displacement_fields(full, V)
+    terms = _affine_terms(full, V)
     return Projection(
         basis=basis,
         full_capacity=C,
@@ -183,4 +198,36 @@ def project(full: ThermalModel, basis: Basis) -> Projection:
         screw_centres=np.asarray(full.screw_centres, dtype=float),
         field_mesh=full.field_mesh(),
         full_stats=dict(full.stats),
+        **terms,
     )
+
+
+def _affine_terms(full: ThermalModel, V: np.ndarray) -> dict:
+    """The projected terms of ``full``'s affine parameters (:meth:`ThermalModel.affine_parameters`):
+    the conductance terms at position 0 and the moving ones' change per position, the
+    displacement rows' and offsets' terms per unit expansion."""
+    parameters = full.affine_parameters()
+    conduction = [p for p in parameters if p.kind == "conductance"]
+    expansion = [p for p in parameters if p.kind == "expansion"]
+    r, K = V.shape[1], len(full.positions)
+    first = {p.name: full.conductance_term(p.name, 0) for p in conduction}
+    moving = np.array([i for i, p in enumerate(conduction) if p.moves], dtype=np.intp)
+    change = np.zeros((K, moving.size, r, r))
+    for k in range(1, K):
+        for j, i in enumerate(moving):
+            name = conduction[i].name
+            change[k, j] = _project(V, _changed(full.conductance_term(name, k), first[name]))
+    displacement = [full.displacement_term(p.name) for p in expansion]
+    n_rows = np.shape(full.displacement_rows()[0])[0]
+    return {
+        "conductance_parameters": tuple(p.name for p in conduction),
+        "conductance_values": np.array([p.value for p in conduction], dtype=float),
+        "conductance_terms": np.array([_project(V, first[p.name]) for p in conduction]).reshape(len(conduction), r, r),
+        "conductance_moving": moving,
+        "conductance_term_change": change,
+        "expansion_parameters": tuple(p.name for p in expansion),
+        "expansion_values": np.array([p.value for p in expansion], dtype=float),
+        "displacement_terms": np.array([np.asarray(rows @ V) for rows, _ in displacement]).reshape(len(expansion), n_rows, r),
+        "displacement_offset_terms": np.array([np.asarray(offset, dtype=float) for _, offset in displacement]
+                                              ).reshape(len(expansion), n_rows),
+    }

@@ -2,19 +2,30 @@
 
 On the fine mesh the FE model takes about 29 s to build with its 41 positions, and its basis
 read back and projected another 3 s; the run itself takes a few.  A :class:`~.projection.Projection`
-holds everything the reduced model runs and reads with (operators per position, readouts,
-the cycle-averaged boundary basis, the field mesh, the basis itself for the fields), so it is
-saved under ``cache_root()/projections/<key>.npz`` and read back instead.
+holds everything the reduced model runs and reads with (operators per position and their affine
+terms, readouts, the cycle-averaged boundary basis, the field mesh, the basis itself for the
+fields), so it is saved under ``cache_root()/projections/<key>-<domain>.npz`` and read back instead.
 
-The key must name everything the projection depends on without building the full model (a
-key made of its operators, as :func:`~.basis.basis_key` is, would cost the build it saves):
+The key names what the projection's operators are built from, without building the full model
+(a key made of its operators, as :func:`~.basis.basis_key` is, would cost the build it saves),
+and nothing else:
 
 - ``inputs``, given by whoever knows how the full model is built (the registry): the
-  description's whole content, the mesh file's digest, the full model's name and arguments;
+  description's :func:`~.training.structure` (its geometry, materials' capacities, joints,
+  where heat enters and surfaces are — not the conductivities, contact resistances, fixed
+  coefficients and expansions the projection takes as parameters, nor what only the boundary
+  conditions read), the mesh file's digest, the full model's name and arguments;
 - the tolerance of the basis;
-- the digest of every file of the feedtherm package (:func:`package_digest`: code, shipped
-  data), so that any change of how operators, bases or projections are made is another key;
+- the digest of the code that builds operators, bases and projections (:data:`OPERATOR_CODE`:
+  the FE and reduced models, the model interface, the solvers, the geometry they read);
 - the versions of Python and of the libraries that build them (:data:`LIBRARIES`).
+
+``<domain>`` is the digest of the ranges its basis was trained over (:mod:`.training`): a
+description of the same key whose parameters lie inside a file's ranges runs on it
+(:class:`~.model.ProjectedModel` weighs the terms by its values); one outside builds a
+projection of its own, trained over its own declared ranges.  The last projection read or
+built stays in memory, so the runs of a calibration or an uncertainty study read the file once
+per process.
 
 Files are written atomically, a damaged one is rebuilt, and the directory keeps the most
 recently used within the basis cache's budget (:mod:`.disk`).
@@ -23,9 +34,12 @@ recently used within the basis cache's budget (:mod:`.disk`).
 from __future__ import annotations
 
 import hashlib
+import math
 import json
 import platform
 import time
+from dataclasses import replace
+from collections import OrderedDict
 from functools import lru_cache
 from importlib import metadata
 from pathlib import Path
@@ -38,25 +52,36 @@ from ...constants import cache_root
 from ...system.schema import FeedSystem
 from ..fields import FieldMesh
 from ..interface import BoundaryBasis, ThermalModel
-from .basis import Basis, moment_basis
+from .basis import Basis, film_parameters, moment_basis
 from .disk import read_npz, write_npz
 from .model import ProjectedModel
 from .projection import Projection, project
+from .training import declared_domain, domain_digest, inside, omitted_values, training_points
 
-__all__ = ["cached_projected_model", "file_digest", "package_digest", "projection_key", "projection_cache_path"]
+__all__ = ["cached_projected_model", "file_digest", "operator_code_digest", "projection_key", "projection_cache_path"]
 
-#: Changes whenever the file layout below changes (the package digest covers it too; this names it).
-STORE_VERSION = 4
+#: Changes whenever the file layout below changes.
+STORE_VERSION = 5
 #: The distributions whose code builds a full model, its basis or its projection.
 LIBRARIES = ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "pymor")
 _PACKAGE = Path(__file__).resolve().parents[2]  # src/feedtherm
+#: The package's files (or folders) whose code makes a projection: the key's code digest.
+OPERATOR_CODE = ("models/fem", "models/reduced", "models/interface.py", "models/direct.py", "models/pardiso.py",
+                 "models/fields.py", "system/geometry.py", "system/mechanics.py", "system/surfaces.py", "constants.py")
+#: Projections kept in memory (the last ones read or built) for the runs of a batch.
+IN_MEMORY = 1
+_in_memory: OrderedDict[Path, tuple[Projection, tuple[int, int]]] = OrderedDict()  # path → (projection, its file's identity)
 
 
 @lru_cache(maxsize=1)
-def package_digest() -> str:
-    """Digest of every file of the feedtherm package (its code and its data), by relative path."""
+def operator_code_digest() -> str:
+    """Digest of the files of :data:`OPERATOR_CODE`, by relative path."""
     h = hashlib.blake2b(digest_size=20)
-    for path in sorted(p for p in _PACKAGE.rglob("*") if p.is_file() and "__pycache__" not in p.parts):
+    files = set()
+    for entry in OPERATOR_CODE:
+        root = _PACKAGE / entry
+        files.update(p for p in (root.rglob("*.py") if root.is_dir() else [root]) if p.is_file())
+    for path in sorted(files):
         h.update(str(path.relative_to(_PACKAGE)).encode() + b"\0")
         h.update(path.read_bytes())
         h.update(b"\0")
@@ -84,38 +109,104 @@ def file_digest(path: Path) -> str | None:
 
 
 def projection_key(inputs: dict, tolerance: float) -> str:
-    """Digest of the module notes' key: ``inputs`` (JSON-able), the tolerance, the package and the libraries."""
+    """Digest of the module notes' key: ``inputs`` (JSON-able), the tolerance, the code and the libraries."""
     data = {"store_version": STORE_VERSION, "inputs": inputs, "tolerance": float(tolerance),
-            "package": package_digest(), "libraries": library_versions()}
+            "code": operator_code_digest(), "libraries": library_versions()}
     return hashlib.blake2b(json.dumps(data, sort_keys=True).encode(), digest_size=20).hexdigest()
 
 
-def projection_cache_path(key: str) -> Path:
-    return cache_root() / "projections" / f"{key}.npz"
+def projection_cache_path(key: str, domain: dict | None = None) -> Path:
+    """The file of the projection of ``key`` trained over ``domain``."""
+    return cache_root() / "projections" / f"{key}-{domain_digest(domain or {})}.npz"
+
+
+def full_domain(system: FeedSystem, trained: dict[str, tuple[float, float]], kinds: dict[str, str]) -> dict:
+    """Where a projection holds, for every number :func:`~.training.structure` leaves out: the
+    ranges its basis was trained over; any expansion (the displacements are linear in it, the
+    basis does not depend on it); the description's own value for a number the full model's
+    operators are not linear in (a fast model's conductivity: another value is another model)."""
+    domain = {}
+    for name, value in omitted_values(system).items():
+        if name in trained:
+            domain[name] = trained[name]
+        elif kinds.get(name) == "expansion":
+            domain[name] = (0.0, math.inf)
+        else:
+            domain[name] = (value, value)
+    return domain
+
+
+def _fits(projection: Projection, system: FeedSystem) -> bool:
+    """Whether ``system``'s numbers lie where the projection holds (:func:`full_domain`)."""
+    values = omitted_values(system)
+    return set(values) == set(projection.domain or {}) and inside(projection.domain, values)
+
+
+def _identity(path: Path) -> tuple[int, int] | None:
+    """The file's inode and size (an atomic rewrite or a damaged file changes one), None when it is gone."""
+    try:
+        status = path.stat()
+    except OSError:
+        return None
+    return status.st_ino, status.st_size
+
+
+def _remember(path: Path, projection: Projection) -> None:
+    identity = _identity(path)
+    if identity is None:  # not written (an unwritable cache): nothing to remember it by
+        return
+    _in_memory[path] = (projection, identity)
+    _in_memory.move_to_end(path)
+    while len(_in_memory) > IN_MEMORY:
+        _in_memory.popitem(last=False)
+
+
+def _find(key: str, system: FeedSystem) -> Projection | None:
+    """A projection of ``key`` whose domain holds ``system``'s parameters: from memory, or from disk
+    (the most recently used file first)."""
+    directory = projection_cache_path(key).parent
+    for path, (projection, identity) in reversed(_in_memory.items()):
+        if path.parent == directory and path.name.startswith(f"{key}-") and _identity(path) == identity \
+                and _fits(projection, system):
+            _in_memory.move_to_end(path)
+            return projection
+    files = sorted(directory.glob(f"{key}-*.npz"), key=lambda p: p.stat().st_mtime, reverse=True)
+    for path in files:
+        stem = path.stem
+        projection = read_npz(path, lambda data: _from_arrays(data, stem, system))
+        if projection is not None:
+            _remember(path, projection)
+            return projection
+    return None
 
 
 def cached_projected_model(system: FeedSystem, tolerance: float, build_full: Callable[[], ThermalModel],
                            inputs: Callable[[], dict | None]) -> ProjectedModel:
-    """The reduced model of ``build_full()``'s full model, from the disk cache when it holds it.
+    """The reduced model of ``build_full()``'s full model, from the cache when it holds one that fits.
 
     ``inputs()`` gives what the full model is built from (module notes), or None when it cannot
     be said before building it (its mesh file does not exist yet): the model is then built and
-    saved under the inputs the build leaves.
+    saved under the inputs the build leaves.  A model built here has its basis trained over the
+    ranges ``system`` declares for its parameters (:mod:`.training`).
     """
     started = time.perf_counter()
     known = inputs()
     if known is not None:
-        path = projection_cache_path(projection_key(known, tolerance))
-        projection = read_npz(path, lambda data: _from_arrays(data, path.stem))
+        projection = _find(projection_key(known, tolerance), system)
         if projection is not None:
             return ProjectedModel.from_projection(projection, system, build_full, projection_cached=True,
                                                   projection_seconds=round(time.perf_counter() - started, 2))
     full = build_full()
-    projection = project(full, moment_basis(full, tolerance=tolerance))
+    kinds = {p.name: p.kind for p in full.affine_parameters()}
+    trained = declared_domain(system, [n for n, kind in kinds.items() if kind == "conductance"] + list(film_parameters(full)))
+    basis = moment_basis(full, tolerance=tolerance, points=training_points(trained, {}))
+    projection = replace(project(full, basis), domain=full_domain(system, trained, kinds))
     known = inputs()  # the full model's build has written its mesh file
     if known is not None:
         key = projection_key(known, tolerance)
-        write_npz(projection_cache_path(key), _to_arrays(projection, key))
+        path = projection_cache_path(key, projection.domain)
+        write_npz(path, _to_arrays(projection, path.stem))
+        _remember(path, projection)
     return ProjectedModel.from_projection(projection, system, lambda: full, projection_cached=False,
                                           projection_seconds=round(time.perf_counter() - started, 2))
 
@@ -123,7 +214,9 @@ def cached_projected_model(system: FeedSystem, tolerance: float, build_full: Cal
 # ---------------------------------------------------------------------------- file layout
 _ARRAYS = ("full_capacity", "stored", "conductance", "exposure", "moving_surfaces", "exposure_change",
            "exposure_rows", "exposure_areas", "entries", "probe_rows", "probe_offsets", "screw", "positions",
-           "screw_edges", "screw_centres", "displacement_rows", "displacement_offsets")
+           "screw_edges", "screw_centres", "displacement_rows", "displacement_offsets",
+           "conductance_values", "conductance_terms", "conductance_moving", "conductance_term_change",
+           "expansion_values", "displacement_terms", "displacement_offset_terms")
 
 
 def _sparse(prefix: str, matrix: sp.csr_matrix) -> dict[str, np.ndarray]:
@@ -148,7 +241,11 @@ def _to_arrays(p: Projection, key: str) -> dict[str, np.ndarray]:
                "part_capacity": np.array([(p.part_capacity or {}).get(name, np.nan) for name in p.parts]),
                "basis_vectors": b.vectors, "basis_singular_values": b.singular_values,
                "basis_tolerance": b.tolerance, "basis_snapshots": b.snapshots, "basis_seconds": b.seconds,
-               "basis_cached": b.cached}
+               "basis_cached": b.cached,
+               "conductance_parameters": np.array(p.conductance_parameters, dtype=str),
+               "expansion_parameters": np.array(p.expansion_parameters, dtype=str),
+               "domain_names": np.array(list(p.domain or {}), dtype=str),
+               "domain_bounds": np.array(list((p.domain or {}).values()), dtype=float).reshape(-1, 2)}
     arrays |= _sparse("averaged_exposure", p.averaged.exposure) | _sparse("averaged_distribution", p.averaged.distribution)
     arrays["has_film"] = p.averaged.film is not None
     arrays["averaged_film"] = np.zeros(0) if p.averaged.film is None else np.asarray(p.averaged.film, dtype=float)
@@ -163,10 +260,17 @@ def _to_arrays(p: Projection, key: str) -> dict[str, np.ndarray]:
     return arrays
 
 
-def _from_arrays(data, key: str) -> Projection | None:
+def _from_arrays(data, key: str, system: FeedSystem | None = None) -> Projection | None:
+    """The projection in ``data``; None when it is another layout or another file's, or (with
+    ``system``) when ``system``'s parameters lie outside the ranges it was trained over."""
     if int(data["store_version"]) != STORE_VERSION or str(data["key"]) != key:
         return None  # another layout, or a file copied under another name: not this model's
     names = lambda name: tuple(str(s) for s in data[name])  # noqa: E731
+    domain = {name: (float(low), float(high)) for name, (low, high) in zip(names("domain_names"), data["domain_bounds"])}
+    if system is not None:
+        values = omitted_values(system)
+        if set(values) != set(domain) or not inside(domain, values):
+            return None
     surfaces, sources = names("surfaces"), names("sources")
     mesh = None
     if bool(data["has_field_mesh"]):
@@ -186,5 +290,6 @@ def _from_arrays(data, key: str) -> Projection | None:
         field_mesh=mesh, full_stats=json.loads(str(data["full_stats"])),
         displacement_basis=data["displacement_basis"] if bool(data["has_displacement_fields"]) else None,
         displacement_origin=data["displacement_origin"] if bool(data["has_displacement_fields"]) else None,
-        **{name: data[name] for name in _ARRAYS},
+        conductance_parameters=names("conductance_parameters"), expansion_parameters=names("expansion_parameters"),
+        domain=domain, **{name: data[name] for name in _ARRAYS},
     )

@@ -49,7 +49,8 @@ def uncertainty_section(summary: dict, figures: dict[str, bytes]) -> str:
 def _sampling_text(summary: dict, band: str) -> str:
     s = summary["settings"]
     runs = ", ".join(f"{e['runs']} runs for the {e['label']} set" for e in summary["sets"] if e["runs"])
-    how = ", ".join(f"{key} {s[key]}" for key in ("sampler", "seed", "model", "mode") if s.get(key) is not None)
+    how = ", ".join(f"{key} {s[key]}" for key in ("sampler", "seed", "model", "mesh", "mode")
+                    if s.get(key) is not None)
     text = (f"{len(summary['parameters'])} declared uncertainties of the description "
             f"{summary.get('system', '')} sampled together ({runs}; {how}). At every time the band runs from the {band.split('–')[0]} to "
             f"the {band.split('–')[1]} quantile of the runs; the nominal run takes every parameter at its declared "
