@@ -151,6 +151,14 @@ def _identity(path: Path) -> tuple[int, int] | None:
     return status.st_ino, status.st_size
 
 
+def _last_used(path: Path) -> float:
+    """When the file was last read or written (0 for one another process has just pruned)."""
+    try:
+        return path.stat().st_mtime
+    except OSError:
+        return 0.0
+
+
 def _remember(path: Path, projection: Projection) -> None:
     identity = _identity(path)
     if identity is None:  # not written (an unwritable cache): nothing to remember it by
@@ -170,7 +178,7 @@ def _find(key: str, system: FeedSystem) -> Projection | None:
                 and _fits(projection, system):
             _in_memory.move_to_end(path)
             return projection
-    files = sorted(directory.glob(f"{key}-*.npz"), key=lambda p: p.stat().st_mtime, reverse=True)
+    files = sorted(directory.glob(f"{key}-*.npz"), key=_last_used, reverse=True)
     for path in files:
         stem = path.stem
         projection = read_npz(path, lambda data: _from_arrays(data, stem, system))
