@@ -366,3 +366,39 @@ def _point_snapshots(ops: TrainingOperators, C, fixed, moving, corrected_at, mov
         blocks.append(_compress(X, space, product, SHIFT_TOLERANCE_FACTOR * tolerance))
         del X
     return blocks, count
+
+
+#: Points of a parametric basis's domain (a Latin hypercube of another seed than the training
+#: points') at which :func:`steady_check` compares its answers with the full model's.
+CHECK_POINTS = 2
+
+
+def steady_check(model: ThermalModel, basis: Basis, points: tuple[dict[str, float], ...]) -> dict:
+    """The basis against the full model at ``points``: each input's steady answer (cycle-averaged
+    operator, reference coefficients), the full model's ``x = A⁻¹b`` and the reduced model's
+    Galerkin answer ``V (VᵀAV)⁻¹ Vᵀb``.
+
+    Returns the largest nodal difference of the two as a share of the full answer's range
+    ``max|x − V z| / (max x − min x)`` over the inputs and points, with the input and the
+    point where it is largest: a check against the full model where the basis was not trained,
+    not a bound elsewhere.
+    """
+    fixed, moving = split_inputs(model)
+    weights = cycle_weights(len(model.positions))
+    inputs_ = sp.hstack([fixed, weighted_sum(weights, moving)]).toarray() if moving and moving[0].shape[1] \
+        else fixed.toarray()
+    V = basis.vectors
+    worst = {"steady_check_share": 0.0, "steady_check_point": None, "steady_check_input": None}
+    for index, point in enumerate(points):
+        ops = TrainingOperators(model, point)
+        A = (ops.mean_conductance() + sp.diags(ops.links(None))).tocsc()
+        exact = (pardiso.PardisoCholesky(A) if pardiso.suits(model.n_nodes) else factorize(A)).solve(inputs_)
+        AV = np.asarray(A @ V)
+        reduced = V @ np.linalg.solve(V.T @ AV, V.T @ inputs_)
+        spans = exact.max(axis=0) - exact.min(axis=0)
+        shares = np.abs(exact - reduced).max(axis=0) / np.where(spans > 0.0, spans, 1.0)
+        j = int(np.argmax(shares))
+        if shares[j] >= worst["steady_check_share"]:
+            worst = {"steady_check_share": float(shares[j]), "steady_check_point": index, "steady_check_input": j}
+    worst["steady_check_points"] = len(points)
+    return worst

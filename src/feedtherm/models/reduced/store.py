@@ -52,11 +52,12 @@ from ...constants import cache_root
 from ...system.schema import FeedSystem
 from ..fields import FieldMesh
 from ..interface import BoundaryBasis, ThermalModel
-from .basis import Basis, film_parameters, moment_basis
+from .basis import CHECK_POINTS, Basis, film_parameters, moment_basis, steady_check
 from .disk import read_npz, write_npz
 from .model import ProjectedModel
 from .projection import Projection, project
-from .training import declared_domain, domain_digest, inside, omitted_values, training_points
+from .training import (CHECK_SEED, declared_domain, domain_digest, inside, omitted_values, random_points,
+                       training_points)
 
 __all__ = ["cached_projected_model", "file_digest", "operator_code_digest", "projection_key", "projection_cache_path"]
 
@@ -208,7 +209,11 @@ def cached_projected_model(system: FeedSystem, tolerance: float, build_full: Cal
     kinds = {p.name: p.kind for p in full.affine_parameters()}
     trained = declared_domain(system, [n for n, kind in kinds.items() if kind == "conductance"] + list(film_parameters(full)))
     basis = moment_basis(full, tolerance=tolerance, points=training_points(trained, {}))
-    projection = replace(project(full, basis), domain=full_domain(system, trained, kinds))
+    projection = project(full, basis)
+    checked = random_points(trained, CHECK_POINTS, CHECK_SEED)
+    check = steady_check(full, basis, tuple(checked)) if checked else {}
+    projection = replace(projection, domain=full_domain(system, trained, kinds),
+                         full_stats={**projection.full_stats, **check})
     known = inputs()  # the full model's build has written its mesh file
     if known is not None:
         key = projection_key(known, tolerance)

@@ -47,6 +47,8 @@ __all__ = ["RANDOM_POINTS", "declared_domain", "domain_digest", "inside", "omitt
 RANDOM_POINTS = 3
 #: Seed of the Latin hypercube: a domain always gives the same points (and the same cached basis).
 SEED = 36
+#: Seed of the points a built basis is checked at (models/reduced/basis.py, ``steady_check``).
+CHECK_SEED = 37
 #: A range wider than this factor is sampled log-uniformly.
 LOG_SPAN = 2.0
 #: Relative slack of :func:`inside` (a value written to a description and read back differs in
@@ -157,10 +159,22 @@ def training_points(domain: dict[str, tuple[float, float]], values: dict[str, fl
     for name in spread:
         if name.startswith("surfaces."):
             points += [{name: domain[name][0]}, {name: domain[name][1]}]
-    rng = np.random.default_rng(SEED)
-    strata = np.array([rng.permutation(RANDOM_POINTS) for _ in spread])  # (dims, points)
-    u = (strata + rng.random(strata.shape)) / RANDOM_POINTS
-    for j in range(RANDOM_POINTS):
+    points += random_points(domain, RANDOM_POINTS, SEED)
+    unique = {tuple(sorted(p.items())): p for p in points}  # one spread parameter: its ends are the corners
+    return tuple(unique.values())
+
+
+def random_points(domain: dict[str, tuple[float, float]], count: int, seed: int) -> list[dict[str, float]]:
+    """``count`` points of a Latin hypercube over the domain's spread ranges (log-uniform over a range
+    wider than :data:`LOG_SPAN`)."""
+    spread = [name for name, (low, high) in domain.items() if math.isfinite(high) and high > low]
+    if not spread or count == 0:
+        return []
+    rng = np.random.default_rng(seed)
+    strata = np.array([rng.permutation(count) for _ in spread])  # (dims, points)
+    u = (strata + rng.random(strata.shape)) / count
+    points = []
+    for j in range(count):
         point = {}
         for i, name in enumerate(spread):
             low, high = domain[name]
@@ -169,8 +183,7 @@ def training_points(domain: dict[str, tuple[float, float]], values: dict[str, fl
             else:
                 point[name] = float(low + (high - low) * u[i, j])
         points.append(point)
-    unique = {tuple(sorted(p.items())): p for p in points}  # one spread parameter: its ends are the corners
-    return tuple(unique.values())
+    return points
 
 
 def inside(domain: dict[str, tuple[float, float]], values: dict[str, float]) -> bool:
