@@ -139,8 +139,9 @@ def declared_domain(system: FeedSystem, names: list[str]) -> dict[str, tuple[flo
     domain = {}
     for name in names:
         paths = _paths_of(system, name)
-        corners = itertools.product(*[sorted({min(path_ranges.get(p, [np.nan])), max(path_ranges.get(p, [np.nan]))})
-                                      if p in path_ranges else [float(get_path(system, p))] for p in paths])
+        ends = [sorted({min(path_ranges[p]), max(path_ranges[p])}) if p in path_ranges else [float(get_path(system, p))]
+                for p in paths]
+        corners = itertools.product(*ends)
         values = [_value_of(system, name, dict(zip(paths, corner))) for corner in corners]
         own = affine_value(system, name)
         domain[name] = (min(own, *values), max(own, *values))
