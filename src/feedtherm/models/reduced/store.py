@@ -137,10 +137,10 @@ def full_domain(system: FeedSystem, trained: dict[str, tuple[float, float]], kin
     return domain
 
 
-def _fits(projection: Projection, system: FeedSystem) -> bool:
-    """Whether ``system``'s numbers lie where the projection holds (:func:`full_domain`)."""
+def _holds(domain: dict, system: FeedSystem) -> bool:
+    """Whether ``system``'s numbers lie where a projection of ``domain`` holds (:func:`full_domain`)."""
     values = omitted_values(system)
-    return set(values) == set(projection.domain or {}) and inside(projection.domain, values)
+    return set(values) == set(domain) and inside(domain, values)
 
 
 def _identity(path: Path) -> tuple[int, int] | None:
@@ -176,7 +176,7 @@ def _find(key: str, system: FeedSystem) -> Projection | None:
     directory = projection_cache_path(key).parent
     for path, (projection, identity) in reversed(_in_memory.items()):
         if path.parent == directory and path.name.startswith(f"{key}-") and _identity(path) == identity \
-                and _fits(projection, system):
+                and _holds(projection.domain or {}, system):
             _in_memory.move_to_end(path)
             return projection
     files = sorted(directory.glob(f"{key}-*.npz"), key=_last_used, reverse=True)
@@ -280,10 +280,8 @@ def _from_arrays(data, key: str, system: FeedSystem | None = None) -> Projection
         return None  # another layout, or a file copied under another name: not this model's
     names = lambda name: tuple(str(s) for s in data[name])  # noqa: E731
     domain = {name: (float(low), float(high)) for name, (low, high) in zip(names("domain_names"), data["domain_bounds"])}
-    if system is not None:
-        values = omitted_values(system)
-        if set(values) != set(domain) or not inside(domain, values):
-            return None
+    if system is not None and not _holds(domain, system):
+        return None
     surfaces, sources = names("surfaces"), names("sources")
     mesh = None
     if bool(data["has_field_mesh"]):
