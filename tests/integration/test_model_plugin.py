@@ -107,7 +107,7 @@ def test_a_registered_model_runs_through_simulate_with_its_exact_answer(paper_eq
     assert run.steady["D"] == pytest.approx(model.alpha * (run.steady["T1"] - paper.system.temperatures.reference)
                                             * (laser.target.point[0] - laser.mount.point[0]), rel=1e-12)
     assert abs(run.energy.relative_error) < 1e-9
-    assert run.info["model"] == "lumped" and run.info["solver"] == "dense LU"
+    assert run.info["model"] == "lumped" and run.info["solver"].startswith("dense")
 
 
 def test_the_cli_lists_a_registered_model(lumped, capsys):

@@ -3,7 +3,8 @@
 The projections are checked against the full operators multiplied out directly, the basis
 against its definition, and the runs against the full model's own run of the same plan.
 The fast model serves as the full model where the check is about the projection (it is
-built in a second); one short FE run checks ``--model reduced`` itself.
+built in a second); ``--model reduced`` on the FE model itself, its files and its cache are
+checked in ``test_cli_run_fields.py``, on one build.
 """
 
 from __future__ import annotations
@@ -179,46 +180,3 @@ def test_a_reduced_run_follows_the_full_run(runs):
     assert np.max(np.abs(reduced_run.elongation - full_run.elongation)) <= 0.2e-6
     # the uniform state is in the basis: its Galerkin equation is the energy balance
     assert abs(reduced_run.energy.relative_error) <= 1e-9
-
-
-def test_the_reduced_fe_model_runs_from_the_command_line_and_follows_the_fe_model(paper, tmp_path, monkeypatch):
-    monkeypatch.setenv("FEEDTHERM_CACHE", str(tmp_path / "cache"))
-    plan = plan_run(paper, condition="I", duration=600.0, model="fem", mesh="coarse")
-    fe = plan.model.build(paper.system, plan.options)
-    reduced_plan = plan_run(paper, condition="I", duration=600.0, model="reduced", mesh="coarse")
-    full_run = execute(plan, model=fe)
-    reduced_run = execute(reduced_plan)
-    assert reduced_run.info["model"] == "reduced"
-    stats = reduced_run.info["mesh_statistics"]
-    assert stats["reduced_from"] == fe.n_nodes and stats["basis_size"] < fe.n_nodes // 20
-    for name in full_run.sensors:
-        assert np.max(np.abs(reduced_run.sensors[name] - full_run.sensors[name])) <= 0.1, name
-    assert np.max(np.abs(reduced_run.elongation - full_run.elongation)) <= 0.2e-6
-    assert reduced_run.fields is not None and reduced_run.fields.temperatures.shape[1] == fe.n_nodes
-    # the same mechanics: the positioning error along the stroke and the displacement field
-    assert np.max(np.abs(reduced_run.positioning_error - full_run.positioning_error)) <= 0.2e-6
-    assert reduced_run.fields.displacements.shape == full_run.fields.displacements.shape == (
-        len(full_run.fields.snapshot_times), fe.n_nodes, 3)
-    scale = np.abs(full_run.fields.displacements).max()  # the belt's large α makes the largest differences
-    assert np.max(np.abs(reduced_run.fields.displacements - full_run.fields.displacements)) <= 0.02 * scale
-    # the next run reads the projected model back and never builds the FE model
-    assert not stats["projection_cached"]
-
-    def no_fe_model(*args):
-        raise AssertionError("a cached reduced model built its FE model")
-
-    monkeypatch.setattr(registry, "_fem", no_fe_model)
-    again = execute(reduced_plan)
-    assert again.info["mesh_statistics"]["projection_cached"]
-    for name in reduced_run.sensors:
-        np.testing.assert_allclose(again.sensors[name], reduced_run.sensors[name], rtol=0.0, atol=1e-10)
-    np.testing.assert_array_equal(again.fields.temperatures, reduced_run.fields.temperatures)
-    np.testing.assert_array_equal(again.fields.displacements, reduced_run.fields.displacements)
-    np.testing.assert_array_equal(again.fields.tets, reduced_run.fields.tets)
-    rows, offset = fe.probe_rows(0)
-    assert fe.probe_rows(17)[0] is rows  # the FE model's readings do not depend on the position
-    T = 293.15 + np.random.default_rng(5).normal(size=fe.n_nodes)
-    read, probed = rows @ T + offset, fe.probe(T, 17)
-    assert np.allclose(read[:-1], probed[:-1], rtol=1e-14, atol=0.0)
-    assert abs(read[-1] - probed[-1]) <= 1e-15  # D [m]: the thermoelastic reading row, the same either way
-    assert sp.issparse(fe.conductance(0))

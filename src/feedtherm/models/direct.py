@@ -1,5 +1,5 @@
 """Direct solvers of the step matrices: sparse LU per position (reusing a position's elimination
-order when the coupling refactorises it) and dense LU for projected models."""
+order when the coupling refactorises it) and dense Cholesky (or LU) for projected models."""
 
 from __future__ import annotations
 
@@ -71,6 +71,56 @@ def _pattern(A: sp.spmatrix) -> str:
     h.update(np.ascontiguousarray(A.indptr).tobytes())
     h.update(np.ascontiguousarray(A.indices).tobytes())
     return h.hexdigest()
+
+
+#: How far a dense step matrix may be from symmetric to be taken as symmetric, as a share of its
+#: products' size: a Galerkin projection of a symmetric matrix is symmetric to rounding (about
+#: 1e-16), a matrix with a non-symmetric term is so by far more.
+SYMMETRY_TOLERANCE = 1e-10
+
+
+def dense_factors(A: np.ndarray):
+    """The factors of a dense step matrix: Cholesky where ``A`` is symmetric positive definite (a
+    projected model's is: a Galerkin projection of one), LU otherwise.  ``.solve(rhs)``.
+
+    Cholesky takes a third of LU's flops: at a reduced model's size (r ≈ 450) OpenBLAS's potrf
+    takes 1.6 ms on one thread where its getrf takes 6 ms.
+    """
+    A = np.asarray(A, dtype=float)
+    if symmetric(A):
+        factors = _DenseCholesky.of(A)
+        if factors is not None:
+            return factors
+    return _DenseLU(A)
+
+
+def symmetric(A: np.ndarray) -> bool:
+    """Whether the square ``A`` equals its transpose to rounding, judged by ``uᵀAv = vᵀAu`` for two
+    fixed random vectors: a product's cost where comparing ``A`` with ``Aᵀ`` entry by entry walks
+    one of them across memory, and a matrix that is not symmetric passes only for vectors chosen
+    against it (the identity holds for all u, v exactly when A is symmetric)."""
+    u, v = np.random.default_rng(0).standard_normal((2, A.shape[0]))
+    Av, Au = A @ v, A @ u
+    size = np.linalg.norm(u) * np.linalg.norm(Av) + np.linalg.norm(v) * np.linalg.norm(Au)
+    return abs(float(u @ Av) - float(v @ Au)) <= SYMMETRY_TOLERANCE * size
+
+
+class _DenseCholesky:
+    """LAPACK's Cholesky (potrf/potrs) of a symmetric positive definite dense matrix, called directly."""
+
+    def __init__(self, factor: np.ndarray, potrs):
+        self._factor, self._potrs = factor, potrs
+
+    @classmethod
+    def of(cls, A: np.ndarray) -> "_DenseCholesky | None":
+        """The factors of ``A`` (its lower triangle), None where ``A`` is not positive definite."""
+        potrf, potrs = scipy.linalg.get_lapack_funcs(("potrf", "potrs"), (A,))
+        # Aᵀ = A: LAPACK reads a C-ordered matrix's transpose without reordering it
+        factor, info = potrf(A.T if A.flags.c_contiguous else A, lower=True, clean=False)
+        return cls(factor, potrs) if info == 0 else None
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        return self._potrs(self._factor, rhs, lower=True)[0]
 
 
 class _DenseLU:

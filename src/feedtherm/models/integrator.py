@@ -4,7 +4,7 @@ Each step solves ``(C/dt + G(k) + A(k)) T⁺ = C/dt T + q(k) + a(k) T_amb`` (the
 :class:`~feedtherm.models.interface.ThermalModel`) with ``k`` the moving group's grid
 position at the end of the step.  While the table moves, a step advances the group by a whole
 number of grid positions, so each position's matrix can be factorised once and reused
-(:mod:`.direct`: a symmetric fill-reducing ordering, dense LU for a projected model); large FE
+(:mod:`.direct`: a symmetric fill-reducing ordering, dense Cholesky for a projected model); large FE
 meshes use conjugate gradients on the step's increment instead (:mod:`.iterative`), started
 from the linear extrapolation of the last two states.  The energy account is kept apart from
 the solver's matrices: heat in from the boundary conditions (not the model's heat vector),
@@ -40,7 +40,7 @@ from .coupling import (
     TemperatureReadout,
 )
 from . import pardiso
-from .direct import EliminationOrder, _DenseLU, _pattern, factorize
+from .direct import EliminationOrder, _pattern, dense_factors, factorize
 from .iterative import StepCG, jacobi
 from .interface import AmbientCoupling, Operator, ThermalModel, cycle_weights, source_powers, weighted_sum
 from .options import ModelOptions
@@ -231,7 +231,7 @@ class Integrator:
     @property
     def solver_name(self) -> str:
         if self.dense:
-            return "dense LU"
+            return "dense Cholesky (LU where not symmetric positive definite)"
         if not self.direct:
             return "cg (Jacobi-preconditioned conjugate gradients)"
         if not self.uses_pardiso:
@@ -248,7 +248,7 @@ class Integrator:
     def _factorize(self, A: Operator):
         """The factors of ``A``, or None when PARDISO's would not fit in the memory budget (cg solves)."""
         if isinstance(A, np.ndarray):
-            return _DenseLU(A)
+            return dense_factors(A)
         if self.uses_pardiso:
             if self._budget is not None:
                 held = [f.memory for f in self._lu.values() if isinstance(f, pardiso.PardisoCholesky)]
@@ -464,7 +464,10 @@ class Integrator:
     def run(self, segments: list[Segment], initial: np.ndarray, sample_times: np.ndarray,
             progress: Callable[[float], None] | None = None) -> Trace:
         """Step through ``segments`` from ``initial``, recording at ``sample_times``."""
-        with pardiso.openblas_on_one_thread() if self.uses_pardiso else contextlib.nullcontext():
+        # A projected model's factorisations are of the basis's size: a second OpenBLAS thread saves
+        # little there and, busy-waiting between calls, slows the other process of a batch's pair
+        one_thread = self.uses_pardiso or self.dense
+        with pardiso.openblas_on_one_thread() if one_thread else contextlib.nullcontext():
             return self._run(segments, initial, sample_times, progress)
 
     def _run(self, segments: list[Segment], initial: np.ndarray, sample_times: np.ndarray,

@@ -112,11 +112,24 @@ class ProjectedModel(ThermalModel):
 
     def _weighted_exposure(self, h: np.ndarray) -> np.ndarray:
         """Σ h_i Vᵀ diag(e_i0) V, kept for the latest coefficients: a coupled run asks for every
-        position with one evaluation's coefficients before the next."""
+        position with one evaluation's coefficients before the next.
+
+        A re-evaluation of a coupled run changes some of the coefficients and keeps the others
+        (:mod:`~feedtherm.models.coupling`): the sum is then the latest one plus the changed terms,
+        each an r × r pass over memory where the whole sum is one pass per surface.
+        """
         latest, matrix = self._weighted
-        if latest is None or not np.array_equal(latest, h):
-            matrix = np.tensordot(h, self.projection.exposure, axes=1)
-            self._weighted = (h.copy(), matrix)
+        if latest is not None and np.array_equal(latest, h):
+            return matrix
+        exposure = self.projection.exposure
+        changed = None if latest is None else np.flatnonzero(h != latest)
+        if changed is None or 2 * len(changed) > len(h):
+            matrix = np.tensordot(h, exposure, axes=1)
+        else:
+            matrix = matrix.copy()
+            for i in changed:
+                matrix += (h[i] - latest[i]) * exposure[i]
+        self._weighted = (h.copy(), matrix)
         return matrix
 
     def heat_vector(self, bc: BoundaryConditions, k: int | None) -> np.ndarray:
