@@ -140,12 +140,27 @@ def _serial(function, items, describe, progress, passes_progress, on_done) -> It
         try:
             result = function(item, **kwargs)
         except Exception as exc:  # one run's failure is reported with its inputs; the others go on
+            if interrupted(exc):
+                raise KeyboardInterrupt from exc
             result = TaskFailure(index, describe(item), _message(exc))
         if on_done is not None:
             on_done(index, result)
         yield index, result
         if progress is not None:
             progress((index + 1) / count)
+
+
+def interrupted(exc: BaseException) -> bool:
+    """Whether ``exc`` carries a Ctrl-C: a KeyboardInterrupt in its chain, or in the message of
+    pydantic-core's serialisation error, which reports a Ctrl-C that lands inside a wrap
+    serialiser as ``PydanticSerializationError: ... KeyboardInterrupt`` and keeps no chain.  The
+    batch stops then, as at any other Ctrl-C, and does not count a failed run."""
+    seen: BaseException | None = exc
+    while seen is not None:
+        if isinstance(seen, KeyboardInterrupt):
+            return True
+        seen = seen.__cause__ or seen.__context__
+    return type(exc).__name__ == "PydanticSerializationError" and "KeyboardInterrupt" in str(exc)
 
 
 def progress_share(progress: Callable[[float], None], index: int, count: int) -> Callable[[float], None]:

@@ -63,6 +63,43 @@ def test_serial_results_in_order_with_a_failure_in_its_place():
     assert seen == pytest.approx([1 / 3, 2 / 3, 1.0])
 
 
+def _interrupted_inside_a_serialiser(item):
+    from pydantic_core import PydanticSerializationError
+
+    if item == "b":  # what pydantic-core raises when Ctrl-C lands in a wrap serialiser: no chain
+        raise PydanticSerializationError("Error calling function `serialise`: KeyboardInterrupt")
+    return item
+
+
+def _interrupted_and_chained(item):
+    try:
+        raise KeyboardInterrupt
+    except KeyboardInterrupt as exc:
+        raise RuntimeError("a library caught the interrupt and raised its own error") from exc
+
+
+@pytest.mark.parametrize("task", [_interrupted_inside_a_serialiser, _interrupted_and_chained])
+def test_a_ctrl_c_that_a_library_reports_as_its_own_error_stops_the_serial_batch(task):
+    done = []
+    with pytest.raises(KeyboardInterrupt):
+        for _, result in run_ordered(task, ["a", "b", "c"], on_done=lambda i, r: done.append(r)):
+            pass
+    assert all(not isinstance(r, TaskFailure) for r in done)  # no run was counted as failed
+
+
+def test_a_serialisers_own_error_or_a_mention_of_the_word_is_a_failed_run():
+    from pydantic_core import PydanticSerializationError
+
+    def unserialisable(item):
+        raise PydanticSerializationError("Unable to serialize unknown type: <class 'object'>")
+
+    def mentions(item):
+        raise ValueError("KeyboardInterrupt is only a word here")
+
+    for task in (unserialisable, mentions):
+        assert isinstance(list(run_ordered(task, ["a"]))[0][1], TaskFailure)
+
+
 def test_serial_passes_each_run_its_share_of_the_progress():
     seen = []
 
