@@ -52,7 +52,7 @@ from ...constants import cache_root
 from ...system.schema import FeedSystem
 from ..fields import FieldMesh
 from ..interface import BoundaryBasis, ThermalModel
-from .basis import CHECK_POINTS, Basis, film_parameters, moment_basis, steady_check
+from .basis import CHECK_CANDIDATES, Basis, film_parameters, moment_basis, steady_check
 from .disk import read_npz, write_npz
 from .model import ProjectedModel
 from .projection import Projection, project
@@ -210,8 +210,8 @@ def cached_projected_model(system: FeedSystem, tolerance: float, build_full: Cal
     trained = declared_domain(system, [n for n, kind in kinds.items() if kind == "conductance"] + list(film_parameters(full)))
     basis = moment_basis(full, tolerance=tolerance, points=training_points(trained, {}))
     projection = project(full, basis)
-    checked = random_points(trained, CHECK_POINTS, CHECK_SEED)
-    check = steady_check(full, basis, tuple(checked)) if checked else {}
+    candidates = random_points(trained, CHECK_CANDIDATES, CHECK_SEED)
+    check = steady_check(full, basis, tuple(candidates)) if candidates else {}
     projection = replace(projection, domain=full_domain(system, trained, kinds),
                          full_stats={**projection.full_stats, **check})
     known = inputs()  # the full model's build has written its mesh file
