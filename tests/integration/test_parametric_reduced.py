@@ -23,6 +23,7 @@ from feedtherm.analysis.uncertainty.declared import resolve_uncertainties, varia
 from feedtherm.analysis.uncertainty.sampling import to_values
 from feedtherm.models import registry
 from feedtherm.models.fem.bench import FemDiscretization
+from feedtherm.models.interface import cycle_weights
 from feedtherm.models.options import ModelOptions
 from feedtherm.models.reduced import ProjectedModel, moment_basis, project, training
 from feedtherm.models.reduced.training import declared_domain, inside, training_points
@@ -73,6 +74,13 @@ def test_a_projection_takes_another_descriptions_numbers_as_its_own_full_model_w
         rows, offsets = model._probe_rows(k)
         assert np.allclose(rows, theirs.probe_rows[k], rtol=0.0, atol=1e-12 * np.abs(theirs.probe_rows[k]).max())
         assert np.allclose(offsets, theirs.probe_offsets[k], rtol=0.0, atol=1e-12 * np.abs(theirs.probe_offsets[k]).max())
+    # the cycle average a cycle-averaged run steps with, formed from the projection's averages and the
+    # terms, is the average of the positions' operators (a fresh model: none of them formed yet)
+    fresh = ProjectedModel.from_projection(projection, other.system, lambda: None)
+    averaged = fresh.averaged_conductance()
+    assert not fresh._at_position  # without forming a position's operator
+    by_positions = sum(w * theirs.conductance[k] for k, w in enumerate(cycle_weights(len(fem.positions))))
+    assert np.allclose(averaged, by_positions, rtol=0.0, atol=1e-12 * np.abs(by_positions).max())
     rows, offsets = model.displacement_rows()
     assert np.allclose(rows, theirs.displacement_rows, rtol=0.0, atol=1e-12 * np.abs(rows).max())
     assert np.allclose(offsets, theirs.displacement_offsets, rtol=0.0, atol=1e-12 * np.abs(offsets).max())

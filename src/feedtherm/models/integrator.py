@@ -42,7 +42,7 @@ from .coupling import (
 from . import pardiso
 from .direct import EliminationOrder, _pattern, dense_factors, factorize
 from .iterative import StepCG, jacobi
-from .interface import AmbientCoupling, Operator, ThermalModel, cycle_weights, source_powers, weighted_sum
+from .interface import AmbientCoupling, Operator, ThermalModel, source_powers
 from .options import ModelOptions
 
 #: Above this many unknowns the "auto" solver uses conjugate gradients, not cached SuperLU factors
@@ -267,8 +267,7 @@ class Integrator:
         """Conduction and contacts at position k (None: the cycle average); no boundary condition enters."""
         if k not in self._conductance:
             if k is None:
-                w = cycle_weights(len(self.model.positions))
-                self._conductance[k] = weighted_sum(w, [self.conductance(j) for j in range(len(w))])
+                self._conductance[k] = self.model.averaged_conductance()
             else:
                 self._conductance[k] = self.model.conductance(k)
         return self._conductance[k]

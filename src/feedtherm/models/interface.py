@@ -257,6 +257,12 @@ class ThermalModel(ABC):
     def conductance(self, k: int) -> Operator:
         """Conduction in the parts and across every joint, moving group at position k [W/K]."""
 
+    def averaged_conductance(self) -> Operator:
+        """The cycle average of :meth:`conductance` over the positions (:func:`cycle_weights`): what a
+        cycle-averaged run steps with.  A model may form it more cheaply than from every position."""
+        w = cycle_weights(len(self.positions))
+        return weighted_sum(w, [self.conductance(k) for k in range(len(w))])
+
     @abstractmethod
     def surface_exposure(self, name: str, k: int) -> tuple[np.ndarray, np.ndarray]:
         """Nodes of surface ``name`` and their exposed areas [m²] at position k.

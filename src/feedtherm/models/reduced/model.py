@@ -9,6 +9,7 @@ not hold (a surface's nodes, a position's boundary basis), once.
 
 from __future__ import annotations
 
+import weakref
 from typing import Callable
 
 import numpy as np
@@ -21,6 +22,18 @@ from .basis import Basis
 from .projection import Projection, project
 
 __all__ = ["ProjectedModel"]
+
+#: What every model of a projection computes alike from it (the cycle averages of its per-position
+#: arrays, the uniform state's row), kept once per projection: a batch makes a model of the one
+#: projection it holds in memory for each of its runs.
+_SHARED: "weakref.WeakKeyDictionary[Projection, dict[str, np.ndarray]]" = weakref.WeakKeyDictionary()
+
+
+def _shared(projection: Projection, name: str, compute: Callable[[], np.ndarray]) -> np.ndarray:
+    cache = _SHARED.setdefault(projection, {})
+    if name not in cache:
+        cache[name] = compute()
+    return cache[name]
 
 
 class ProjectedModel(ThermalModel):
@@ -55,7 +68,6 @@ class ProjectedModel(ThermalModel):
         self.screw_centres = p.screw_centres
         self._surfaces, self._sources = list(p.surfaces), list(p.sources)
         self._weights = cycle_weights(len(p.positions))
-        self._averaged: dict[str, np.ndarray] = {}
         self._weighted = (None, None)  # (coefficients, Σ h_i Vᵀ diag(e_i0) V) of the latest evaluation
         self._take_values(system)
 
@@ -68,9 +80,10 @@ class ProjectedModel(ThermalModel):
         self._probes = (p.probe_rows, p.probe_offsets)
         self.expansion_changed = False
         dq = np.array([affine_value(system, name) for name in p.conductance_parameters]) - p.conductance_values
-        if np.any(dq != 0.0):
-            moved = np.tensordot(p.conductance_term_change, dq[p.conductance_moving], axes=([1], [0]))
-            self._conductance = p.conductance + np.tensordot(dq, p.conductance_terms, axes=1) + moved
+        # a position's operator is formed when a run asks for it (a cycle-averaged run asks for none)
+        self._conductance_change = dq if np.any(dq != 0.0) else None
+        self._at_position: dict[int, np.ndarray] = {}
+        self._term_sum: np.ndarray | None = None
         da = np.array([affine_value(system, name) for name in p.expansion_parameters]) - p.expansion_values
         if np.any(da != 0.0):
             self.expansion_changed = True
@@ -96,12 +109,33 @@ class ProjectedModel(ThermalModel):
         values = getattr(self.projection, name)
         if k is not None:
             return values[k]
-        if name not in self._averaged:
-            self._averaged[name] = np.tensordot(self._weights, values, axes=1)
-        return self._averaged[name]
+        return _shared(self.projection, name, lambda: np.tensordot(self._weights, values, axes=1))
 
     def conductance(self, k: int) -> np.ndarray:
-        return self._conductance[k]
+        dq = self._conductance_change
+        if dq is None:
+            return self._conductance[k]
+        if k not in self._at_position:
+            p = self.projection
+            moved = np.tensordot(dq[p.conductance_moving], p.conductance_term_change[k], axes=1)
+            self._at_position[k] = p.conductance[k] + self._terms() + moved
+        return self._at_position[k]
+
+    def _terms(self) -> np.ndarray:
+        """Σ (q − q₀) Vᵀ G_q V over the terms, at every position alike (their sliding part apart)."""
+        if self._term_sum is None:
+            self._term_sum = np.tensordot(self._conductance_change, self.projection.conductance_terms, axes=1)
+        return self._term_sum
+
+    def averaged_conductance(self) -> np.ndarray:
+        """The cycle average, from the projection's averages and the terms weighed by the description's
+        values: r² per term, where averaging the positions' operators is r² per position and term."""
+        dq = self._conductance_change
+        if dq is None:
+            return super().averaged_conductance()
+        moving = self.projection.conductance_moving
+        average = self._at("conductance", None) + self._terms()
+        return average + np.tensordot(dq[moving], self._at("conductance_term_change", None), axes=1)
 
     def ambient_coupling(self, bc: BoundaryConditions, k: int | None) -> AmbientCoupling:
         h, sinks = self.projection.averaged.coefficients(bc)  # the full model's film in series, if it has one
@@ -153,8 +187,8 @@ class ProjectedModel(ThermalModel):
 
     def uniform_state(self, temperature: float) -> np.ndarray:
         # the uniform state is the basis's first vector, so this is exact
-        C = self.projection.full_capacity
-        return self.V.T @ (C * np.full(C.size, float(temperature)))
+        return float(temperature) * _shared(self.projection, "capacity_row",
+                                            lambda: self.V.T @ self.projection.full_capacity)
 
     def heat_stored(self, state: np.ndarray, start: np.ndarray) -> float:
         return float(self.projection.stored @ (state - start))
