@@ -33,15 +33,28 @@ DASK_CLUSTER_MODULES = frozenset(f"tests/{m}.py" for m in (
     "integration/test_uncertainty_update", "unit/analysis/test_execution"))
 
 
+#: The variables that set the thread count of OpenBLAS, MKL (PARDISO) and OpenMP in a child process.
+THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+
+
 def pytest_configure(config):
     """Under pytest-xdist (``make test`` runs ``-n 2``) each worker process gets a cache of its own,
     ``$FEEDTHERM_CACHE/xdist-gwN``: two workers never write the same mesh, basis or pint file, and
-    the commands the tests start in child processes inherit it.  A serial run keeps the user's cache."""
+    the commands the tests start in child processes inherit it; and each runs its numerical
+    libraries on one thread.  A serial run keeps the user's cache and threads."""
     worker = os.environ.get("PYTEST_XDIST_WORKER")
     if worker:
+        from threadpoolctl import threadpool_limits
+
         from feedtherm.constants import cache_root
 
         os.environ["FEEDTHERM_CACHE"] = str(cache_root() / f"xdist-{worker}")
+        # One BLAS/LAPACK/PARDISO thread per worker (and in the commands it starts): two workers on
+        # two cores, each with threads of its own that wait busily between calls, slowed the
+        # heaviest tests twofold against the same test alone.
+        for variable in THREAD_VARIABLES:
+            os.environ[variable] = "1"
+        threadpool_limits(1)
 
 
 def _work_unit(nodeid: str) -> str:
