@@ -447,8 +447,16 @@ def _galerkin(A: sp.spmatrix, V: np.ndarray, inputs_: np.ndarray) -> tuple[np.nd
     return V @ z, inputs_ - AV @ z
 
 
-def residual_indicator(model: ThermalModel, basis: Basis, point: dict[str, float],
-                       inputs_: np.ndarray | None = None) -> float:
+def _galerkin_at(model: ThermalModel, V: np.ndarray, point: dict[str, float],
+                 inputs_: np.ndarray) -> tuple[sp.csc_matrix, np.ndarray, float]:
+    """At ``point``: the steady operator, the Galerkin answers and :func:`residual_indicator`'s value."""
+    A = _steady_operator(model, point)
+    reduced, residual = _galerkin(A, V, inputs_)
+    sizes = np.linalg.norm(inputs_, axis=0)
+    return A, reduced, float(np.max(np.linalg.norm(residual, axis=0) / np.where(sizes > 0.0, sizes, 1.0)))
+
+
+def residual_indicator(model: ThermalModel, basis: Basis, point: dict[str, float]) -> float:
     """The largest relative residual ``‖b − A V z‖ / ‖b‖`` of the inputs' Galerkin steady answers at
     ``point`` (cycle-averaged operator, reference coefficients).
 
@@ -456,10 +464,7 @@ def residual_indicator(model: ThermalModel, basis: Basis, point: dict[str, float
     so it can rank many points of the domain; it is not the error, whose size it indicates only
     up to the operator's conditioning.
     """
-    inputs_ = _steady_inputs(model) if inputs_ is None else inputs_
-    _, residual = _galerkin(_steady_operator(model, point), basis.vectors, inputs_)
-    sizes = np.linalg.norm(inputs_, axis=0)
-    return float(np.max(np.linalg.norm(residual, axis=0) / np.where(sizes > 0.0, sizes, 1.0)))
+    return _galerkin_at(model, basis.vectors, point, _steady_inputs(model))[2]
 
 
 def steady_check(model: ThermalModel, basis: Basis, candidates: tuple[dict[str, float], ...],
@@ -476,20 +481,20 @@ def steady_check(model: ThermalModel, basis: Basis, candidates: tuple[dict[str, 
     candidates, not a bound elsewhere.
     """
     inputs_ = _steady_inputs(model)
-    V = basis.vectors
-    indicators = [residual_indicator(model, basis, point, inputs_) for point in candidates]
-    order = np.argsort(indicators)[::-1][:checked]
+    indicators, largest = [], []  # largest: (indicator, candidate, operator, Galerkin answers) of the top ones
+    for index, point in enumerate(candidates):
+        A, reduced, indicator = _galerkin_at(model, basis.vectors, point, inputs_)
+        indicators.append(indicator)
+        largest = sorted([*largest, (indicator, index, A, reduced)], key=lambda c: -c[0])[:checked]
     worst = {"steady_check_share": 0.0, "steady_check_point": None, "steady_check_input": None}
-    for index in map(int, order):
-        A = _steady_operator(model, candidates[index])
+    for _, index, A, reduced in largest:
         exact = (pardiso.PardisoCholesky(A) if pardiso.available() else factorize(A)).solve(inputs_)
-        reduced, _ = _galerkin(A, V, inputs_)
         spans = exact.max(axis=0) - exact.min(axis=0)
         shares = np.abs(exact - reduced).max(axis=0) / np.where(spans > 0.0, spans, 1.0)
         j = int(np.argmax(shares))
         if shares[j] >= worst["steady_check_share"]:
             worst = {"steady_check_share": float(shares[j]), "steady_check_point": index, "steady_check_input": j}
-    worst["steady_check_points"] = len(order)
+    worst["steady_check_points"] = len(largest)
     worst["steady_check_candidates"] = len(candidates)
     worst["steady_check_indicator"] = float(max(indicators)) if indicators else 0.0
     return worst
