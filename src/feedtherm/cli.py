@@ -535,6 +535,33 @@ def cmd_compensate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _positions(text: str) -> tuple[float, ...]:
+    """argparse type: table positions with their unit, separated by commas ("150 mm,200 mm") [m]."""
+    from .system.quantities import to_si
+
+    out = []
+    for item in text.split(","):
+        try:
+            out.append(to_si(item.strip(), "m"))
+        except ValueError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+    return tuple(out)
+
+
+def cmd_correct(args: argparse.Namespace) -> int:
+    from .analysis.compensation.apply import correct, read_law
+    from .outputs.correction_files import print_correction, write_correction
+    from .outputs.files import check_output_dir
+
+    law = read_law(args.law)
+    out_dir = Path(args.out) if args.out else Path("out") / f"{Path(args.law).stem}_correction"
+    check_output_dir(out_dir)
+    corrections = correct(law, args.readings, args.x or ())
+    write_correction(corrections, out_dir, {"law": str(args.law), "readings": str(args.readings)})
+    print_correction(corrections, out_dir)
+    return 0
+
+
 def _power_of_two(text: str) -> int:
     """argparse type: a power of 2 (Sobol' points are balanced only in such sets)."""
     value = _positive_int(text)
@@ -839,6 +866,16 @@ def build_parser() -> argparse.ArgumentParser:
     _execution_arguments(compensate)
     _out_argument(compensate, "out/<system>_compensation_<mode>")
     compensate.set_defaults(func=cmd_compensate)
+
+    correct = sub.add_parser("correct", help="run an exported law (law*.json of `feedtherm compensate`) over logged "
+                                             "readings: D, or E at table positions, at every sample")
+    correct.add_argument("law", metavar="LAW.json", help="a law file of `feedtherm compensate`")
+    correct.add_argument("readings", metavar="READINGS.csv",
+                         help="the law's inputs logged on the machine (final values or time series, docs/measurements.md)")
+    correct.add_argument("--x", type=_positions, metavar="X,...",
+                         help="table positions with their unit, for a stroke law (law_stroke*.json): \"150 mm,250 mm\"")
+    _out_argument(correct, "out/<law>_correction")
+    correct.set_defaults(func=cmd_correct)
 
     uncertainty = sub.add_parser("uncertainty", help="prediction bands (5-95 %%) of the sensors and D over time and Sobol' "
                                                      "indices from the description's declared uncertainties")

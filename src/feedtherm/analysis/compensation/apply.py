@@ -1,0 +1,156 @@
+"""An exported law's correction over logged readings: ``feedtherm correct``.
+
+A law file (``law*.json``, :mod:`.evaluator`) is run over a measurement file of the machine, in
+either format the measurement readers accept (docs/measurements.md), as a controller would run it
+sample by sample:
+
+- every condition of the file is one log, evaluated on its own (the law's lags restart);
+- the law's inputs are read on the union of their sample times, each interpolated linearly and
+  held at its first and last value outside its own samples (a logger that reads its channels in
+  turn); final values are one reading, with the lags settled at it;
+- a law of D gives D [m] at each time (and its predictive standard deviation for an adapted law);
+  a stroke law gives E(x) [m] at each table position asked for;
+- where the log holds D, a law of D is compared with it: the residual measured − predicted.
+
+Every problem with the law, the file or a position is one :class:`~feedtherm.errors.FeedthermError`
+line naming the file or ``--x`` and the reason, raised before anything is written.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ...constants import KELVIN_OFFSET
+from ...errors import FeedthermError
+from ..measurements import ELONGATION_QUANTITY, read_measurements
+from .evaluator import CompensationLaw
+
+
+@dataclass(frozen=True)
+class Correction:
+    """One log's prediction: ``times`` [s]; ``predicted`` ``(n, len(x))`` [m] (a law of D: one
+    column, ``x`` empty); ``sd`` [m] an adapted law's predictive standard deviation, else None;
+    ``measured`` D [m] at ``times`` where the log holds D at that time (NaN elsewhere), else None."""
+
+    condition: str
+    times: np.ndarray
+    x: tuple[float, ...]
+    predicted: np.ndarray
+    sd: np.ndarray | None = None
+    measured: np.ndarray | None = None
+
+
+def read_law(path: str | Path) -> CompensationLaw:
+    """The law of ``path``; one line naming the file for a missing, unreadable or foreign document."""
+    path = Path(path)
+    if not path.is_file():
+        raise FeedthermError(f"{path}: no such law file (give a law*.json of `feedtherm compensate`)")
+    try:
+        document = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise FeedthermError(f"{path}: not a JSON law document ({exc.__class__.__name__})") from None
+    if isinstance(document, dict) and document.get("kind") == "kalman":
+        raise FeedthermError(f"{path}: a Kalman estimator needs the motor speeds and the ambient as well as the "
+                             "readings; evaluate it with feedtherm.analysis.compensation.kalman.KalmanEstimator")
+    try:
+        return CompensationLaw(document)
+    except (ValueError, KeyError, TypeError, AttributeError) as exc:
+        raise FeedthermError(f"{path}: not a law feedtherm can evaluate: {_reason(exc)}") from None
+
+
+def _reason(exc: Exception) -> str:
+    return f"missing field {exc}" if isinstance(exc, KeyError) else str(exc)
+
+
+def check_positions(law: CompensationLaw, positions: tuple[float, ...]) -> None:
+    """``--x`` against the law: a stroke law needs positions inside its stroke; a law of D takes none."""
+    if not law.stroke:
+        if positions:
+            raise FeedthermError("--x: this law predicts D, the same at every table position; leave --x out")
+        return
+    if not positions:
+        raise FeedthermError(f"--x: a stroke law needs the table positions, between {law.x_min * 1e3:.6g} and "
+                             f"{law.x_max * 1e3:.6g} mm")
+    for x in positions:
+        if not law.x_min - 1e-9 <= x <= law.x_max + 1e-9:
+            raise FeedthermError(f"--x: {x * 1e3:.6g} mm is outside the law's stroke, "
+                                 f"[{law.x_min * 1e3:.6g}, {law.x_max * 1e3:.6g}] mm")
+
+
+def correct(law: CompensationLaw, readings: str, positions: tuple[float, ...] = ()) -> list[Correction]:
+    """The law over every log (condition) of the measurement file ``readings`` (module notes)."""
+    check_positions(law, positions)
+    data = read_measurements(readings)
+    out = []
+    for condition in data.conditions():
+        rows = {r.quantity: r for r in data.for_condition(condition)}
+        missing = [name for name in law.inputs if name not in rows]
+        if missing:
+            raise FeedthermError(f"{data.source}: condition {condition} does not log {missing[0]}, an input of the law "
+                                 f"on {', '.join(law.inputs)}")
+        d_row = None if law.stroke else rows.get(ELONGATION_QUANTITY)
+        logged = [*law.inputs, *([ELONGATION_QUANTITY] if d_row is not None else [])]
+        times = np.unique(np.concatenate([rows[n].series.times if rows[n].series is not None else np.zeros(1)
+                                          for n in logged]))
+        columns = {name: _on(rows[name], times) + KELVIN_OFFSET for name in law.inputs}
+        law.reset()
+        predicted, sd = [], []
+        for j, t in enumerate(times):
+            values = {name: float(columns[name][j]) for name in law.inputs}
+            if law.stroke:
+                law.update(float(t), values, positions[0])
+                predicted.append([law.at(x) for x in positions])
+            elif law.posterior is not None:
+                d, s = law.update_with_sd(float(t), values)
+                predicted.append([d])
+                sd.append(s)
+            else:
+                predicted.append([law.update(float(t), values)])
+        measured = None if d_row is None else _at_own_samples(d_row, times) * 1e-6
+        out.append(Correction(condition, times, tuple(positions), np.asarray(predicted, float),
+                              np.asarray(sd, float) if sd else None, measured))
+    return out
+
+
+def _on(row, times: np.ndarray) -> np.ndarray:
+    """A measurement's values on ``times``: linear between its samples, held outside (final values: constant)."""
+    if row.series is None:
+        return np.full(len(times), float(row.measured))
+    return np.interp(times, row.series.times, row.series.values)
+
+
+def _at_own_samples(row, times: np.ndarray) -> np.ndarray:
+    """A measurement's values at those of ``times`` where it was sampled, NaN elsewhere."""
+    out = np.full(len(times), np.nan)
+    if row.series is None:
+        out[:] = float(row.measured)
+        return out
+    at = np.searchsorted(times, row.series.times)
+    out[at] = row.series.values
+    return out
+
+
+def rows(corrections: list[Correction]) -> tuple[list[str], list[list]]:
+    """The CSV's header and rows: one row per log, time and position (µm, seconds, millimetres)."""
+    stroke = any(c.x for c in corrections)
+    has_sd = any(c.sd is not None for c in corrections)
+    has_measured = any(c.measured is not None for c in corrections)
+    header = ["condition", "time_s"] + (["x_mm", "E_um"] if stroke else ["D_um"])
+    header += ["sd_um"] if has_sd else []
+    header += ["measured_D_um", "residual_um"] if has_measured else []
+    out = []
+    for c in corrections:
+        for j, t in enumerate(c.times):
+            for i, x in enumerate(c.x or (None,)):
+                row = [c.condition, float(t)] + ([x * 1e3] if stroke else []) + [c.predicted[j, i] * 1e6]
+                if has_sd:
+                    row.append(c.sd[j] * 1e6 if c.sd is not None else "")
+                if has_measured:
+                    m = None if c.measured is None else c.measured[j]
+                    row += ["", ""] if m is None or np.isnan(m) else [m * 1e6, (m - c.predicted[j, i]) * 1e6]
+                out.append(row)
+    return header, out
