@@ -89,12 +89,14 @@ def test_a_law_of_d_with_a_lag_and_the_logged_d_by_hand(tmp_path):
     ("kalman", [], "law.json: a Kalman estimator needs the motor speeds"),
     ("foreign", [], "law.json: not a law feedtherm can evaluate: not a feedtherm-compensation-law document"),
     ("d_other_input", [], "log.csv: condition run1 does not log T2, an input of the law on T2"),
+    ("no_log", [], "log.csv: no such measurement file"),
 ])
 def test_bad_input_is_one_line_exit_2_and_nothing_written(tmp_path, law, args, message):
-    (tmp_path / "log.csv").write_text(SERIES)
+    if law != "no_log":
+        (tmp_path / "log.csv").write_text(SERIES)
     if law == "stroke":
         stroke_law(tmp_path / "law.json")
-    elif law == "d":
+    elif law in ("d", "no_log"):
         d_law(tmp_path / "law.json")
     elif law == "kalman":
         (tmp_path / "law.json").write_text(json.dumps({"format": FORMAT, "version": 1, "kind": "kalman"}))
