@@ -221,13 +221,33 @@ def _planned(loaded: LoadedSystem, settings: StudySettings, name: str) -> list[t
 
 def simulate_set(loaded: LoadedSystem, candidates: dict[str, Candidate], settings: StudySettings, name: str,
                  progress: Callable[[float], None] | None = None, execution: Execution = Execution()) -> CycleSet:
-    """Draw and simulate the cycles of set ``name`` (a key of :data:`STREAMS`).
+    """Draw and simulate the cycles of set ``name`` (a key of :data:`STREAMS`; see :func:`simulate_sets`)."""
+    return simulate_sets(loaded, candidates, settings, (name,), progress, execution)[name]
+
+
+def simulate_sets(loaded: LoadedSystem, candidates: dict[str, Candidate], settings: StudySettings,
+                  names: tuple[str, ...], progress: Callable[[float], None] | None = None,
+                  execution: Execution = Execution()) -> dict[str, CycleSet]:
+    """Draw and simulate the cycles of the sets ``names`` (keys of :data:`STREAMS`) as one batch.
 
     The training set runs the nominal description; the others run one machine variant per cycle,
     drawn from every declared uncertainty (:func:`~feedtherm.analysis.machine_variants.draw_variant`).
+    One batch for all sets: on a cluster the workers start once and stay busy to the last run
+    (each set's runs are independent of the others', so the results are the same as set by set).
     """
-    stream = STREAMS[name]
     base = with_candidates(loaded, candidates)
+    plans = {name: _plan_set(loaded, base, settings, name) for name in names}
+    runs = [run for plan in plans.values() for run in plan[0]]
+    prepare(base.system, settings.model, settings.mesh)
+    solutions = iter(run_batch(runs, progress, execution))
+    return {name: CycleSet(name, list(candidates), [_record(next(solutions), cycle, variant, label, list(candidates))
+                                                    for _, cycle, variant, label in zip(*plan)])
+            for name, plan in plans.items()}
+
+
+def _plan_set(loaded: LoadedSystem, base: LoadedSystem, settings: StudySettings, name: str):
+    """``(runs, cycles, variants, labels)`` of set ``name``: each cycle added to its machine as a duty cycle."""
+    stream = STREAMS[name]
     runs, cycles, variants, labels = [], [], [], []
     for label, cycle, index, case in _planned(loaded, settings, name):
         variant = None
@@ -247,21 +267,21 @@ def simulate_set(loaded: LoadedSystem, candidates: dict[str, Candidate], setting
         cycles.append(cycle)
         variants.append(variant)
         labels.append(label)
-    names = list(candidates)
-    records = []
-    prepare(base.system, settings.model, settings.mesh)
-    for index, solution in enumerate(run_batch(runs, progress, execution)):
-        if isinstance(solution, TaskFailure):  # a study needs every cycle: the first failure ends it
-            raise FeedthermError(str(solution))
-        missing = [n for n in names if n not in solution.sensors]
-        if missing:  # pragma: no cover - every candidate is a sensor of the run
-            raise FeedthermError(f"the run did not report {', '.join(missing)}")
-        screw, nut = speeds_at(cycles[index], solution.times)
-        positions = stroke_positions(solution.table_x)
-        records.append(CycleRecord(
-            labels[index], np.asarray(solution.times, float),
-            np.column_stack([solution.sensors[n] for n in names]), np.asarray(solution.elongation, float),
-            screw, nut, None if variants[index] is None else variants[index].as_dict(), cycles[index],
-            positions=positions if positions.size else None,
-            stroke_error=stroke_error_at(solution, positions) if positions.size else None))
-    return CycleSet(name, names, records)
+    return runs, cycles, variants, labels
+
+
+def _record(solution, cycle: DutyCycle, variant, label: str, names: list[str]) -> CycleRecord:
+    """One simulated cycle's record (:class:`CycleRecord`); a failed run ends the study."""
+    if isinstance(solution, TaskFailure):  # a study needs every cycle: the first failure ends it
+        raise FeedthermError(str(solution))
+    missing = [n for n in names if n not in solution.sensors]
+    if missing:  # pragma: no cover - every candidate is a sensor of the run
+        raise FeedthermError(f"the run did not report {', '.join(missing)}")
+    screw, nut = speeds_at(cycle, solution.times)
+    positions = stroke_positions(solution.table_x)
+    return CycleRecord(
+        label, np.asarray(solution.times, float),
+        np.column_stack([solution.sensors[n] for n in names]), np.asarray(solution.elongation, float),
+        screw, nut, None if variant is None else variant.as_dict(), cycle,
+        positions=positions if positions.size else None,
+        stroke_error=stroke_error_at(solution, positions) if positions.size else None)

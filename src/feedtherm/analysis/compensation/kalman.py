@@ -27,7 +27,7 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import scipy.linalg as sl
@@ -89,9 +89,13 @@ class KalmanEstimator:
     sigma : sequence of float
         Each sensor's standard uncertainty [K] (:class:`KalmanNoise`).
     noise : KalmanNoise
+    steps : dict, optional
+        The discrete steps already formed for this model, table and noise (shared between the
+        estimators of one model: a step depends on neither the sensors nor their noise).
     """
 
-    def __init__(self, model: ReducedModel, table: OperatingTable, sensors, sigma, noise: KalmanNoise = KalmanNoise()):
+    def __init__(self, model: ReducedModel, table: OperatingTable, sensors, sigma, noise: KalmanNoise = KalmanNoise(),
+                 steps: dict | None = None):
         self.model, self.table, self.noise = model, table, noise
         self.sensors = [s for s in sensors if s != model.ambient]
         self.sigma = np.array([sg for s, sg in zip(sensors, sigma) if s != model.ambient], dtype=float)
@@ -102,7 +106,9 @@ class KalmanEstimator:
         self.h_offset = model.dy[rows]
         self.c_d = model.Cy[d]
         self.d_offset = float(model.dy[d])
-        self._steps: dict = {}
+        self._steps: dict = {} if steps is None else steps
+        self._R = np.diag(self.sigma ** 2)
+        self._identity = np.eye(self.r + self.m)
         self.reset()
 
     def reset(self) -> None:
@@ -155,12 +161,12 @@ class KalmanEstimator:
         self.time = float(time)
         if self.sensors:
             y = np.array([readings[s] for s in self.sensors], dtype=float)
-            S = self.H @ self.P @ self.H.T + np.diag(self.sigma ** 2)
-            gain = np.linalg.solve(S, self.H @ self.P).T
+            HP = self.H @ self.P
+            S = HP @ self.H.T + self._R
+            gain = np.linalg.solve(S, HP).T
             self.x = self.x + gain @ (y - self.H @ self.x - self.h_offset)
-            identity = np.eye(len(self.x))
-            KH = identity - gain @ self.H
-            self.P = KH @ self.P @ KH.T + gain @ np.diag(self.sigma ** 2) @ gain.T  # Joseph form: stays symmetric PSD
+            KH = self._identity - gain @ self.H
+            self.P = KH @ self.P @ KH.T + gain @ self._R @ gain.T  # Joseph form: stays symmetric PSD
         zeta = self.x[:self.r]
         var = float(self.c_d @ self.P[:self.r, :self.r] @ self.c_d)
         return float(self.c_d @ zeta + self.d_offset), float(np.sqrt(max(var, 0.0)))
@@ -230,13 +236,37 @@ class KalmanLaw:
     sensors: tuple[str, ...]
     sigma: tuple[float, ...]
     noise: KalmanNoise = KalmanNoise()
+    #: The discrete steps formed so far, shared by every law of one model, table and noise
+    #: (:class:`KalmanEstimator`); None: each estimator forms its own.
+    steps: dict | None = field(default=None, compare=False, repr=False)
+    #: The state estimates of the records filtered so far (a study asks for D and E of one record
+    #: in several places): ``id(record) -> (record, names, states)``, the record kept so its id stays its own.
+    _runs: dict = field(default_factory=dict, init=False, compare=False, repr=False)
 
     def estimator(self) -> KalmanEstimator:
-        return KalmanEstimator(self.model, self.table, self.sensors, self.sigma, self.noise)
+        return KalmanEstimator(self.model, self.table, self.sensors, self.sigma, self.noise, self.steps)
+
+    def _states(self, record, names: list[str]) -> np.ndarray:
+        """The filter's temperature state [K] ``(n, order)`` after each sample of a recorded cycle (columns ``names``)."""
+        names = tuple(names)
+        hit = self._runs.get(id(record))
+        if hit is not None and hit[0] is record and hit[1] == names:
+            return hit[2]
+        estimator = self.estimator()
+        columns = {n: names.index(n) for n in (*estimator.sensors, self.model.ambient)}
+        states = np.zeros((len(record.times), estimator.r))
+        for n, t in enumerate(record.times):
+            estimator.update(t, {name: record.sensors[n, j] for name, j in columns.items()},
+                             record.screw_rpm[n], record.nut_rpm[n])
+            states[n] = estimator.x[:estimator.r]
+        self._runs[id(record)] = (record, names, states)
+        return states
 
     def predict_record(self, record, names: list[str]) -> np.ndarray:
         """D [m] at every sample of a recorded cycle (columns ``names``)."""
-        return run_filter(self.estimator(), record.times, record.sensors, names, record.screw_rpm, record.nut_rpm)[0]
+        m = self.model
+        d = m.outputs.index(ELONGATION_PROBE)
+        return self._states(record, names) @ m.Cy[d] + float(m.dy[d])
 
     def predict_stroke_record(self, record, names: list[str]) -> np.ndarray | None:
         """E [m] ``(n, len(record.positions))`` at every sample of a recorded cycle: the filter's state read
@@ -245,14 +275,7 @@ class KalmanLaw:
         m = self.model
         if m.C_stroke is None or record.positions is None:
             return None
-        estimator = self.estimator()
-        estimator.reset()
-        columns = {n: names.index(n) for n in (*estimator.sensors, m.ambient)}
-        out = np.zeros((len(record.times), len(m.stroke_x)))
-        for n, t in enumerate(record.times):
-            estimator.update(t, {name: record.sensors[n, j] for name, j in columns.items()},
-                             record.screw_rpm[n], record.nut_rpm[n])
-            out[n] = m.C_stroke @ estimator.x[:estimator.r] + m.d_stroke
+        out = self._states(record, names) @ m.C_stroke.T + m.d_stroke
         return np.array([np.interp(record.positions, m.stroke_x, row) for row in out])
 
     def document(self, provenance: dict | None = None) -> dict:

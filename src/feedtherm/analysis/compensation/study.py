@@ -25,10 +25,10 @@ from ...constants import ELONGATION_PROBE, KELVIN_OFFSET
 from ...errors import FeedthermError
 from ...system.load import LoadedSystem
 from ..candidates import Candidate, candidate_sensors, with_candidates
-from ..execution import Execution, progress_share
+from ..execution import Execution
 from ..random_cycles import SpeedEnvelope
 from .conditioning import kalman_conditioning, regression_conditioning
-from .data import OUT_OF_RANGE, STREAMS, CycleSet, StudySettings, simulate_set
+from .data import OUT_OF_RANGE, STREAMS, CycleSet, StudySettings, simulate_sets
 from .kalman import KalmanLaw, KalmanNoise, model_errors, sensor_sigma
 from .metrics import Residuals, residuals
 from .noise import SensorNoise, noisy_set
@@ -143,12 +143,9 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
         raise FeedthermError(f"--sensors: K = {request} but there are {len(candidates)} candidate positions")
     kinds = {name: c.kind for name, c in candidates.items()}
     noise = SensorNoise.of(loaded.system, kinds) if settings.noise else SensorNoise.none(kinds)
-    sets = {}
-    names = tuple(STREAMS)
-    for i, name in enumerate(names):
-        inner = None if progress is None else progress_share(progress, i, len(names))
-        clean = simulate_set(loaded, candidates, settings, name, inner, execution)
-        sets[name] = noisy_set(clean, noise, settings.seed, STREAMS[name], one_machine=name == "train")
+    clean = simulate_sets(loaded, candidates, settings, tuple(STREAMS), progress, execution)
+    sets = {name: noisy_set(cycles, noise, settings.seed, STREAMS[name], one_machine=name == "train")
+            for name, cycles in clean.items()}
     n_curve = max(CURVE_SENSORS, request if isinstance(request, int) else 0)
     n_curve = min(n_curve, len(candidates))
     curves, chosen, declared = {}, {}, {}
@@ -258,11 +255,16 @@ def kalman_factory(loaded: LoadedSystem, candidates: dict[str, Candidate], train
     table = build_table(system, model.surfaces, model.sources, ambient, overlay=described.overlay, film=model.film)
     errors = model_errors(model, table, train.cycles, train.names)
     methods = {name: candidate.kind for name, candidate in candidates.items()}
+    steps: dict = {}  # one model, table and noise: every law shares its discrete steps
+    made: dict[tuple[str, ...], KalmanLaw] = {}  # one law per sensor set: its filtered records are kept
 
     def law(sensors: tuple[str, ...]) -> KalmanLaw:
-        own = sensor_sigma(sensors, methods, noise)
-        sigma = tuple(float((o ** 2 + errors.get(s, 0.0) ** 2) ** 0.5) for s, o in zip(sensors, own))
-        return KalmanLaw(model, table, tuple(sensors), sigma, noise)
+        sensors = tuple(sensors)
+        if sensors not in made:
+            own = sensor_sigma(sensors, methods, noise)
+            sigma = tuple(float((o ** 2 + errors.get(s, 0.0) ** 2) ** 0.5) for s, o in zip(sensors, own))
+            made[sensors] = KalmanLaw(model, table, sensors, sigma, noise, steps)
+        return made[sensors]
 
     return law
 
