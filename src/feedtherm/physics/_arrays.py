@@ -12,13 +12,29 @@ import numpy as np
 
 def scalar_or_array(value):
     """Return a Python float for 0-d results so scalars stay scalars."""
+    if type(value) is float:
+        return value
+    if type(value) is np.float64:
+        return float(value)
     arr = np.asarray(value, dtype=float)
     return float(arr) if arr.ndim == 0 else arr
 
 
 def finite(value, label, unit):
-    """``value`` as a float array; ValueError naming ``label`` and ``unit`` if not finite."""
+    """``value`` as floats (a Python float for a float, else an array); ValueError naming ``label`` and
+    ``unit`` if not finite."""
+    if type(value) is float or type(value) is np.float64:
+        if not math.isfinite(value):
+            raise ValueError(f"{label} must be finite {unit}, got {value!r}")
+        return float(value)
     arr = np.asarray(value, dtype=float)
     if not (math.isfinite(float(arr)) if arr.ndim == 0 else bool(np.all(np.isfinite(arr)))):
         raise ValueError(f"{label} must be finite {unit}, got {value!r}")
     return arr
+
+
+def any_true(condition) -> bool:
+    """``numpy.any(condition)`` as a bool, without numpy's reduction for a scalar condition."""
+    if type(condition) is bool or type(condition) is np.bool_:
+        return bool(condition)
+    return bool(np.any(condition))

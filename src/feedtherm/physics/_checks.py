@@ -48,6 +48,16 @@ def coulomb_mu(correlation: str, mu) -> np.ndarray:
 
 # ------------------------------------------------------------------------ convection
 def finite_array(x, name, *, positive=False):
+    """``x`` as floats, finite and ≥ 0 (> 0 with ``positive``); ValueError naming ``name`` otherwise.
+
+    A Python or NumPy float comes back as a Python float (the common call inside a boundary-condition
+    evaluation: arithmetic on it is several times cheaper than on a 0-d array), anything else as an array.
+    """
+    if type(x) is float or type(x) is np.float64:
+        v = float(x)
+        if not math.isfinite(v) or (v <= 0.0 if positive else v < 0.0):
+            raise ValueError(f"{name} must be finite and {'>' if positive else '>='} 0, got {x!r}")
+        return v
     a = np.asarray(x, dtype=float)
     if a.ndim == 0:  # the common scalar case, without numpy's reductions
         v = float(a)

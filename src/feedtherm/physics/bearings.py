@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from feedtherm.physics._arrays import any_true as _any
 from feedtherm.physics._arrays import scalar_or_array as _out
 from feedtherm.physics.mechanics import heat_friction
 from feedtherm.physics.validity import check_range
@@ -301,7 +302,7 @@ def torque_bearing_viscous_Palmgren(f0, nu, n_rpm, dm):
     """
     f0 = _check(f0, "f0", "[-]")
     nu = _check(nu, "nu", "[m²/s]")
-    if np.any(nu > _NU_MAX):
+    if _any(nu > _NU_MAX):
         raise ValueError(
             f"nu = {np.max(nu):.4g} m²/s is not a lubricant viscosity; pass m²/s "
             "(e.g. 100 mm²/s = 1e-4 m²/s)"
@@ -433,9 +434,9 @@ def torque_bearing_constant_friction(mu, P, d):
     mu = _check(mu, "mu", "[-]", strict=True)
     P = _check(P, "P", "[N]")
     d = _check(d, "d", "[m]", strict=True)
-    if np.any(mu >= 0.1):
+    if _any(mu >= 0.1):
         raise ValueError(f"mu = {np.max(mu):.4g} is not a rolling bearing's coefficient of friction (0.001-0.005)")
-    if np.any(d > _DM_MAX):
+    if _any(d > _DM_MAX):
         raise ValueError(f"d = {np.max(d):.4g} m is not a rolling-bearing bore; pass metres (25 mm = 0.025 m)")
     return _out(0.5 * mu * P * d)
 
@@ -457,6 +458,11 @@ def _loads(Fa, Fr):
 
 
 def _check(value, label, unit, strict=False):
+    if type(value) is float or type(value) is np.float64:  # the usual scalar call, without numpy's reductions
+        v = float(value)
+        if not math.isfinite(v) or (v <= 0 if strict else v < 0):
+            raise ValueError(f"{label} must be finite and {'> 0' if strict else '>= 0'} {unit}, got {value!r}")
+        return v
     arr = np.asarray(value, dtype=float)
     if np.any(~np.isfinite(arr)) or np.any(arr <= 0 if strict else arr < 0):
         bound = "> 0" if strict else ">= 0"
@@ -466,7 +472,7 @@ def _check(value, label, unit, strict=False):
 
 def _dm(dm):
     arr = _check(dm, "dm", "[m]", strict=True)
-    if np.any(arr > _DM_MAX):
+    if _any(arr > _DM_MAX):
         raise ValueError(
             f"dm = {np.max(arr):.4g} m is not a rolling-bearing mean diameter; pass metres "
             "(e.g. 43.5 mm = 0.0435 m)"

@@ -34,6 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from feedtherm.physics._arrays import any_true as _any
 from feedtherm.physics._arrays import scalar_or_array as _out
 from feedtherm.physics._checks import finite_array
 
@@ -669,14 +670,14 @@ def _nu_n(nu, n_rpm):
 
 def _mm(value, label):
     arr = _positive(value, label)
-    if np.any(arr > _D_MAX):
+    if _any(arr > _D_MAX):
         raise ValueError(f"{label} = {np.max(arr):.4g} m is not a bearing diameter; pass metres (e.g. 65 mm = 0.065 m)")
     return arr * 1e3
 
 
 def _nu_mm2_s(nu):
     arr = _positive(nu, "nu")
-    if np.any(arr > _NU_MAX):
+    if _any(arr > _NU_MAX):
         raise ValueError(f"nu = {np.max(arr):.4g} m²/s is not a lubricant viscosity; pass m²/s (e.g. 100 mm²/s = 1e-4 m²/s)")
     return arr * 1e6
 

@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from feedtherm.physics._arrays import finite as _finite
+from feedtherm.physics._arrays import any_true as _any
 from feedtherm.physics._arrays import scalar_or_array as _out
 
 
@@ -159,6 +160,6 @@ def heat_guideway_paper(lam, f_g, F_g, v):
 
 def _nonneg(value, label, unit):
     arr = _finite(value, label, unit)
-    if np.any(arr < 0):
+    if _any(arr < 0):
         raise ValueError(f"{label} must be >= 0 {unit}, got {value!r}")
     return arr

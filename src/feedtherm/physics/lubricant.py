@@ -171,8 +171,13 @@ def kinematic_viscosity_Walther(T, A, B):
     >>> round(kinematic_viscosity_Walther(353.15, 9.530815, 3.746578) * 1e6, 3)
     8.533
     """
-    T = np.asarray(T, dtype=float)
-    if np.any(~np.isfinite(T)) or np.any(T <= 0.0):
+    if type(T) is float or type(T) is np.float64:  # the usual scalar call, without numpy's reductions
+        T = float(T)
+        bad = not math.isfinite(T) or T <= 0.0
+    else:
+        T = np.asarray(T, dtype=float)
+        bad = np.any(~np.isfinite(T)) or np.any(T <= 0.0)
+    if bad:
         raise ValueError(f"T must be an absolute temperature in K (> 0), got {T!r}")
     nu = 10.0 ** (10.0 ** (float(A) - float(B) * np.log10(T))) - 0.7
     check_range("kinematic_viscosity_Walther (ASTM D341)", "nu [mm²/s]", nu,

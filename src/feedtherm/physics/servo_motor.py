@@ -44,6 +44,7 @@ from __future__ import annotations
 import numpy as np
 
 from feedtherm.physics._arrays import finite as _finite
+from feedtherm.physics._arrays import any_true as _any
 from feedtherm.physics._arrays import scalar_or_array as _out
 from feedtherm.physics.mechanics import angular_speed
 from feedtherm.physics.validity import check_range
@@ -258,7 +259,7 @@ def resistance_winding_copper(resistance_ref, temperature_ref, temperature):
     theta_ref = _finite(temperature_ref, "temperature_ref", "[K]") - 273.15
     theta = _finite(temperature, "temperature", "[K]") - 273.15
     for label, value in (("temperature_ref", theta_ref), ("temperature", theta)):
-        if np.any(value <= -COPPER_INFERRED_ZERO_C):
+        if _any(value <= -COPPER_INFERRED_ZERO_C):
             raise ValueError(f"{label} must be above -235 degC, the copper's inferred zero of resistance")
         check_range("resistance_winding_copper", label + " [degC]", value, -50.0, 250.0)
     return _out(r_ref * (COPPER_INFERRED_ZERO_C + theta) / (COPPER_INFERRED_ZERO_C + theta_ref))
@@ -266,13 +267,13 @@ def resistance_winding_copper(resistance_ref, temperature_ref, temperature):
 
 def _positive(value, label, unit):
     arr = _finite(value, label, unit)
-    if np.any(arr <= 0.0):
+    if _any(arr <= 0.0):
         raise ValueError(f"{label} must be positive {unit}, got {value!r}")
     return arr
 
 
 def _nonnegative(value, label, unit):
     arr = _finite(value, label, unit)
-    if np.any(arr < 0.0):
+    if _any(arr < 0.0):
         raise ValueError(f"{label} must not be negative {unit}, got {value!r}")
     return arr

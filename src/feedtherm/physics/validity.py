@@ -43,13 +43,16 @@ def check_range(correlation: str, quantity: str, value, low: float, high: float)
     >>> print(caught[0].message)
     Nu_plate_normal_to_flow (Eq. 29): Re = 56.6 is outside its validity range [4000, 1.5e+04]
     """
-    arr = np.asarray(value, dtype=float)
-    if arr.size == 0:
-        return
-    if arr.ndim == 0:  # the common scalar case, without numpy's reductions
-        vmin = vmax = float(arr)
+    if type(value) is float or type(value) is np.float64:  # the common scalar case, without numpy
+        vmin = vmax = float(value)
     else:
-        vmin, vmax = float(np.min(arr)), float(np.max(arr))
+        arr = np.asarray(value, dtype=float)
+        if arr.size == 0:
+            return
+        if arr.ndim == 0:
+            vmin = vmax = float(arr)
+        else:
+            vmin, vmax = float(np.min(arr)), float(np.max(arr))
     if vmin < low or vmax > high:
         shown = f"{vmin:.4g}" if vmin == vmax else f"{vmin:.4g}..{vmax:.4g}"
         warnings.warn(

@@ -94,6 +94,25 @@ def test_minimum_norm_fit_passes_through_fewer_points_than_coefficients():
     np.testing.assert_allclose(fit.bias + x @ fit.weights.ravel(), y, atol=1e-15)
 
 
+def test_minimum_norm_fit_drops_the_null_direction_of_centring():
+    # The paper bench's measured T1-T5 and ambient [degC] of I, II, IV and V (Table 6, Table 5) and D [um]:
+    # centred, the 4 x 6 design has rank 3; its fourth singular value is rounding (about 3e-15 of the
+    # largest), which numpy's default cutoff (6 x 2.2e-16 = 1.3e-15) would keep.
+    celsius = np.array([[27.1, 24.5, 34.5, 33.2, 31.9, 20.0], [29.6, 26.2, 37.1, 35.8, 34.2, 20.0],
+                        [23.6, 20.9, 31.8, 29.5, 28.5, 15.0], [33.2, 30.5, 40.8, 38.8, 37.9, 25.0]])
+    x = celsius + 273.15
+    y = np.array([29.9, 35.5, 20.3, 71.5]) * 1e-6
+    law = RegressionLaw(tuple("abcdef"), (), np.zeros((6, 1)), 0.0)
+    fit = minimum_norm_fit(law, Pairs(x, y, np.ones(4), ("I", "II", "IV", "V")), np.ones(6))
+    # the minimum-norm solution by hand: the pseudo-inverse on the three real singular values
+    u, sv, vt = np.linalg.svd(x - x.mean(axis=0), full_matrices=False)
+    w = vt[:3].T @ ((u[:, :3].T @ (y - y.mean())) / sv[:3])
+    np.testing.assert_allclose(fit.weights.ravel(), w, rtol=1e-9)
+    # and rounding-sized changes of the readings do not move it
+    nudged = minimum_norm_fit(law, Pairs(x + 1e-12, y, np.ones(4), ("I", "II", "IV", "V")), np.ones(6))
+    np.testing.assert_allclose(nudged.weights.ravel(), w, rtol=1e-6)
+
+
 def test_the_adapted_document_gives_the_posterior_mean_and_sd():
     rng = np.random.default_rng(2)
     x = rng.uniform(295, 305, (4, 1))

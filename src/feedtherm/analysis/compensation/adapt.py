@@ -78,6 +78,9 @@ from .regression import RegressionLaw, features
 #: A feature that does not vary over the training cycles is scaled by 1 K (its coefficient's width
 #: is then τ per kelvin).
 UNIT_SCALE = 1.0
+#: A singular value of a least-squares design below this fraction of the largest is rounding (the
+#: null direction centring creates is about 1e-15; the measured bench's real ones are above 1e-2) [-].
+RANK_TOLERANCE = 1e-10
 #: Search range of the prior width, relative to the data: from far below the smallest noise to far
 #: above the largest residual [-].
 _WIDTH_RANGE = 1e-4
@@ -263,12 +266,17 @@ def adapt_law(law: RegressionLaw, pairs: Pairs, scale: np.ndarray | None = None,
 def minimum_norm_fit(law: RegressionLaw, pairs: Pairs, scale: np.ndarray | None = None) -> RegressionLaw:
     """Least squares on ``pairs`` alone, in the coordinates of :func:`adapt_law` (centred at the
     pairs' mean, scaled by ``scale``): with fewer pairs than coefficients, the solution of least
-    norm of the scaled weights (``numpy.linalg.lstsq``, the Moore–Penrose pseudo-inverse)."""
+    norm of the scaled weights (``numpy.linalg.lstsq``, the Moore–Penrose pseudo-inverse).
+
+    Singular values below :data:`RANK_TOLERANCE` of the largest count as zero.  Centring n pairs
+    leaves a design of rank at most n − 1 whose last singular value is rounding (about 1e-15 of the
+    largest), which numpy's default cutoff (machine epsilon times the larger dimension) can keep;
+    kept, it divides rounding by rounding and moves the fit by an amount of the order of the data."""
     x = np.atleast_2d(np.asarray(pairs.features, float))
     m = x.mean(axis=0)
     s = np.full(x.shape[1], UNIT_SCALE) if scale is None else np.where(np.asarray(scale) > 0, scale, UNIT_SCALE)
     y = pairs.elongation
-    theta, *_ = np.linalg.lstsq((x - m) / s, y - y.mean(), rcond=None)
+    theta, *_ = np.linalg.lstsq((x - m) / s, y - y.mean(), rcond=RANK_TOLERANCE)
     weights = theta / s
     return RegressionLaw(law.sensors, law.lags, weights.reshape(law.weights.shape), float(y.mean() - m @ weights))
 
