@@ -136,3 +136,22 @@ def test_the_exported_document_gives_the_same_error_along_the_stroke_and_refuses
     for bad, words in ((hi + 0.01, "outside the stroke"), (float("nan"), "not a finite"), ("far", "not a table position")):
         with pytest.raises(ValueError, match=f"^x: .*{words}"):
             second.stroke_error(bad)
+
+
+def test_cycles_filtered_side_by_side_equal_the_filter_run_one_by_one(law, run):
+    from types import SimpleNamespace
+
+    solution, names, readings = run
+    n = len(readings)
+    rng = np.random.default_rng(3)
+    records = []
+    for screw, nut in ((1116.0, 1080.0), (396.0, 360.0), (2214.0, 2160.0)):  # three speed schedules
+        switch = np.where(np.arange(n) < n // 2, 1.0, 0.5)  # the speeds halve half-way
+        records.append(SimpleNamespace(times=np.asarray(solution.times, float),
+                                       sensors=readings + rng.normal(0.0, 0.05, readings.shape),
+                                       screw_rpm=screw * switch, nut_rpm=nut * switch, positions=None))
+    one_by_one = [run_filter(law.estimator(), r.times, r.sensors, names, r.screw_rpm, r.nut_rpm)[0] for r in records]
+    batch = KalmanLaw(law.model, law.table, law.sensors, law.sigma, law.noise)
+    batch.filter_records(records, names)
+    for record, expected in zip(records, one_by_one):
+        np.testing.assert_allclose(batch.predict_record(record, names), expected, rtol=0, atol=1e-12)

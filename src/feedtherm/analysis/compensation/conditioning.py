@@ -47,15 +47,15 @@ def kalman_conditioning(law, record, names: list[str]) -> dict:
     """The conditioning block of a :class:`.kalman.KalmanLaw`: the largest |ΔD̂| [µm] over ``record``
     (a cycle whose columns are ``names``) when one input (a sensor or the ambient) reads
     :data:`OFFSET_K` high throughout."""
+    shifted = {}
+    for name in dict.fromkeys((*law.sensors, law.model.ambient)):
+        readings = record.sensors.copy()
+        readings[:, names.index(name)] += OFFSET_K
+        shifted[name] = replace(record, sensors=readings)
+    law.filter_records([record, *shifted.values()], names)  # the runs side by side
     base = law.predict_record(record, names)
-    costs = {}
-    for name in (*law.sensors, law.model.ambient):
-        if name in costs:
-            continue
-        shifted = record.sensors.copy()
-        shifted[:, names.index(name)] += OFFSET_K
-        delta = law.predict_record(replace(record, sensors=shifted), names) - base
-        costs[name] = float(np.abs(delta).max() * 1e6)
+    costs = {name: float(np.abs(law.predict_record(moved, names) - base).max() * 1e6)
+             for name, moved in shifted.items()}
     worst = max(costs.values()) if costs else 0.0
     return {"max_abs_gain_um_per_K": worst / OFFSET_K, "offset_K": OFFSET_K, "offset_error_um": costs,
             "max_offset_error_um": worst, "limit_um": LIMIT_UM, "within_limit": bool(worst <= LIMIT_UM),

@@ -185,6 +185,8 @@ def out_of_range(result: StudyResult) -> dict[str, dict[str, dict[str, Residuals
         laws["best"] = best.law
     out = {}
     for kind, law in laws.items():
+        if isinstance(law, KalmanLaw):  # every case's cycles through the filter side by side
+            law.filter_records(cycles.cycles, names)
         d = {case: residuals(lambda record, law=law: law.predict_record(record, names), subset)
              for case, subset in cases.items() if subset.cycles}
         entry = {"d": d}
@@ -271,6 +273,8 @@ def kalman_factory(loaded: LoadedSystem, candidates: dict[str, Candidate], train
 
 def _judge(kind: str, law: RegressionLaw | KalmanLaw, sets: dict[str, CycleSet]) -> LawResult:
     names = sets["test"].names
+    if isinstance(law, KalmanLaw):  # every cycle of both sets through the filter side by side
+        law.filter_records([*sets["validation"].cycles, *sets["test"].cycles], names)
     return LawResult(kind, tuple(law.sensors), law,
                      residuals(lambda record: law.predict_record(record, names), sets["validation"]),
                      residuals(lambda record: law.predict_record(record, names), sets["test"]),
