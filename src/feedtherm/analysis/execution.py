@@ -223,6 +223,30 @@ def kept_open(execution: Execution) -> Iterator[Execution]:
         yield replace(execution, client=client)
 
 
+def _refused(address: str) -> None:
+    """Fail at once when nothing listens at a TCP scheduler address (the host refuses the connection):
+    Dask's client would retry for :data:`CONNECT_TIMEOUT_S` first.  Other addresses, and hosts that do
+    not answer at all, are left to the client and its timeout."""
+    import socket
+    from urllib.parse import urlsplit
+
+    try:
+        parts = urlsplit(address)
+        host, port = parts.hostname, parts.port
+    except ValueError:
+        return
+    if parts.scheme != "tcp" or host is None or port is None:
+        return
+    try:
+        with socket.create_connection((host, port), timeout=CONNECT_TIMEOUT_S):
+            return
+    except ConnectionRefusedError:
+        raise FeedthermError(f"cannot reach the Dask scheduler at {address} (the connection was refused: "
+                             f"nothing listens there)") from None
+    except OSError:
+        return
+
+
 @contextlib.contextmanager
 def _client(execution: Execution):
     if execution.client is not None:  # kept open by the caller, who closes it
@@ -237,6 +261,7 @@ def _client(execution: Execution):
     logger.setLevel(logging.ERROR)
     try:
         if execution.scheduler is not None:
+            _refused(execution.scheduler)
             try:
                 client = Client(execution.scheduler, timeout=CONNECT_TIMEOUT_S, set_as_default=False)
             except (OSError, TimeoutError) as exc:

@@ -139,15 +139,33 @@ def test_two_local_workers_give_the_serial_results_in_the_same_order(by_value):
     assert seen == pytest.approx([k / 6 for k in range(1, 7)])  # the bar moves as runs finish
 
 
-def test_an_unreachable_scheduler_is_one_line(monkeypatch):
+def _free_port() -> int:
     import socket
 
+    with socket.socket() as probe:  # a free port on which nothing listens
+        probe.bind(("127.0.0.1", 0))
+        return probe.getsockname()[1]
+
+
+def test_a_scheduler_address_that_refuses_is_one_line_at_once(monkeypatch):
+    import distributed
+
+    def no_client(*args, **kwargs):  # Dask's client would retry for CONNECT_TIMEOUT_S first
+        raise AssertionError("the client was asked to connect to an address that refuses")
+
+    monkeypatch.setattr(distributed, "Client", no_client)
+    port = _free_port()
+    with pytest.raises(FeedthermError, match=f"cannot reach the Dask scheduler at tcp://127.0.0.1:{port} "
+                                             r"\(the connection was refused: nothing listens there\)"):
+        list(run_ordered(math.sqrt, [1.0], execution=Execution(scheduler=f"tcp://127.0.0.1:{port}")))
+
+
+def test_a_scheduler_that_does_not_answer_is_one_line_after_the_timeout(monkeypatch):
     from feedtherm.analysis import execution
 
     monkeypatch.setattr(execution, "CONNECT_TIMEOUT_S", 2)
-    with socket.socket() as probe:  # a free port on which nothing listens
-        probe.bind(("127.0.0.1", 0))
-        port = probe.getsockname()[1]
+    monkeypatch.setattr(execution, "_refused", lambda address: None)  # as a host that drops the packets
+    port = _free_port()
     with pytest.raises(FeedthermError, match=f"cannot reach the Dask scheduler at tcp://127.0.0.1:{port} within 2 s"):
         list(run_ordered(math.sqrt, [1.0], execution=Execution(scheduler=f"tcp://127.0.0.1:{port}")))
 
