@@ -155,3 +155,19 @@ def test_cycles_filtered_side_by_side_equal_the_filter_run_one_by_one(law, run):
     batch.filter_records(records, names)
     for record, expected in zip(records, one_by_one):
         np.testing.assert_allclose(batch.predict_record(record, names), expected, rtol=0, atol=1e-12)
+
+
+def test_a_law_keeps_the_states_of_its_last_records_only(law, run, monkeypatch):
+    from types import SimpleNamespace
+
+    from feedtherm.analysis.compensation import kalman
+
+    monkeypatch.setattr(kalman, "KEPT_RECORDS", 2)
+    solution, names, readings = run
+    speeds = np.full(len(readings), 1116.0), np.full(len(readings), 1080.0)
+    records = [SimpleNamespace(times=np.asarray(solution.times, float), sensors=readings + k * 0.1,
+                               screw_rpm=speeds[0], nut_rpm=speeds[1], positions=None) for k in range(3)]
+    fresh = KalmanLaw(law.model, law.table, law.sensors, law.sigma, law.noise)
+    first = [fresh.predict_record(r, names) for r in records]
+    assert [entry[0] for entry in fresh._runs.values()] == records[1:]  # the oldest dropped
+    np.testing.assert_array_equal(fresh.predict_record(records[0], names), first[0])  # filtered again, the same

@@ -265,6 +265,11 @@ AMBIENT_ROLE = "ambient (model input)"
 VERSION = 1
 
 
+#: Records whose filtered states a law keeps (a study's law asks for about 40: its validation and test
+#: cycles, the conditioning's shifted copies and the out-of-range cycles; 7.6 MB at 480 samples and 31 states).
+KEPT_RECORDS = 64
+
+
 @dataclass(frozen=True)
 class KalmanLaw:
     """A fitted estimator: the reduced model read at ``sensors``, its table and its noise.
@@ -283,8 +288,9 @@ class KalmanLaw:
     #: The discrete steps formed so far, shared by every law of one model, table and noise
     #: (:class:`KalmanEstimator`); None: each estimator forms its own.
     steps: dict | None = field(default=None, compare=False, repr=False)
-    #: The state estimates of the records filtered so far (a study asks for D and E of one record
-    #: in several places): ``id(record) -> (record, names, states)``, the record kept so its id stays its own.
+    #: The state estimates of the records filtered last (a study asks for D and E of one record in
+    #: several places): ``id(record) -> (record, names, states)``, the record kept so its id stays
+    #: its own; at most :data:`KEPT_RECORDS`, the oldest dropped first.
     _runs: dict = field(default_factory=dict, init=False, compare=False, repr=False)
 
     def estimator(self) -> KalmanEstimator:
@@ -302,7 +308,7 @@ class KalmanLaw:
             estimator.update(t, {name: record.sensors[n, j] for name, j in columns.items()},
                              record.screw_rpm[n], record.nut_rpm[n])
             states[n] = estimator.x[:estimator.r]
-        self._runs[id(record)] = (record, names, states)
+        self._keep(record, names, states)
         return states
 
     def filter_records(self, records, names: list[str]) -> None:
@@ -324,7 +330,13 @@ class KalmanLaw:
                                       np.stack([r.sensors[:, ambient] for r in group]),
                                       np.stack([r.screw_rpm for r in group]), np.stack([r.nut_rpm for r in group]))
             for record, state in zip(group, states):
-                self._runs[id(record)] = (record, names, state)
+                self._keep(record, names, state)
+
+    def _keep(self, record, names: tuple[str, ...], states: np.ndarray) -> None:
+        self._runs.pop(id(record), None)
+        self._runs[id(record)] = (record, names, states)
+        while len(self._runs) > KEPT_RECORDS:
+            self._runs.pop(next(iter(self._runs)))
 
     def _kept(self, record, names: tuple[str, ...]) -> bool:
         hit = self._runs.get(id(record))
