@@ -44,7 +44,7 @@ import numpy as np
 
 from feedtherm.analysis.candidates import candidate_sensors
 from feedtherm.analysis.compensation import data as study_data
-from feedtherm.analysis.compensation.data import STREAMS, StudySettings, simulate_set
+from feedtherm.analysis.compensation.data import STREAMS, StudySettings, simulate_set, simulate_sets
 from feedtherm.analysis.compensation.adapt import adapt_law, feature_scale
 from feedtherm.analysis.compensation.noise import NOISE_STREAM, OFFSET_STREAM, SensorNoise, noisy_set
 from feedtherm.analysis.compensation.pairs import Pairs
@@ -148,8 +148,8 @@ def main() -> None:
         "per_cycle_d_max_um": [float(x.max() * 1e6) for x in d]}
 
     # 2. every candidate at once, noise-free, trained on the nominal machine
-    clean = {name: simulate_set(loaded, candidate_sensors(loaded.system), settings, name, None, _EXECUTION)
-             for name in ("train", "validation", "test")}
+    clean = simulate_sets(loaded, candidate_sensors(loaded.system), settings, ("train", "validation", "test"), None,
+                          _EXECUTION)
     names = clean["test"].names
     every = list(range(len(names)))
     uncompensated = np.concatenate([c.elongation for c in clean["test"].cycles])

@@ -28,6 +28,7 @@ from ...constants import KELVIN_OFFSET
 from ...errors import FeedthermError
 from ..measurements import ELONGATION_QUANTITY, read_measurements
 from .evaluator import CompensationLaw
+from .pairs import union_times, values_at
 
 
 @dataclass(frozen=True)
@@ -94,9 +95,8 @@ def correct(law: CompensationLaw, readings: str, positions: tuple[float, ...] = 
                                  f"on {', '.join(law.inputs)}")
         d_row = None if law.stroke else rows.get(ELONGATION_QUANTITY)
         logged = [*law.inputs, *([ELONGATION_QUANTITY] if d_row is not None else [])]
-        times = np.unique(np.concatenate([rows[n].series.times if rows[n].series is not None else np.zeros(1)
-                                          for n in logged]))
-        columns = {name: _on(rows[name], times) + KELVIN_OFFSET for name in law.inputs}
+        times = union_times([rows[n] for n in logged])
+        columns = {name: values_at(rows[name], times) + KELVIN_OFFSET for name in law.inputs}
         law.reset()
         predicted, sd = [], []
         for j, t in enumerate(times):
@@ -114,13 +114,6 @@ def correct(law: CompensationLaw, readings: str, positions: tuple[float, ...] = 
         out.append(Correction(condition, times, tuple(positions), np.asarray(predicted, float),
                               np.asarray(sd, float) if sd else None, measured))
     return out
-
-
-def _on(row, times: np.ndarray) -> np.ndarray:
-    """A measurement's values on ``times``: linear between its samples, held outside (final values: constant)."""
-    if row.series is None:
-        return np.full(len(times), float(row.measured))
-    return np.interp(times, row.series.times, row.series.values)
 
 
 def _at_own_samples(row, times: np.ndarray) -> np.ndarray:

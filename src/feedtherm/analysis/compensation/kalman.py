@@ -151,37 +151,46 @@ class KalmanEstimator:
         """The temperature states [K] ``(b, n, order)`` of ``b`` recorded cycles filtered side by side.
 
         Every cycle is read at the same ``times`` [s] ``(n,)``; ``readings`` [K] ``(b, n, sensors)`` in
-        the order of :attr:`sensors`, ``ambient`` [K] and the speeds [rpm] ``(b, n)``.  The same steps as
-        :meth:`update`, each a product of stacked matrices (one call for every cycle), so equal to
-        :meth:`update` sample by sample up to rounding.
+        the order of :attr:`sensors`, ``ambient`` [K] and the speeds [rpm] ``(b, n)``.  The time and
+        measurement updates of :meth:`update` (:meth:`_predict`, :meth:`_correct`) on stacked matrices,
+        one call for every cycle, so equal to :meth:`update` sample by sample up to rounding.
         """
         b, n = readings.shape[0], len(times)
         start = [self.initial(float(a)) for a in ambient[:, 0]]
         x = np.stack([s[0] for s in start])
         P = np.stack([s[1] for s in start])
         out = np.zeros((b, n, self.r))
-        H, R = self.H, self._R
         for j in range(n):
             if j:
                 dt = float(times[j]) - float(times[j - 1])
                 if not dt > 0:
                     raise ValueError(f"readings must come in increasing time, got {times[j]} after {times[j - 1]}")
                 steps = [self._step(dt, screw_rpm[i, j], nut_rpm[i, j]) for i in range(b)]
-                F = np.stack([st[0] for st in steps])
-                x = np.einsum("bij,bj->bi", F, x) + np.stack([st[1] for st in steps]) \
-                    + np.stack([st[2] for st in steps]) * ambient[:, j, None]
-                P = F @ P @ F.transpose(0, 2, 1) + np.stack([st[3] for st in steps])
+                x, P = self._predict(x, P, *(np.stack(part) for part in zip(*steps)), ambient[:, j, None])
             if self.sensors:
-                HP = H @ P
-                S = HP @ H.T + R
-                gain = np.linalg.solve(S, HP).transpose(0, 2, 1)
-                innovation = readings[:, j, :] - x @ H.T - self.h_offset
-                x = x + np.einsum("bik,bk->bi", gain, innovation)
-                KHP = gain @ HP
-                P = P - KHP - KHP.transpose(0, 2, 1) + gain @ S @ gain.transpose(0, 2, 1)
-                P = 0.5 * (P + P.transpose(0, 2, 1))
+                x, P = self._correct(x, P, readings[:, j, :])
             out[:, j] = x[:, :self.r]
         return out
+
+    @staticmethod
+    def _predict(x, P, F, heat, air, Q, ambient):
+        """The time update of a state ``x`` ``(..., n)`` and its covariance ``P`` ``(..., n, n)`` by the
+        step ``(F, heat, air, Q)`` of :meth:`_step` (stacked along the leading axis for several cycles)."""
+        x = (F @ x[..., None])[..., 0] + heat + air * ambient
+        return x, F @ P @ np.swapaxes(F, -1, -2) + Q
+
+    def _correct(self, x, P, y):
+        """The measurement update of ``x`` ``(..., n)`` and ``P`` ``(..., n, n)`` by the readings ``y``
+        ``(..., k)`` [K]: the Joseph form ``(I - K H) P (I - K H)^T + K R K^T``, expanded so that no
+        product is of two full matrices, ``P - K H P - (K H P)^T + K S K^T`` with ``S = H P H^T + R``
+        (k x k, k the sensors), and made symmetric to rounding."""
+        HP = self.H @ P
+        S = HP @ self.H.T + self._R
+        gain = np.swapaxes(np.linalg.solve(S, HP), -1, -2)
+        x = x + (gain @ (y - x @ self.H.T - self.h_offset)[..., None])[..., 0]
+        KHP = gain @ HP
+        P = P - KHP - np.swapaxes(KHP, -1, -2) + gain @ S @ np.swapaxes(gain, -1, -2)
+        return x, 0.5 * (P + np.swapaxes(P, -1, -2))
 
     def update(self, time: float, readings: dict[str, float], screw_rpm: float, nut_rpm: float) -> tuple[float, float]:
         """D [m] and its standard deviation [m] after the readings [K] at ``time`` [s].
@@ -196,21 +205,10 @@ class KalmanEstimator:
             dt = float(time) - self.time
             if not dt > 0:
                 raise ValueError(f"readings must come in increasing time, got {time} after {self.time}")
-            F, heat, air, Q = self._step(dt, screw_rpm, nut_rpm)
-            self.x = F @ self.x + heat + air * ambient
-            self.P = F @ self.P @ F.T + Q
+            self.x, self.P = self._predict(self.x, self.P, *self._step(dt, screw_rpm, nut_rpm), ambient)
         self.time = float(time)
         if self.sensors:
-            y = np.array([readings[s] for s in self.sensors], dtype=float)
-            HP = self.H @ self.P
-            S = HP @ self.H.T + self._R
-            gain = np.linalg.solve(S, HP).T
-            self.x = self.x + gain @ (y - self.H @ self.x - self.h_offset)
-            # Joseph form (I - K H) P (I - K H)^T + K R K^T, expanded so that no product is of two full
-            # matrices: P - K H P - (K H P)^T + K S K^T, with S = H P H^T + R (k x k, k the sensors)
-            KHP = gain @ HP
-            P = self.P - KHP - KHP.T + gain @ S @ gain.T
-            self.P = 0.5 * (P + P.T)  # stays symmetric to rounding
+            self.x, self.P = self._correct(self.x, self.P, np.array([readings[s] for s in self.sensors], dtype=float))
         zeta = self.x[:self.r]
         var = float(self.c_d @ self.P[:self.r, :self.r] @ self.c_d)
         return float(self.c_d @ zeta + self.d_offset), float(np.sqrt(max(var, 0.0)))
@@ -299,17 +297,9 @@ class KalmanLaw:
     def _states(self, record, names: list[str]) -> np.ndarray:
         """The filter's temperature state [K] ``(n, order)`` after each sample of a recorded cycle (columns ``names``)."""
         names = tuple(names)
-        if self._kept(record, names):
-            return self._runs[id(record)][2]
-        estimator = self.estimator()
-        columns = {n: names.index(n) for n in (*estimator.sensors, self.model.ambient)}
-        states = np.zeros((len(record.times), estimator.r))
-        for n, t in enumerate(record.times):
-            estimator.update(t, {name: record.sensors[n, j] for name, j in columns.items()},
-                             record.screw_rpm[n], record.nut_rpm[n])
-            states[n] = estimator.x[:estimator.r]
-        self._keep(record, names, states)
-        return states
+        if not self._kept(record, names):
+            self.filter_records([record], names)
+        return self._runs[id(record)][2]
 
     def filter_records(self, records, names: list[str]) -> None:
         """Filter ``records`` (columns ``names``) side by side and keep their states for

@@ -112,23 +112,26 @@ def _final(measured: dict, name: str, condition: str, ambients: Mapping[str, flo
     return float(ambients[condition])  # the ambient sensor of a declared condition (checked by the caller)
 
 
+def union_times(rows) -> np.ndarray:
+    """The sorted union of the sample times [s] of measurements ``rows`` (final values: time 0)."""
+    return np.unique(np.concatenate([r.series.times if r.series is not None else np.zeros(1) for r in rows]))
+
+
+def values_at(row, times: np.ndarray) -> np.ndarray:
+    """A measurement's values (°C or µm) at ``times`` [s]: linear between its samples and held at its
+    first and last outside them; final values: the same value at every time."""
+    if row.series is None:
+        return np.full(len(times), float(row.measured))
+    return np.interp(times, row.series.times, row.series.values)
+
+
 def _series_pairs(law: RegressionLaw, measured: dict, condition: str, ambients: Mapping[str, float], sigma: float):
     """Features at every D sample of a condition: the inputs interpolated on the union of their and
     D's sample times (held at their first and last values outside), the lags run over it."""
     d = measured[ELONGATION_QUANTITY].series
-    grids = [d.times] + [measured[n].series.times if measured[n].series is not None else np.zeros(1)
-                         for n in law.sensors if n in measured]
-    times = np.unique(np.concatenate(grids))
-    columns = []
-    for name in law.sensors:
-        if name not in measured:
-            columns.append(np.full(len(times), float(ambients[condition])))
-            continue
-        row = measured[name]
-        if row.series is None:
-            columns.append(np.full(len(times), row.measured + KELVIN_OFFSET))
-        else:
-            columns.append(np.interp(times, row.series.times, row.series.values) + KELVIN_OFFSET)
+    times = union_times([measured[ELONGATION_QUANTITY], *(measured[n] for n in law.sensors if n in measured)])
+    columns = [values_at(measured[name], times) + KELVIN_OFFSET if name in measured
+               else np.full(len(times), float(ambients[condition])) for name in law.sensors]
     rows = features(times, np.column_stack(columns), law.lags)
     at = np.searchsorted(times, d.times)
     u = np.full(len(d.times), sigma) if d.uncertainties is None else np.asarray(d.uncertainties, float) * 1e-6
