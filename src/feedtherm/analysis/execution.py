@@ -31,6 +31,13 @@ SCHEDULER_ENV = "DASK_SCHEDULER_ADDRESS"
 CONNECT_TIMEOUT_S = 10
 #: Workers of a local cluster listen here only: nothing of a run leaves the machine.
 LOCAL_HOST = "127.0.0.1"
+#: What a local cluster's workers are started without of Dask's pre-spawn environment
+#: (``distributed.nanny.pre-spawn-environ``; its thread limits stay).  Dask sets
+#: ``MALLOC_TRIM_THRESHOLD_`` so that a worker hands freed memory back to the system at once; glibc
+#: then also stops raising its mmap threshold, so every array above 128 kB is mapped and unmapped
+#: anew, page by page.  A reduced model's run, which makes a few thousand r × r arrays, took twice
+#: its time in such a worker (0.50 s against 0.25 s; benchmarks/README.md).
+UNSET_WORKER_ENVIRONMENT = ("MALLOC_TRIM_THRESHOLD_",)
 
 # tcp://host:port, tls://host:port or host:port (IPv6 hosts in brackets).
 _ADDRESS = re.compile(r"(?:(?:tcp|tls)://)?(?:\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_.-]+):(\d{1,5})")
@@ -252,6 +259,7 @@ def _client(execution: Execution):
     if execution.client is not None:  # kept open by the caller, who closes it
         yield execution.client
         return
+    import dask
     from distributed import Client, LocalCluster
 
     # Dask logs connection chatter (a worker leaving, a closed stream) as warnings on stderr; a
@@ -273,9 +281,13 @@ def _client(execution: Execution):
             # Processes with one thread each: a run holds the GIL, and the numerical libraries
             # inside a worker stay on one thread (Dask sets OMP/MKL/OpenBLAS to 1 for its workers).
             # The workers ignore Ctrl-C (dask_worker.py): this process stops the batch and the cluster.
-            with LocalCluster(n_workers=execution.workers, threads_per_worker=1, processes=True, host=LOCAL_HOST,
-                              dashboard_address=None, silence_logs=logging.ERROR,
-                              preload=[dask_worker.__name__]) as cluster, \
+            # Dask's configuration drops a pre-spawn variable set to None (a variable of the user's own
+            # environment still reaches the workers, as any other does)
+            unset = {f"distributed.nanny.pre-spawn-environ.{name}": None for name in UNSET_WORKER_ENVIRONMENT}
+            with dask.config.set(unset), \
+                    LocalCluster(n_workers=execution.workers, threads_per_worker=1, processes=True, host=LOCAL_HOST,
+                                 dashboard_address=None, silence_logs=logging.ERROR,
+                                 preload=[dask_worker.__name__]) as cluster, \
                     Client(cluster, set_as_default=False) as client:
                 yield client
     finally:

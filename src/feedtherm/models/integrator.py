@@ -147,8 +147,20 @@ def _plus_diagonal(A: sp.csr_matrix, diagonal: np.ndarray) -> sp.csr_matrix:
     return sp.csr_matrix((data, A.indices.copy(), A.indptr.copy()), shape=A.shape)
 
 
-def _apply(op: Operator, v: np.ndarray) -> np.ndarray:
+@dataclass(frozen=True)
+class _DiagonalLess:
+    """``diag(diagonal) − matrix`` applied without forming it: a dense step's right-hand side
+    operator is used for a few steps between two re-evaluations of a coupled run, fewer than
+    the passes over the matrix that forming it takes."""
+
+    diagonal: np.ndarray
+    matrix: np.ndarray
+
+
+def _apply(op: "Operator | _DiagonalLess", v: np.ndarray) -> np.ndarray:
     """``op v``, with a 1-D ``op`` a diagonal."""
+    if isinstance(op, _DiagonalLess):
+        return op.diagonal * v - op.matrix @ v
     return op * v if np.ndim(op) == 1 else op @ v
 
 
@@ -177,7 +189,7 @@ class Loads:
 class _Step:
     """One kind of time step: ``T⁺ = lu⁻¹(rhs_operator T + load)``, and its energy account."""
 
-    rhs_operator: Operator  # C/dt, less the links' change a step takes explicitly
+    rhs_operator: "Operator | _DiagonalLess"  # C/dt, less the links' change a step takes explicitly
     load: np.ndarray  # heat and the links' heat at the sink temperatures [W]
     lu: object | None  # the step matrix's factors (direct solver), None: conjugate gradients
     heat_in: float  # [W]
@@ -325,7 +337,8 @@ class Integrator:
         """
         key = (seg_id, id(bc), k)
         if key not in self._matrix_keys:
-            self._matrix_keys[key] = (k, _digest(self.loads(seg_id, bc, k).ambient.matrix))
+            ambient = self.loads(seg_id, bc, k).ambient
+            self._matrix_keys[key] = (k, ambient.key if ambient.key is not None else _digest(ambient.matrix))
         return self._matrix_keys[key]
 
     def _step_matrix(self, seg_id: int, bc: BoundaryConditions, k: int | None, dt: float) -> Operator:
@@ -577,8 +590,12 @@ class Integrator:
             return _Step(cap_dt, loads.heat + loads.ambient.source, lu, bc.total_heat, heats, loads.ambient, None)
         # the links' change since the factorisation, taken at the step's start state
         change = self._link_difference(seg_id, bc, factorised, k)
-        rhs_operator = cap_dt - change if np.ndim(cap_dt) == 1 and np.ndim(change) == 1 else \
-            operator_sum(cap_dt, -change)
+        if np.ndim(cap_dt) == 1 and np.ndim(change) == 1:
+            rhs_operator = cap_dt - change
+        elif np.ndim(cap_dt) == 1 and isinstance(change, np.ndarray):
+            rhs_operator = _DiagonalLess(cap_dt, change)
+        else:
+            rhs_operator = operator_sum(cap_dt, -change)
         return _Step(rhs_operator, loads.heat + loads.ambient.source, lu, bc.total_heat, heats, loads.ambient,
                      self.loads(seg_id, factorised, k).ambient)
 

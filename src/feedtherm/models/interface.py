@@ -45,6 +45,9 @@ class AmbientCoupling:
     load: np.ndarray  # [W/K] per state entry: the heat lost per kelvin of each entry
     source: np.ndarray  # [W] per state entry: the links' heat at the sink temperatures
     source_total: float  # [W] Σ g T_s over every link
+    #: What ``matrix`` is made of, where that is cheaper to fingerprint than the matrix (a projected
+    #: model's surface coefficients); None: the integrator fingerprints the matrix itself
+    key: bytes | None = None
 
     def heat_lost(self, state: np.ndarray) -> float:
         """Heat to the sinks [W] from ``state``."""

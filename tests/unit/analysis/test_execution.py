@@ -202,3 +202,23 @@ def test_a_cluster_kept_open_serves_many_batches(by_value):
     assert client.status == "closed"
     with kept_open(Execution()) as running:
         assert running == Execution() and running.client is None
+
+
+def _environment(names: tuple[str, ...]) -> dict[str, str | None]:
+    import os
+
+    return {name: os.environ.get(name) for name in names}
+
+
+def test_local_workers_keep_dasks_thread_limits_but_not_its_malloc_trim(by_value, monkeypatch):
+    """Dask's MALLOC_TRIM_THRESHOLD_ fixes glibc's mmap threshold: a reduced model's run in such a
+    worker took twice its time (execution.UNSET_WORKER_ENVIRONMENT)."""
+    import os
+
+    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
+    for name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        monkeypatch.delenv(name, raising=False)
+    names = ("MALLOC_TRIM_THRESHOLD_", "OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS")
+    [(_, seen)] = list(run_ordered(_environment, [names], execution=Execution(workers=2)))
+    assert seen == {"MALLOC_TRIM_THRESHOLD_": None, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
+    assert "MALLOC_TRIM_THRESHOLD_" not in os.environ  # nor is this process's environment given it

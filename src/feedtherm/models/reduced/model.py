@@ -68,7 +68,7 @@ class ProjectedModel(ThermalModel):
         self.screw_centres = p.screw_centres
         self._surfaces, self._sources = list(p.surfaces), list(p.sources)
         self._weights = cycle_weights(len(p.positions))
-        self._weighted = (None, None)  # (coefficients, Σ h_i Vᵀ diag(e_i0) V) of the latest evaluation
+        self._weighted = {}  # None (cycle average) or "positions" → (coefficients, Σ h_i Vᵀ diag(e_i) V), the latest
         self._take_values(system)
 
     def _take_values(self, system: FeedSystem) -> None:
@@ -139,32 +139,47 @@ class ProjectedModel(ThermalModel):
 
     def ambient_coupling(self, bc: BoundaryConditions, k: int | None) -> AmbientCoupling:
         h, sinks = self.projection.averaged.coefficients(bc)  # the full model's film in series, if it has one
-        moving = self.projection.moving_surfaces
-        matrix = self._weighted_exposure(h) + np.tensordot(h[moving], self._at("exposure_change", k), axes=1)
+        matrix = self._weighted_exposure(h, k)
         rows = self._at("exposure_rows", k)
-        return AmbientCoupling(matrix, h @ rows, (h * sinks) @ rows, float((h * sinks) @ self._at("exposure_areas", k)))
+        key = h.tobytes()  # with the position (the integrator's key holds it), the coefficients make the matrix
+        return AmbientCoupling(matrix, h @ rows, (h * sinks) @ rows, float((h * sinks) @ self._at("exposure_areas", k)),
+                               key)
 
-    def _weighted_exposure(self, h: np.ndarray) -> np.ndarray:
-        """Σ h_i Vᵀ diag(e_i0) V, kept for the latest coefficients: a coupled run asks for every
-        position with one evaluation's coefficients before the next.
+    def _exposures(self, k: int | None) -> np.ndarray:
+        """Each surface's Vᵀ diag(e_i) V at position k, or its cycle average (the moving surfaces' change
+        added in once per projection: a cycle-averaged run weighs one array, not two)."""
+        exposure = self.projection.exposure
+        if k is not None:
+            return exposure
+        def averaged() -> np.ndarray:
+            combined = exposure.copy()
+            combined[self.projection.moving_surfaces] += self._at("exposure_change", None)
+            return combined
+        return _shared(self.projection, "exposure_averaged", averaged)
+
+    def _weighted_exposure(self, h: np.ndarray, k: int | None) -> np.ndarray:
+        """Σ h_i Vᵀ diag(e_i) V at position k, the latest kept for each position: a coupled run asks
+        for every position with one evaluation's coefficients before the next.
 
         A re-evaluation of a coupled run changes some of the coefficients and keeps the others
         (:mod:`~feedtherm.models.coupling`): the sum is then the latest one plus the changed terms,
         each an r × r pass over memory where the whole sum is one pass per surface.
         """
-        latest, matrix = self._weighted
-        if latest is not None and np.array_equal(latest, h):
+        latest, matrix = self._weighted.get(None if k is None else "positions", (None, None))
+        exposure = self._exposures(k)
+        if latest is None or not np.array_equal(latest, h):
+            changed = None if latest is None else np.flatnonzero(h != latest)
+            if changed is None or 2 * len(changed) > len(h):
+                matrix = np.tensordot(h, exposure, axes=1)
+            else:
+                matrix = matrix.copy()
+                for i in changed:
+                    matrix += (h[i] - latest[i]) * exposure[i]
+            self._weighted[None if k is None else "positions"] = (h.copy(), matrix)
+        if k is None:
             return matrix
-        exposure = self.projection.exposure
-        changed = None if latest is None else np.flatnonzero(h != latest)
-        if changed is None or 2 * len(changed) > len(h):
-            matrix = np.tensordot(h, exposure, axes=1)
-        else:
-            matrix = matrix.copy()
-            for i in changed:
-                matrix += (h[i] - latest[i]) * exposure[i]
-        self._weighted = (h.copy(), matrix)
-        return matrix
+        moving = self.projection.moving_surfaces
+        return matrix + np.tensordot(h[moving], self.projection.exposure_change[k], axes=1)
 
     def heat_vector(self, bc: BoundaryConditions, k: int | None) -> np.ndarray:
         return source_powers(bc, self._sources) @ self._at("entries", k)
