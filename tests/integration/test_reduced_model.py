@@ -10,6 +10,7 @@ checked in ``test_cli_run_fields.py``, on one build.
 from __future__ import annotations
 
 import os
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -150,6 +151,25 @@ def test_projected_operators_are_the_full_ones_multiplied_out(full, reduced, pap
     assert np.allclose(ambient.source, V.T @ full_ambient.source, rtol=1e-10, atol=1e-9)
     assert ambient.source_total == pytest.approx(full_ambient.source_total, rel=1e-12)
     assert np.allclose(reduced.heat_vector(bc, k), V.T @ full.heat_vector(bc, k), rtol=1e-10, atol=1e-12)
+
+
+def test_the_cycle_averaged_ambient_operator_is_the_full_ones_averaged_as_the_coefficients_change(full, reduced, paper):
+    """The projection's averaged exposures are one array (the moving surfaces' change added in); a
+    re-evaluation weighs only the changed coefficients in, or all of them past half; the step
+    matrices are keyed by the coefficients."""
+    V = reduced.V
+    first = boundary_conditions(paper.system, "I")
+    h = reduced.projection.averaged.coefficients(first)[0]
+    name = next(iter(first.surfaces))
+    surface = first.surfaces[name]
+    one_changed = replace(first, surfaces={**first.surfaces, name: replace(surface, convection=2.0 * surface.convection)})
+    for bc in (first, one_changed, boundary_conditions(paper.system, "V"), first):
+        links = full.ambient_coupling(bc, None).matrix
+        ambient = reduced.ambient_coupling(bc, None)
+        assert np.allclose(ambient.matrix, V.T @ (links[:, None] * V), rtol=1e-10, atol=1e-12)
+        assert np.allclose(reduced.ambient_coupling(bc, 7).matrix, V.T @ (full.ambient_coupling(bc, 7).matrix[:, None] * V),
+                           rtol=1e-10, atol=1e-12)
+    assert ambient.key == h.tobytes() != reduced.ambient_coupling(one_changed, None).key
 
 
 def test_readouts_are_the_full_models_of_the_lifted_state(full, reduced):
