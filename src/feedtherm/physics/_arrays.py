@@ -10,6 +10,11 @@ import math
 import numpy as np
 
 
+#: The scalar types a physics function takes without numpy (``type(x) in FLOATS``: a boundary-condition
+#: evaluation calls the checks thousands of times, where a 0-d array's reductions cost several times more).
+FLOATS = (float, np.float64)
+
+
 def scalar_or_array(value):
     """Return a Python float for 0-d results so scalars stay scalars."""
     if type(value) is float:
@@ -23,7 +28,7 @@ def scalar_or_array(value):
 def finite(value, label, unit):
     """``value`` as floats (a Python float for a float, else an array); ValueError naming ``label`` and
     ``unit`` if not finite."""
-    if type(value) is float or type(value) is np.float64:
+    if type(value) in FLOATS:
         if not math.isfinite(value):
             raise ValueError(f"{label} must be finite {unit}, got {value!r}")
         return float(value)

@@ -19,6 +19,7 @@ import math
 
 import numpy as np
 
+from feedtherm.physics._arrays import FLOATS
 from feedtherm.physics.validity import check_range
 
 _MIN_MU = float(np.nextafter(0.0, 1.0))  # 0, exclusive
@@ -53,7 +54,7 @@ def finite_array(x, name, *, positive=False):
     A Python or NumPy float comes back as a Python float (the common call inside a boundary-condition
     evaluation: arithmetic on it is several times cheaper than on a 0-d array), anything else as an array.
     """
-    if type(x) is float or type(x) is np.float64:
+    if type(x) in FLOATS:
         v = float(x)
         if not math.isfinite(v) or (v <= 0.0 if positive else v < 0.0):
             raise ValueError(f"{name} must be finite and {'>' if positive else '>='} 0, got {x!r}")

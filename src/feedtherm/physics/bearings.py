@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from feedtherm.physics._arrays import FLOATS
 from feedtherm.physics._arrays import any_true as _any
 from feedtherm.physics._arrays import scalar_or_array as _out
 from feedtherm.physics.mechanics import heat_friction
@@ -458,7 +459,7 @@ def _loads(Fa, Fr):
 
 
 def _check(value, label, unit, strict=False):
-    if type(value) is float or type(value) is np.float64:  # the usual scalar call, without numpy's reductions
+    if type(value) in FLOATS:  # the usual scalar call, without numpy's reductions
         v = float(value)
         if not math.isfinite(v) or (v <= 0 if strict else v < 0):
             raise ValueError(f"{label} must be finite and {'> 0' if strict else '>= 0'} {unit}, got {value!r}")

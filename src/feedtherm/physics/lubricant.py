@@ -24,6 +24,7 @@ import re
 
 import numpy as np
 
+from feedtherm.physics._arrays import FLOATS
 from feedtherm.physics._arrays import scalar_or_array as _out
 from feedtherm.physics.validity import check_range
 
@@ -171,7 +172,7 @@ def kinematic_viscosity_Walther(T, A, B):
     >>> round(kinematic_viscosity_Walther(353.15, 9.530815, 3.746578) * 1e6, 3)
     8.533
     """
-    if type(T) is float or type(T) is np.float64:  # the usual scalar call, without numpy's reductions
+    if type(T) in FLOATS:  # the usual scalar call, without numpy's reductions
         T = float(T)
         bad = not math.isfinite(T) or T <= 0.0
     else:

@@ -12,6 +12,8 @@ import warnings
 
 import numpy as np
 
+from feedtherm.physics._arrays import FLOATS
+
 
 class CorrelationRangeWarning(UserWarning):
     """A correlation was evaluated outside the validity range of its source."""
@@ -43,7 +45,7 @@ def check_range(correlation: str, quantity: str, value, low: float, high: float)
     >>> print(caught[0].message)
     Nu_plate_normal_to_flow (Eq. 29): Re = 56.6 is outside its validity range [4000, 1.5e+04]
     """
-    if type(value) is float or type(value) is np.float64:  # the common scalar case, without numpy
+    if type(value) in FLOATS:  # the common scalar case, without numpy
         vmin = vmax = float(value)
     else:
         arr = np.asarray(value, dtype=float)

@@ -165,7 +165,8 @@ class ProjectedModel(ThermalModel):
         (:mod:`~feedtherm.models.coupling`): the sum is then the latest one plus the changed terms,
         each an r × r pass over memory where the whole sum is one pass per surface.
         """
-        latest, matrix = self._weighted.get(None if k is None else "positions", (None, None))
+        slot = None if k is None else "positions"
+        latest, matrix = self._weighted.get(slot, (None, None))
         exposure = self._exposures(k)
         if latest is None or not np.array_equal(latest, h):
             changed = None if latest is None else np.flatnonzero(h != latest)
@@ -175,7 +176,7 @@ class ProjectedModel(ThermalModel):
                 matrix = matrix.copy()
                 for i in changed:
                     matrix += (h[i] - latest[i]) * exposure[i]
-            self._weighted[None if k is None else "positions"] = (h.copy(), matrix)
+            self._weighted[slot] = (h.copy(), matrix)
         if k is None:
             return matrix
         moving = self.projection.moving_surfaces
