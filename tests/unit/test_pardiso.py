@@ -33,6 +33,31 @@ def test_the_cholesky_factors_solve_as_a_sparse_lu_does():
     np.testing.assert_allclose(second.solve(b), 0.5 * factors.solve(b), rtol=1e-11, atol=1e-12)
 
 
+RELEASE = -1  # PARDISO's phase that releases all of its memory
+
+
+def test_a_refactorisation_solves_as_a_fresh_factorisation_of_its_matrix(monkeypatch):
+    """Another matrix of the held pattern skips the analysis (phase 22, not 12); one of another
+    pattern, or a matrix that is not positive definite, is analysed or refused as a first one is."""
+    A = spd(2500, 1)
+    b = np.random.default_rng(2).normal(size=(2500, 3))
+    factors = pardiso.PardisoCholesky(A)
+    phases = []
+    call = factors._solver._call_pardiso
+    monkeypatch.setattr(factors._solver, "_call_pardiso", lambda *args: (phases.append(factors._solver.phase),
+                                                                        call(*args))[1])
+    same_pattern = A + sp.diags(np.linspace(0.5, 3.0, 2500))
+    factors.refactor(same_pattern)
+    np.testing.assert_allclose(factors.solve(b), spsolve(same_pattern.tocsc(), b), rtol=1e-11, atol=1e-12)
+    links = sp.diags([np.ones(2498), np.ones(2498)], [2, -2])  # more neighbours: another pattern
+    other = spd(2500, 4) + sp.diags(np.asarray(links.sum(axis=1)).ravel()) - links
+    factors.refactor(other)
+    np.testing.assert_allclose(factors.solve(b[:, 0]), spsolve(other.tocsc(), b[:, 0]), rtol=1e-11, atol=1e-12)
+    assert phases == [pardiso.FACTORISE, pardiso.SOLVE, RELEASE, pardiso.ANALYSE_AND_FACTORISE, pardiso.SOLVE]
+    with pytest.raises(ModelError, match="not symmetric positive definite"):
+        factors.refactor(A - sp.identity(2500) * 50.0)
+
+
 def test_a_matrix_that_is_not_positive_definite_is_refused():
     A = spd(400, 3) - sp.identity(400) * 50.0
     with pytest.raises(ModelError, match="not symmetric positive definite"):

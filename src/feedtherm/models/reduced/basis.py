@@ -13,7 +13,7 @@ the reduced model keeps the full model's energy balance exactly (its Galerkin eq
 that vector is the balance).
 
 The snapshots are compressed by a proper orthogonal decomposition in the capacity inner
-product (pyMOR's :func:`~pymor.algorithms.pod.pod`): the basis size is the number of modes
+product (the method of snapshots, :func:`_compressed`): the basis size is the number of modes
 whose singular values exceed ``tolerance`` times the largest one, not a constant.  Each
 shift's snapshots are compressed first (:data:`SHIFT_TOLERANCE_FACTOR`), so that neither the
 snapshots of every shift nor their Gram matrix are ever held at once, and the inputs are kept
@@ -43,7 +43,8 @@ References
 ----------
 E. J. Grimme, *Krylov projection methods for model reduction*, PhD thesis, University of
 Illinois, 1997.  A. C. Antoulas, *Approximation of Large-Scale Dynamical Systems*, SIAM, 2005.
-R. Milk, S. Rave, F. Schindler, "pyMOR — generic algorithms and interfaces for model order
+L. Sirovich, "Turbulence and the dynamics of coherent structures, part I: coherent structures",
+Quart. Appl. Math. 45 (1987) 561–571.  R. Milk, S. Rave, F. Schindler, "pyMOR — generic algorithms and interfaces for model order
 reduction", SIAM J. Sci. Comput. 38 (2016) S194–S216.
 """
 
@@ -151,11 +152,11 @@ class TrainingOperators:
         self.model = model
         changes = {name: value - own[name].value for name, value in point.items() if name in own and value != own[name].value}
         self.moving = {name: change for name, change in changes.items() if own[name].moves}
+        self.changes_static = {name: change for name, change in changes.items() if not own[name].moves}
         self.static = None  # Σ over the parameters whose terms do not move
-        for name, change in changes.items():
-            if name not in self.moving:
-                term = change * model.conductance_term(name, 0)
-                self.static = term if self.static is None else self.static + term
+        for name, change in self.changes_static.items():
+            term = change * model.conductance_term(name, 0)
+            self.static = term if self.static is None else self.static + term
         self.coefficients = reference_coefficients(model, {n: v for n, v in point.items() if n in films})
 
     def _plus(self, G, moving_term):
@@ -170,15 +171,24 @@ class TrainingOperators:
 
     def mean_conductance(self):
         """The cycle average of :meth:`conductance` (the model's own average and the moving terms' are kept on it)."""
+        return self._plus(self._kept_means()[None], self.mean_term)
+
+    def mean_term(self, name: str):
+        """The cycle average of ``∂G_k/∂θ`` for the conductance parameter ``name`` (kept on the model)."""
+        kept = self._kept_means()
+        if name not in kept:
+            model = self.model
+            kept[name] = weighted_sum(cycle_weights(len(model.positions)),
+                                      [model.conductance_term(name, k) for k in range(len(model.positions))])
+        return kept[name]
+
+    def _kept_means(self) -> dict:
         model = self.model
         kept = model.__dict__.setdefault("_cycle_averaged_terms", {})
-        weights = cycle_weights(len(model.positions))
         if None not in kept:
+            weights = cycle_weights(len(model.positions))
             kept[None] = weighted_sum(weights, [model.conductance(k) for k in range(len(model.positions))])
-        for name in self.moving:
-            if name not in kept:
-                kept[name] = weighted_sum(weights, [model.conductance_term(name, k) for k in range(len(model.positions))])
-        return self._plus(kept[None], lambda name: kept[name])
+        return kept
 
     def links(self, k: int | None) -> np.ndarray:
         """Node-to-air conductances [W/K] at position k (None: the cycle average)."""
@@ -273,10 +283,6 @@ def moment_basis(model: ThermalModel, tolerance: float = TOLERANCE,
 
 def _build(model: ThermalModel, tolerance: float, time_constants: tuple[float, ...],
            points: tuple[dict[str, float], ...]) -> Basis:
-    from pymor.core.logger import set_log_levels
-
-    set_log_levels({"pymor": "WARN"})  # its progress lines are not a run's output
-
     started = time.perf_counter()
     C = np.asarray(model.capacity, dtype=float)
     scale = np.sqrt(C)  # the capacity inner product of x is the Euclidean one of scale ⊙ x (C is diagonal)
@@ -286,47 +292,56 @@ def _build(model: ThermalModel, tolerance: float, time_constants: tuple[float, .
     # the fixed inputs' answers are corrected at a few positions, the moving inputs' at every one
     corrected_at = sorted({round(i * (n_positions - 1) / (CORRECTED_POSITIONS - 1)) for i in range(CORRECTED_POSITIONS)})
     ones = np.ones(model.n_nodes) / np.sqrt(C.sum())
-    order = [None]  # every matrix has one pattern: its elimination order is computed once
-    kept, count = None, 0
+    factors = _OnePattern()
+    kept, kept_values, count = None, None, 0  # kept: scaled, its columns orthogonal of norms kept_values once compressed
     for index, point in enumerate(({}, *points)):
         # another training point than the model's own: the moving inputs at the corrected positions
         # only (their shapes at the others are the first point's, moved)
         moving_at = range(n_positions) if index == 0 else corrected_at
         blocks, snapshots = _point_snapshots(TrainingOperators(model, point), C, fixed, moving, corrected_at,
-                                             moving_at, time_constants, tolerance, scale, ones, order)
+                                             moving_at, time_constants, tolerance, scale, ones, factors)
         count += snapshots
         if kept is None:
             kept = np.hstack(blocks)
         else:  # another point's modes with those so far, compressed far below the tolerance (module notes)
-            kept = _compress(np.hstack([kept, *blocks]), scale, SHIFT_TOLERANCE_FACTOR * tolerance)
+            kept, kept_values = _compressed(np.hstack([kept, *blocks]), SHIFT_TOLERANCE_FACTOR * tolerance,
+                                            kept_values)
         del blocks
-    modes, singular_values = _pod(kept, scale, tolerance)
+    weighted, singular_values = _compressed(kept, tolerance, kept_values)
+    modes = weighted / singular_values / scale[:, None]
     vectors = orthonormalise(np.column_stack([ones, modes]), scale)
     return Basis(vectors, np.asarray(singular_values), tolerance, count, time.perf_counter() - started)
 
 
-def _pod(X: np.ndarray, scale: np.ndarray, rtol: float) -> tuple[np.ndarray, np.ndarray]:
-    """POD modes and singular values of ``X`` above ``rtol`` of the largest, in the capacity inner
-    product (``scale``: the square roots of the diagonal capacities).
+def _compressed(Y: np.ndarray, rtol: float, orthogonal: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """The POD of the scaled snapshots ``Y`` (n, m): its modes above ``rtol`` of the largest
+    singular value, each weighted by its singular value (n, r), and the singular values (r,).
 
-    pyMOR's method of snapshots on ``scale ⊙ X`` in the Euclidean product: the same modes as with
-    the capacity as pyMOR's ``product``, which applies the capacity to the snapshots once more for
-    each Gram matrix.  Without pyMOR's re-orthonormalisation of the modes (``orth_tol=inf``): what
-    is kept of them is their span (weighted, between the steps; the basis is orthonormalised once
-    at the end), and re-orthonormalising each step's modes vector by vector took two thirds of a
-    basis's build.
+    The method of snapshots (Sirovich 1987; pyMOR's :func:`~pymor.algorithms.svd_va.method_of_snapshots`,
+    written out here for what it cannot be told): the eigenvectors ``W`` of the Gram matrix
+    ``YᵀY`` give the weighted modes ``Y W``.  ``orthogonal``: the norms of ``Y``'s first columns
+    where those are orthogonal, as a compression's own output is; their block of the Gram matrix
+    is then ``diag(orthogonal²)``, not computed (a POD's modes are orthogonal to the rounding of
+    the Gram matrix itself, ε times the largest squared singular value), which saves two thirds of
+    the products when the modes kept so far meet the next training point's.  In the scaled
+    coordinates (module notes) the Euclidean product is the capacity one; the modes are not
+    re-orthonormalised (pyMOR's ``orth_tol=inf``): what is kept of them is their span, and the
+    basis is orthonormalised once at the end.
     """
-    from pymor.algorithms.pod import pod
-    from pymor.vectorarrays.numpy import NumpyVectorSpace
+    import scipy.linalg
 
-    modes, values = pod(NumpyVectorSpace(X.shape[0]).from_numpy(X * scale[:, None]), rtol=rtol, orth_tol=np.inf)
-    return modes.to_numpy() / scale[:, None], values
-
-
-def _compress(X: np.ndarray, scale: np.ndarray, rtol: float) -> np.ndarray:
-    """The POD modes of ``X`` above ``rtol`` of the largest, weighted by their singular values."""
-    modes, values = _pod(X, scale, rtol)
-    return modes * values
+    k = 0 if orthogonal is None else len(orthogonal)
+    new = Y[:, k:]
+    gram = np.empty((Y.shape[1], Y.shape[1]))
+    gram[k:, k:] = new.T @ new
+    if k:
+        gram[:k, :k] = np.diag(np.asarray(orthogonal) ** 2)
+        gram[:k, k:] = Y[:, :k].T @ new
+        gram[k:, :k] = gram[:k, k:].T
+    eigenvalues, W = scipy.linalg.eigh(gram, overwrite_a=True)
+    values = np.sqrt(np.clip(eigenvalues[::-1], 0.0, None))
+    r = int(np.count_nonzero(values >= rtol * values[0])) if values.size and values[0] > 0.0 else 0
+    return Y @ W[:, ::-1][:, :r], values[:r]
 
 
 #: A column whose part beyond the columns before it is at most this share of its own size depends
@@ -349,8 +364,10 @@ def orthonormalise(X: np.ndarray, scale: np.ndarray) -> np.ndarray:
     diagonal = np.diag(R)
     if np.any(np.abs(diagonal) <= DEPENDENT_SHARE * np.linalg.norm(scaled, axis=0)):
         from pymor.algorithms.gram_schmidt import gram_schmidt
+        from pymor.core.logger import set_log_levels
         from pymor.vectorarrays.numpy import NumpyVectorSpace
 
+        set_log_levels({"pymor": "WARN"})  # its progress lines are not a run's output
         Q = gram_schmidt(NumpyVectorSpace(X.shape[0]).from_numpy(scaled), copy=False).to_numpy()
     else:
         Q *= np.where(diagonal < 0.0, -1.0, 1.0)  # R's diagonal positive, as Gram–Schmidt's
@@ -358,7 +375,7 @@ def orthonormalise(X: np.ndarray, scale: np.ndarray) -> np.ndarray:
 
 
 def _point_snapshots(ops: TrainingOperators, C, fixed, moving, corrected_at, moving_at, time_constants,
-                     tolerance, scale, ones, order) -> tuple[list[np.ndarray], int]:
+                     tolerance, scale, ones, factors: "_OnePattern") -> tuple[list[np.ndarray], int]:
     """One training point's snapshots, compressed per shift: (blocks, snapshots taken)."""
     model = ops.model
     n_positions = len(model.positions)
@@ -369,13 +386,7 @@ def _point_snapshots(ops: TrainingOperators, C, fixed, moving, corrected_at, mov
     blocks, count = [], 0
     for tau in (None, *time_constants):
         shift = 0.0 if tau is None else 1.0 / tau
-        A = (G_mean + sp.diags(averaged_links + shift * C)).tocsc()
-        if pardiso.available():  # many right-hand sides: 1.5 s, not SuperLU's 22 s, at the fine mesh (module notes)
-            mean = pardiso.PardisoCholesky(A)
-        else:
-            mean = factorize(A, order[0])
-            if order[0] is None:
-                order[0] = EliminationOrder(mean)
+        mean = factors((G_mean + sp.diags(averaged_links + shift * C)).tocsc())
         x_fixed = mean.solve(fixed)
         # one block step toward each position's own operator (its sliding contact and exposure),
         # x + M̄⁻¹(b − M_k x): the positions' solves as one solve of many right-hand sides
@@ -401,11 +412,37 @@ def _point_snapshots(ops: TrainingOperators, C, fixed, moving, corrected_at, mov
         X -= np.outer(ones, ones @ (C[:, None] * X))
         norms = np.sqrt(np.einsum("ij,ij->j", X, C[:, None] * X))
         kept = norms > 1e-12 * norms.max()  # an input with no response beyond the uniform one
-        X = X[:, kept] / norms[kept]
+        X = X[:, kept] * (scale[:, None] / norms[kept])
         count += X.shape[1]
-        blocks.append(_compress(X, scale, SHIFT_TOLERANCE_FACTOR * tolerance))
+        blocks.append(_compressed(X, SHIFT_TOLERANCE_FACTOR * tolerance)[0])
         del X
     return blocks, count
+
+
+class _OnePattern:
+    """Factorisations of the snapshots' matrices, every one of one pattern and one alive at a time.
+
+    PARDISO's Cholesky wherever it is installed (many right-hand sides: 1.5 s, not SuperLU's 22 s,
+    at the fine mesh; module notes), its analysis made for the first matrix and reused
+    (:meth:`~feedtherm.models.pardiso.PardisoCholesky.refactor`); elsewhere SuperLU, its
+    elimination order computed once.
+    """
+
+    def __init__(self):
+        self._held = None
+        self._order = None
+
+    def __call__(self, A: sp.spmatrix):
+        if pardiso.available():
+            if self._held is None:
+                self._held = pardiso.PardisoCholesky(A)
+            else:
+                self._held.refactor(A)
+            return self._held
+        lu = factorize(A, self._order)
+        if self._order is None:
+            self._order = EliminationOrder(lu)
+        return lu
 
 
 def _solve_blocks(factor, blocks: list[np.ndarray]) -> list[np.ndarray]:
@@ -440,11 +477,20 @@ def _steady_operator(model: ThermalModel, point: dict[str, float]) -> sp.csc_mat
     return (ops.mean_conductance() + sp.diags(ops.links(None))).tocsc()
 
 
-def _galerkin(A: sp.spmatrix, V: np.ndarray, inputs_: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The reduced steady answers ``V z`` of ``A x = b`` for every input, and the residuals ``b − A V z``."""
-    AV = np.asarray(A @ V)
-    z = np.linalg.solve(V.T @ AV, V.T @ inputs_)
-    return V @ z, inputs_ - AV @ z
+def _galerkin(A: sp.spmatrix, V: np.ndarray, inputs_: np.ndarray,
+              reduced: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """The reduced steady answers ``V z`` of ``A x = b`` for every input, and the residuals ``b − A V z``
+    (``reduced``: ``VᵀAV`` where it is known)."""
+    if reduced is None:
+        reduced = V.T @ np.asarray(A @ V)
+    answers = V @ np.linalg.solve(reduced, V.T @ inputs_)
+    return answers, inputs_ - A @ answers
+
+
+def _indicator(inputs_: np.ndarray, residual: np.ndarray) -> float:
+    """:func:`residual_indicator`'s value: the largest residual as a share of its input's size."""
+    sizes = np.linalg.norm(inputs_, axis=0)
+    return float(np.max(np.linalg.norm(residual, axis=0) / np.where(sizes > 0.0, sizes, 1.0)))
 
 
 def _galerkin_at(model: ThermalModel, V: np.ndarray, point: dict[str, float],
@@ -452,8 +498,45 @@ def _galerkin_at(model: ThermalModel, V: np.ndarray, point: dict[str, float],
     """At ``point``: the steady operator, the Galerkin answers and :func:`residual_indicator`'s value."""
     A = _steady_operator(model, point)
     reduced, residual = _galerkin(A, V, inputs_)
-    sizes = np.linalg.norm(inputs_, axis=0)
-    return A, reduced, float(np.max(np.linalg.norm(residual, axis=0) / np.where(sizes > 0.0, sizes, 1.0)))
+    return A, reduced, _indicator(inputs_, residual)
+
+
+class _ProjectedSteadyOperator:
+    """``VᵀA(θ)V`` of the steady operator at any point θ, as the sum of projected terms.
+
+    ``A(θ)`` is affine in the conductance parameters and the fixed coefficients
+    (:class:`TrainingOperators`): the nominal operator, each parameter's change times its
+    cycle-averaged term, each fixed surface's change of coefficient times its exposure.  Each
+    term is projected once, on the rows it has; a point then costs sums of r × r matrices, where
+    projecting its operator afresh costs a product of the basis's size with the whole mesh.
+    """
+
+    def __init__(self, model: ThermalModel, V: np.ndarray):
+        self.model, self.V = model, V
+        self.nominal = TrainingOperators(model, {})
+        self._reference = self._project(_steady_operator(model, {}))
+        self._terms: dict[str, np.ndarray] = {}
+        self._exposures: dict[int, np.ndarray] = {}
+
+    def _project(self, M: sp.spmatrix) -> np.ndarray:
+        M = sp.csr_matrix(M)
+        rows = np.flatnonzero(np.diff(M.indptr))  # VᵀMV = V[rows]ᵀ (M V)[rows]
+        return self.V[rows].T @ np.asarray(M[rows] @ self.V)
+
+    def at(self, point: dict[str, float]) -> np.ndarray:
+        ops = TrainingOperators(self.model, point)
+        reduced = self._reference.copy()
+        for name, change in {**ops.moving, **ops.changes_static}.items():
+            if name not in self._terms:
+                self._terms[name] = self._project(ops.mean_term(name) if name in ops.moving
+                                                  else self.model.conductance_term(name, 0))
+            reduced += change * self._terms[name]
+        exposure = self.model.boundary_basis(None).exposure_by_node
+        for s in np.flatnonzero(ops.coefficients != self.nominal.coefficients):
+            if s not in self._exposures:
+                self._exposures[s] = self._project(sp.diags(exposure[:, s].toarray().ravel()))
+            reduced += (ops.coefficients[s] - self.nominal.coefficients[s]) * self._exposures[s]
+        return reduced
 
 
 def residual_indicator(model: ThermalModel, basis: Basis, point: dict[str, float]) -> float:
@@ -481,9 +564,12 @@ def steady_check(model: ThermalModel, basis: Basis, candidates: tuple[dict[str, 
     candidates, not a bound elsewhere.
     """
     inputs_ = _steady_inputs(model)
+    projected = _ProjectedSteadyOperator(model, basis.vectors)
     indicators, largest = [], []  # largest: (indicator, candidate, operator, Galerkin answers) of the top ones
     for index, point in enumerate(candidates):
-        A, reduced, indicator = _galerkin_at(model, basis.vectors, point, inputs_)
+        A = _steady_operator(model, point)
+        reduced, residual = _galerkin(A, basis.vectors, inputs_, projected.at(point))
+        indicator = _indicator(inputs_, residual)
         indicators.append(indicator)
         largest = sorted([*largest, (indicator, index, A, reduced)], key=lambda c: -c[0])[:checked]
     worst = {"steady_check_share": 0.0, "steady_check_point": None, "steady_check_input": None}
