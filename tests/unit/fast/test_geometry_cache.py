@@ -70,3 +70,16 @@ def test_a_source_sent_elsewhere_gets_its_own_basis(paper, empty_cache):
     _, other = _bases(moved)
     assert other is not original
     assert not np.array_equal(other.distribution.toarray()[i], original.distribution.toarray()[i])
+
+
+def test_the_cycle_average_is_the_positions_conductances_averaged(paper):
+    """Assembled once from every position's sliding links weighted by its time share, it is the
+    interface's average of the positions' matrices (to rounding)."""
+    from feedtherm.models.interface import ThermalModel
+
+    model = discretize(paper.system, "fast", ModelOptions())
+    assembled = model.averaged_conductance()
+    by_positions = ThermalModel.averaged_conductance(model)
+    assert len(model.positions) > 2 and abs(assembled - by_positions).max() <= 1e-13 * abs(by_positions).max()
+    # the sliding contacts move with the nut: the average is none of the positions' own
+    assert abs(assembled - model.conductance(0)).max() > 1e-3 * abs(by_positions).max()

@@ -184,10 +184,17 @@ class Network:
     # ------------------------------------------------------------------ per position
     def sliding(self, k: int) -> sp.csr_matrix:
         """Conductance matrix of the sliding contacts with the moving group at position ``k``."""
+        return self.averaged_sliding({k: 1.0})
+
+    def averaged_sliding(self, weights: dict[int, float]) -> sp.csr_matrix:
+        """``Σ_k w_k`` :meth:`sliding` ``(k)`` as one matrix of the positions' links weighted (a
+        cycle average assembled once, where summing the positions' matrices assembles each)."""
         edges = Edges()
-        for contact in self.contacts:
-            if contact.joint.sliding:
-                edges.add(*contact.links(k))
+        for k, w in weights.items():
+            for contact in self.contacts:
+                if contact.joint.sliding:
+                    a, b, g = contact.links(k)
+                    edges.add(a, b, w * g)
         return laplacian(self.layout.n_nodes, edges)
 
     def surface_exposure(self, name: str, k: int) -> tuple[np.ndarray, np.ndarray]:

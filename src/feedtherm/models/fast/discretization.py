@@ -7,7 +7,7 @@ import scipy.sparse as sp
 
 from ...constants import ELONGATION_PROBE
 from ...system.schema import FeedSystem
-from ..interface import BoundaryBasis, HeatInput, ThermalModel, source_shares
+from ..interface import BoundaryBasis, HeatInput, ThermalModel, cycle_weights, source_shares
 from ..options import ModelOptions
 from .assemble import Network
 from .bars import displacement_rows
@@ -34,6 +34,12 @@ class FastDiscretization(ThermalModel):
         if k not in self._sliding:
             self._sliding[k] = (self.network.fixed + self.network.sliding(k)).tocsr()
         return self._sliding[k]
+
+    def averaged_conductance(self) -> sp.csr_matrix:
+        """The cycle average of :meth:`conductance`: the fixed links and the sliding contacts' links
+        of every position weighted by its time share, assembled as one matrix."""
+        weights = cycle_weights(len(self.positions))
+        return (self.network.fixed + self.network.averaged_sliding(dict(enumerate(weights)))).tocsr()
 
     def surface_exposure(self, name: str, k: int) -> tuple[np.ndarray, np.ndarray]:
         return self.network.surface_exposure(name, k)
