@@ -44,8 +44,8 @@ References
 E. J. Grimme, *Krylov projection methods for model reduction*, PhD thesis, University of
 Illinois, 1997.  A. C. Antoulas, *Approximation of Large-Scale Dynamical Systems*, SIAM, 2005.
 L. Sirovich, "Turbulence and the dynamics of coherent structures, part I: coherent structures",
-Quart. Appl. Math. 45 (1987) 561–571.  R. Milk, S. Rave, F. Schindler, "pyMOR — generic algorithms and interfaces for model order
-reduction", SIAM J. Sci. Comput. 38 (2016) S194–S216.
+Quart. Appl. Math. 45 (1987) 561–571.  R. Milk, S. Rave, F. Schindler, "pyMOR — generic
+algorithms and interfaces for model order reduction", SIAM J. Sci. Comput. 38 (2016) S194–S216.
 """
 
 from __future__ import annotations
@@ -152,9 +152,9 @@ class TrainingOperators:
         self.model = model
         changes = {name: value - own[name].value for name, value in point.items() if name in own and value != own[name].value}
         self.moving = {name: change for name, change in changes.items() if own[name].moves}
-        self.changes_static = {name: change for name, change in changes.items() if not own[name].moves}
+        self.static_changes = {name: change for name, change in changes.items() if not own[name].moves}
         self.static = None  # Σ over the parameters whose terms do not move
-        for name, change in self.changes_static.items():
+        for name, change in self.static_changes.items():
             term = change * model.conductance_term(name, 0)
             self.static = term if self.static is None else self.static + term
         self.coefficients = reference_coefficients(model, {n: v for n, v in point.items() if n in films})
@@ -293,7 +293,8 @@ def _build(model: ThermalModel, tolerance: float, time_constants: tuple[float, .
     corrected_at = sorted({round(i * (n_positions - 1) / (CORRECTED_POSITIONS - 1)) for i in range(CORRECTED_POSITIONS)})
     ones = np.ones(model.n_nodes) / np.sqrt(C.sum())
     factors = _OnePattern()
-    kept, kept_values, count = None, None, 0  # kept: scaled, its columns orthogonal of norms kept_values once compressed
+    # kept: the modes so far, scaled and weighted; once compressed, orthogonal with norms kept_values
+    kept, kept_values, count = None, None, 0
     for index, point in enumerate(({}, *points)):
         # another training point than the model's own: the moving inputs at the corrected positions
         # only (their shapes at the others are the first point's, moved)
@@ -317,16 +318,17 @@ def _compressed(Y: np.ndarray, rtol: float, orthogonal: np.ndarray | None = None
     """The POD of the scaled snapshots ``Y`` (n, m): its modes above ``rtol`` of the largest
     singular value, each weighted by its singular value (n, r), and the singular values (r,).
 
-    The method of snapshots (Sirovich 1987; pyMOR's :func:`~pymor.algorithms.svd_va.method_of_snapshots`,
-    written out here for what it cannot be told): the eigenvectors ``W`` of the Gram matrix
-    ``YᵀY`` give the weighted modes ``Y W``.  ``orthogonal``: the norms of ``Y``'s first columns
-    where those are orthogonal, as a compression's own output is; their block of the Gram matrix
-    is then ``diag(orthogonal²)``, not computed (a POD's modes are orthogonal to the rounding of
-    the Gram matrix itself, ε times the largest squared singular value), which saves two thirds of
-    the products when the modes kept so far meet the next training point's.  In the scaled
-    coordinates (module notes) the Euclidean product is the capacity one; the modes are not
-    re-orthonormalised (pyMOR's ``orth_tol=inf``): what is kept of them is their span, and the
-    basis is orthonormalised once at the end.
+    The method of snapshots (Sirovich 1987), as pyMOR's
+    :func:`~pymor.algorithms.svd_va.method_of_snapshots`, which computes every block of the Gram
+    matrix: the eigenvectors ``W`` of ``YᵀY`` give the weighted modes ``Y W``.  ``orthogonal``:
+    the norms of ``Y``'s first columns where those are orthogonal, as a compression's own output
+    is; their block of the Gram matrix is then ``diag(orthogonal²)``, not computed (a POD's modes
+    are orthogonal to the rounding of the Gram matrix itself, ε times the largest squared
+    singular value).  When the modes kept so far (about 750 on the coarse mesh) meet the next
+    training point's (about 450), that saves two fifths of the Gram matrix's products.  In the
+    scaled coordinates (module notes) the Euclidean product is the capacity one; the modes are
+    not re-orthonormalised (pyMOR's ``orth_tol=inf``): what is kept of them is their span, and
+    the basis is orthonormalised once at the end.
     """
     import scipy.linalg
 
@@ -526,7 +528,7 @@ class _ProjectedSteadyOperator:
     def at(self, point: dict[str, float]) -> np.ndarray:
         ops = TrainingOperators(self.model, point)
         reduced = self._reference.copy()
-        for name, change in {**ops.moving, **ops.changes_static}.items():
+        for name, change in {**ops.moving, **ops.static_changes}.items():
             if name not in self._terms:
                 self._terms[name] = self._project(ops.mean_term(name) if name in ops.moving
                                                   else self.model.conductance_term(name, 0))
