@@ -37,6 +37,29 @@ def test_a_changed_resistance_reuses_the_geometry_and_gives_the_fresh_operators(
     assert not np.array_equal(operators(paper.system)[0], reused[0])
 
 
+def test_a_joints_area_and_a_materials_capacity_and_expansion_reuse_the_geometry(paper, empty_cache):
+    """They enter the links when formed and the layout, built afresh: the operators equal a fresh
+    build's, and the area did act on them."""
+    operators(paper.system)
+    changed = with_values(paper, {"joints[6].area": 2.0 * paper.system.joints[6].area,
+                                  "joints[9].area": 0.5 * paper.system.joints[9].area,
+                                  "materials.q345b.density": 7000.0, "materials.q345b.specific_heat": 500.0,
+                                  "materials.gcr15.expansion": 1.3e-5}).system
+    before = len(assemble._GEOMETRY)
+    reused = operators(changed)
+    assert len(assemble._GEOMETRY) == before
+    reused_capacity = discretize(changed, "fast", ModelOptions()).capacity
+    assemble._GEOMETRY.clear()
+    fresh = operators(changed)
+    for a, b in zip(reused, fresh):
+        np.testing.assert_array_equal(a, b)
+    np.testing.assert_array_equal(reused_capacity, discretize(changed, "fast", ModelOptions()).capacity)
+    assert not np.array_equal(operators(paper.system)[0], reused[0])
+    # a conductivity is kept with the contacts' resistances: another one is another entry
+    operators(with_values(paper, {"materials.q345b.conductivity": 40.0}).system)
+    assert len(assemble._GEOMETRY) == 2
+
+
 def test_a_moved_face_is_a_new_geometry(paper, empty_cache):
     operators(paper.system)
     bigger = with_values(paper, {"parts.worktable.boxes[0].size[2]": 0.030}).system

@@ -53,9 +53,13 @@ class Edges:
 #: they find their contacts here instead of sampling the faces again.
 _GEOMETRY: OrderedDict[str, dict] = OrderedDict()
 _GEOMETRY_ENTRIES = 4
-#: What a surface or a joint has that does not decide the geometry.
+#: What a surface, a joint or a material has that does not decide what is kept here.  A joint's
+#: resistance and area enter its links when they are formed (:meth:`JointContact.links`); a
+#: material's capacity, expansion and stiffness enter the layout and the bars, built afresh with
+#: each model.  A conductivity stays: the sides' and contacts' resistances are kept with them.
 _NOT_GEOMETRY = {"surfaces": ("convection", "emissivity", "chtc_factor", "sink_temperature", "description"),
-                 "joints": ("tcr", "description")}
+                 "joints": ("tcr", "area", "description"),
+                 "materials": ("density", "specific_heat", "expansion", "youngs_modulus", "poisson_ratio", "name")}
 
 
 def geometry_digest(layout: Layout) -> str:
