@@ -37,27 +37,35 @@ def test_a_changed_resistance_reuses_the_geometry_and_gives_the_fresh_operators(
     assert not np.array_equal(operators(paper.system)[0], reused[0])
 
 
-def test_a_joints_area_and_a_materials_capacity_and_expansion_reuse_the_geometry(paper, empty_cache):
-    """They enter the links when formed and the layout, built afresh: the operators equal a fresh
-    build's, and the area did act on them."""
-    operators(paper.system)
+def test_a_joints_area_and_a_materials_numbers_reuse_the_geometry_and_give_the_fresh_model(paper, empty_cache):
+    """A joint's area and a material's conductivity, capacity and expansion move no face: the
+    contacts are found in the kept geometry, and the operators, the capacities and the boundary
+    bases (their film resistances go with the conductivities) equal a fresh build's, bit for bit."""
+    _bases(paper.system)
     changed = with_values(paper, {"joints[6].area": 2.0 * paper.system.joints[6].area,
                                   "joints[9].area": 0.5 * paper.system.joints[9].area,
+                                  "materials.q345b.conductivity": 40.0, "materials.gcr15.conductivity": 30.0,
                                   "materials.q345b.density": 7000.0, "materials.q345b.specific_heat": 500.0,
                                   "materials.gcr15.expansion": 1.3e-5}).system
     before = len(assemble._GEOMETRY)
-    reused = operators(changed)
-    assert len(assemble._GEOMETRY) == before
-    reused_capacity = discretize(changed, "fast", ModelOptions()).capacity
+
+    def built(system):
+        model, averaged = _bases(system)
+        return model, [model.conductance(k).toarray() for k in (0, len(model.positions) // 3)] \
+            + [model.averaged_conductance().toarray(), model.capacity, averaged.film, averaged.exposure.toarray(),
+               model.boundary_basis(5).film, model.boundary_basis(5).exposure.toarray()]
+
+    reused_model, reused = built(changed)
+    assert len(assemble._GEOMETRY) == before  # no face moved: the same entry
     assemble._GEOMETRY.clear()
-    fresh = operators(changed)
+    _, fresh = built(changed)
     for a, b in zip(reused, fresh):
         np.testing.assert_array_equal(a, b)
-    np.testing.assert_array_equal(reused_capacity, discretize(changed, "fast", ModelOptions()).capacity)
-    assert not np.array_equal(operators(paper.system)[0], reused[0])
-    # a conductivity is kept with the contacts' resistances: another one is another entry
-    operators(with_values(paper, {"materials.q345b.conductivity": 40.0}).system)
-    assert len(assemble._GEOMETRY) == 2
+    # and they did act: on the contacts' links, the films and the capacities
+    _, original = built(paper.system)
+    for i in (0, 1, 3, 4, 6):
+        assert not np.array_equal(original[i], reused[i]), i
+    assert len(assemble._GEOMETRY) == 1
 
 
 def test_a_moved_face_is_a_new_geometry(paper, empty_cache):

@@ -56,10 +56,12 @@ _GEOMETRY_ENTRIES = 4
 #: What a surface, a joint or a material has that does not decide what is kept here.  A joint's
 #: resistance and area enter its links when they are formed (:meth:`JointContact.links`); a
 #: material's capacity, expansion and stiffness enter the layout and the bars, built afresh with
-#: each model.  A conductivity stays: the sides' and contacts' resistances are kept with them.
+#: each model; its conductivity divides the distances kept here when a model forms its links,
+#: and keys the sums and film resistances kept under it.
 _NOT_GEOMETRY = {"surfaces": ("convection", "emissivity", "chtc_factor", "sink_temperature", "description"),
                  "joints": ("tcr", "area", "description"),
-                 "materials": ("density", "specific_heat", "expansion", "youngs_modulus", "poisson_ratio", "name")}
+                 "materials": ("density", "conductivity", "specific_heat", "expansion", "youngs_modulus",
+                               "poisson_ratio", "name")}
 
 
 def geometry_digest(layout: Layout) -> str:
@@ -81,7 +83,7 @@ def _geometry_cache(layout: Layout) -> dict:
     if digest in _GEOMETRY:
         _GEOMETRY.move_to_end(digest)
     else:
-        _GEOMETRY[digest] = {"sides": {}, "contacts": {}, "surfaces": {}, "bases": {}}
+        _GEOMETRY[digest] = {"sides": {}, "contacts": {}, "surfaces": {}, "bases": {}, "films": {}}
         while len(_GEOMETRY) > _GEOMETRY_ENTRIES:
             _GEOMETRY.popitem(last=False)
     return _GEOMETRY[digest]
@@ -124,15 +126,14 @@ class Network:
             for grid, first in zip(cells.grids, cells.first):
                 a, b, g = grid.links
                 fixed.add(first + a, first + b, k * g)
-            fixed.add(*fused_links(self.sides[name]))
+            fixed.add(*fused_links(self.sides[name], k))
         for contact in self.contacts:
             if not contact.joint.sliding:
                 fixed.add(*contact.links(0))
         self.fixed = laplacian(layout.n_nodes, fixed)
         self._surface_cache: dict[tuple[str, int], tuple[np.ndarray, np.ndarray]] = cache["surfaces"]
-        # this network's own: a film resistance goes with the conductivities, which the shared
-        # geometry cache does not key
-        self._film_cache: dict[str, float] = {}
+        # a film resistance goes with its part's conductivity: kept under both
+        self._film_cache: dict[tuple[str, float], float] = cache["films"]
 
     # ------------------------------------------------------------------ structure
     def _check_joints(self) -> None:
@@ -336,9 +337,10 @@ class Network:
         over ``k`` to an end face.  :func:`~feedtherm.models.interface.film_coefficient` puts it
         in series with the surface's coefficient.
         """
-        if name not in self._film_cache:
-            self._film_cache[name] = self._film_resistance(name)
-        return self._film_cache[name]
+        key = (name, self._material(self.system.surfaces[name].part).conductivity)
+        if key not in self._film_cache:
+            self._film_cache[key] = self._film_resistance(name)
+        return self._film_cache[key]
 
     def _film_resistance(self, name: str) -> float:
         surface = self.system.surfaces[name]
@@ -347,7 +349,8 @@ class Network:
             total = weights.sum()
             # numpy's own sum, not a BLAS dot product: the same digits whatever the threads (a study's
             # workers run single-threaded, its serial run may not)
-            return float(np.sum(weights * self.sides[surface.part].resistance) / total) if total > 0.0 else 0.0
+            resistance = self.sides[surface.part].distance / self._material(surface.part).conductivity
+            return float(np.sum(weights * resistance) / total) if total > 0.0 else 0.0
         body = self.layout.bodies[surface.part]
         _, areas, resistances = self._body_patches(surface, body, self._body_along(surface, body, 0,
                                                                                    self.layout.positions[0]))

@@ -56,12 +56,14 @@ def part_contains(part: Part, points: np.ndarray) -> np.ndarray:
 
 @dataclass
 class Side:
-    """A cell part's face samples, each with its own cell and specific resistance d/k [m²K/W]."""
+    """A cell part's face samples, each with its own cell and the distance d [m] from the cell's
+    node to the face (its specific resistance is d/k: the conductivity is the model's own, as
+    the sides are kept with the geometry)."""
 
     cells: PartCells
     samples: Samples
     nodes: np.ndarray
-    resistance: np.ndarray
+    distance: np.ndarray
     fused_to: np.ndarray  # primitive of the same part just outside the sample (-1: none)
 
     @property
@@ -74,11 +76,12 @@ def side(cells: PartCells, cell_size: float) -> Side:
     nodes = cells.locate(s.inside(), s.primitive)
     d = cells.distance(nodes, s.primitive, s.points, s.normals)
     fused = cells.primitive_of(s.outside())
-    return Side(cells, s, nodes, d / cells.conductivity, fused)
+    return Side(cells, s, nodes, d, fused)
 
 
-def fused_links(sd: Side) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Conduction between the cells of a part's fused primitives (each face counted once)."""
+def fused_links(sd: Side, conductivity: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Conduction between the cells of a part's fused primitives (each face counted once), the
+    part's conductivity ``conductivity`` [W/(m·K)]."""
     s, cells = sd.samples, sd.cells
     sel = (sd.fused_to >= 0) & (s.primitive < sd.fused_to)
     if not sel.any():
@@ -86,8 +89,8 @@ def fused_links(sd: Side) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     q = s.outside()[sel]
     other = sd.fused_to[sel]
     nb = cells.locate(q, other)
-    rb = cells.distance(nb, other, s.points[sel], s.normals[sel]) / cells.conductivity
-    return aggregate(sd.nodes[sel], nb, s.areas[sel], sd.resistance[sel], rb, 0.0)
+    rb = cells.distance(nb, other, s.points[sel], s.normals[sel]) / conductivity
+    return aggregate(sd.nodes[sel], nb, s.areas[sel], sd.distance[sel] / conductivity, rb, 0.0)
 
 
 def aggregate(na, nb, area, ra, rb, r_contact: float):
@@ -99,15 +102,28 @@ def aggregate(na, nb, area, ra, rb, r_contact: float):
 def pair_sums(na, nb, area, ra, rb):
     """Per node pair: the nodes, the contact area [m²] and its area-weighted specific
     resistances [m²K/W] on either side (everything of :func:`aggregate` but the contact's own)."""
+    return resistance_sums(pairing(na, nb, area), area, ra, rb)
+
+
+def pairing(na, nb, area) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The node pairs of samples (``na[i]``, ``nb[i]``): each pair's nodes, each sample's pair and
+    each pair's area [m²] — the geometry of :func:`pair_sums`."""
     na, nb = np.asarray(na, int), np.asarray(nb, int)
     if na.size == 0:
-        return na, nb, np.zeros(0), np.zeros(0), np.zeros(0)
+        return na, nb, np.zeros(0, int), np.zeros(0)
     pairs, inverse = np.unique(np.stack([na, nb], axis=1), axis=0, return_inverse=True)
     inverse = inverse.ravel()
-    A = np.bincount(inverse, weights=area)
+    return pairs[:, 0], pairs[:, 1], inverse, np.bincount(inverse, weights=area)
+
+
+def resistance_sums(pairs, area, ra, rb):
+    """:func:`pair_sums` from the :func:`pairing` ``pairs`` of the samples and their specific resistances."""
+    a, b, inverse, A = pairs
+    if a.size == 0:
+        return a, b, np.zeros(0), np.zeros(0), np.zeros(0)
     Ra = np.bincount(inverse, weights=area * ra) / A
     Rb = np.bincount(inverse, weights=area * rb) / A
-    return pairs[:, 0], pairs[:, 1], A, Ra, Rb
+    return a, b, A, Ra, Rb
 
 
 def spread_along(edges: np.ndarray, x: np.ndarray, extent: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -140,11 +156,12 @@ class JointContact:
         a, b = joint.between
         self.sampled, self.other = (b, a) if (a in layout.bodies or (b in layout.cells and a not in layout.cells)) else (a, b)
         self.side = sides[self.sampled]
-        self.k_other = conductivity[self.other]
+        self.k_sampled, self.k_other = conductivity[self.sampled], conductivity[self.other]
         self.surface_length = surface_length  # conduction length [m] from an axial body's node to its surface
         parts = layout.system.parts
         self.shift_sign = float(parts[self.sampled].moving) - float(parts[self.other].moving)
-        self._cache: dict[int, dict] = {} if cache is None else cache  # geometry only: no resistance in it
+        # geometry, kept for every model of it: distances, not resistances (the conductivities are each model's)
+        self._cache: dict[int, dict] = {} if cache is None else cache
 
     def key(self, k: int) -> int:
         return k if self.shift_sign != 0.0 else 0
@@ -162,27 +179,27 @@ class JointContact:
         other_part = self.layout.system.parts[self.other]
         hit = part_contains(other_part, q)
         idx, q = free[hit], q[hit]
-        out = {"sampled_nodes": sd.nodes[idx], "areas": s.areas[idx], "sampled_r": sd.resistance[idx]}
+        out = {"sampled_nodes": sd.nodes[idx], "areas": s.areas[idx], "sampled_d": sd.distance[idx]}
         if self.other in self.layout.cells:
             cells = self.layout.cells[self.other]
             prim = cells.primitive_of(q)
             prim = np.where(prim < 0, cells.primitive_of(q, tol=1e-3), prim)
             ok = prim >= 0
             idx, q, prim = idx[ok], q[ok], prim[ok]
-            for key_ in ("sampled_nodes", "areas", "sampled_r"):
+            for key_ in ("sampled_nodes", "areas", "sampled_d"):
                 out[key_] = out[key_][ok]
             nodes = cells.locate(q, prim)
             out["other_nodes"] = nodes
-            out["other_r"] = cells.distance(nodes, prim, s.points[idx], s.normals[idx]) / cells.conductivity
+            out["other_d"] = cells.distance(nodes, prim, s.points[idx], s.normals[idx])
         else:
             body = self.layout.bodies[self.other]
             patch, cell, frac = spread_along(body.edges, q[:, 0], s.extent[idx])
             ring = self._ring(body, q[patch])
             out["sampled_nodes"] = out["sampled_nodes"][patch]
-            out["sampled_r"] = out["sampled_r"][patch]
+            out["sampled_d"] = out["sampled_d"][patch]
             out["areas"] = out["areas"][patch] * frac
             out["other_nodes"] = body.nodes[cell, ring]
-            out["other_r"] = self._body_resistance(body, cell, ring, q[patch], s.normals[idx][patch])
+            out["other_d"] = self._body_distance(body, cell, ring, q[patch], s.normals[idx][patch])
             out["body_cells"] = cell
             out["body_faces"] = _face_labels(-s.normals[idx][patch])
         self._cache[key] = out
@@ -199,15 +216,15 @@ class JointContact:
             return np.zeros(len(q), dtype=int)
         return np.clip(np.searchsorted(body.ring_radii, self._radius(body, q), side="right") - 1, 0, body.n_rings - 1)
 
-    def _body_resistance(self, body: AxialBody, cell, ring, q, normals) -> np.ndarray:
-        """Specific resistance [m²K/W] from the body's node to the contact: radial (ln) or axial."""
-        k = self.k_other
+    def _body_distance(self, body: AxialBody, cell, ring, q, normals) -> np.ndarray:
+        """Conduction length [m] from the body's node to the contact, its specific resistance over
+        the conductivity: radial (``r ln(r/r_c)``) or axial (half the cell)."""
         if not body.cylindrical:
-            return np.full(len(q), self.surface_length[body.part] / k)
+            return np.full(len(q), self.surface_length[body.part])
         rc = 0.5 * (body.ring_radii[1:] + body.ring_radii[:-1])[ring]
         r = self._radius(body, q)
-        radial = r * np.abs(np.log(r / rc)) / k
-        axial = 0.5 * body.lengths[cell] / k
+        radial = r * np.abs(np.log(r / rc))
+        axial = 0.5 * body.lengths[cell]
         return np.where(np.abs(normals[:, 0]) > 0.5, axial, radial)
 
     def covered_faces(self, k: int, faces: set[str]) -> tuple[np.ndarray, np.ndarray]:
@@ -228,10 +245,20 @@ class JointContact:
         if area <= 0.0:
             return self._nearest_link()
         r_eff = self.joint.tcr * area / self.joint.area
-        if "pair_sums" not in c:  # geometry: kept with the contact, the resistance is not
-            c["pair_sums"] = pair_sums(c["sampled_nodes"], c["other_nodes"], c["areas"], c["sampled_r"], c["other_r"])
-        a, b, A, Ra, Rb = c["pair_sums"]
+        a, b, A, Ra, Rb = self._pair_sums(c)
         return a, b, A / (r_eff + Ra + Rb)
+
+    def _pair_sums(self, c: dict):
+        """The contact's :func:`pair_sums` at this model's conductivities: the pairing is kept with
+        the contact (geometry), the sums under the two conductivities they were taken at."""
+        if "pairing" not in c:
+            c["pairing"] = pairing(c["sampled_nodes"], c["other_nodes"], c["areas"])
+            c["sums"] = {}
+        key = (self.k_sampled, self.k_other)
+        if key not in c["sums"]:
+            c["sums"][key] = resistance_sums(c["pairing"], c["areas"], c["sampled_d"] / self.k_sampled,
+                                             c["other_d"] / self.k_other)
+        return c["sums"][key]
 
     def share(self, part: str, k: int) -> tuple[np.ndarray, np.ndarray]:
         """Nodes of ``part`` (a side of this joint) at the contact and their shares of its area."""

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import scipy.sparse as sp
 
@@ -53,15 +55,27 @@ class FastDiscretization(ThermalModel):
     def boundary_basis(self, k: int | None) -> BoundaryBasis:
         """As :meth:`ThermalModel.boundary_basis`, shared by the models of one geometry.
 
-        Calibration and sweeps build a model per run for values that move no face; the bases
-        depend on the geometry (the network's digest) and on where the sources' heat goes
-        (their shares, which the digest leaves out), so they are kept under both.
+        Calibration and sweeps build a model per run for values that move no face; the bases'
+        exposures and heat distributions depend on the geometry (the network's digest) and on
+        where the sources' heat goes (their shares, which the digest leaves out), so they are
+        kept under both.  Their film resistances go with the conductivities: a model whose
+        differ takes the kept basis with its own.
         """
-        bases = self.network.geometry["bases"]
-        key = (k, self._source_shares)
-        if key not in bases:
-            bases[key] = super().boundary_basis(k)
-        return bases[key]
+        own = self.__dict__.setdefault("_own_bases", {})
+        if k not in own:
+            bases = self.network.geometry["bases"]
+            key = (k, self._source_shares)
+            if key not in bases:
+                bases[key] = super().boundary_basis(k)
+            kept, film = bases[key], self._film()
+            same = film is None if kept.film is None else film is not None and np.array_equal(kept.film, film)
+            own[k] = kept if same else replace(kept, film=film)
+        return own[k]
+
+    def _film(self) -> np.ndarray | None:
+        """Each surface's film resistance (:meth:`surface_film_resistance`), None where all are 0."""
+        film = np.array([self.surface_film_resistance(name) for name in self.system.surfaces], dtype=float)
+        return film if film.any() else None
 
     # -------------------------------------------------------------- probes
     def _probes(self) -> None:
