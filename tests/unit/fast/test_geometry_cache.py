@@ -4,7 +4,7 @@ operators it builds equal those of a build from scratch, and a moved face is not
 import numpy as np
 import pytest
 
-from feedtherm.models.fast import assemble
+from feedtherm.models.fast import assemble, contacts
 from feedtherm.models.options import ModelOptions
 from feedtherm.simulate import discretize
 from feedtherm.system.variants import with_values
@@ -114,3 +114,16 @@ def test_the_cycle_average_is_the_positions_conductances_averaged(paper):
     assert len(model.positions) > 2 and abs(assembled - by_positions).max() <= 1e-13 * abs(by_positions).max()
     # the sliding contacts move with the nut: the average is none of the positions' own
     assert abs(assembled - model.conductance(0)).max() > 1e-3 * abs(by_positions).max()
+
+
+def test_a_contact_keeps_the_sums_of_its_latest_conductivities_only(paper, empty_cache):
+    """An uncertainty study draws a conductivity per sample: the kept sums stay bounded, and a
+    conductivity met again after it was dropped gives the same operators."""
+    first = operators(with_values(paper, {"materials.q345b.conductivity": 40.0}).system)[0]
+    for k in (41.0, 42.0, 43.0, 44.0, 45.0):
+        operators(with_values(paper, {"materials.q345b.conductivity": k}).system)
+    (cache,) = assemble._GEOMETRY.values()
+    kept = [len(c["sums"]) for contacts in cache["contacts"].values() for c in contacts.values() if "sums" in c]
+    assert kept and max(kept) == contacts.KEPT_CONDUCTIVITIES
+    again = operators(with_values(paper, {"materials.q345b.conductivity": 40.0}).system)[0]
+    np.testing.assert_array_equal(first, again)

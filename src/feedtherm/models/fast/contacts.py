@@ -146,6 +146,10 @@ def spread_along(edges: np.ndarray, x: np.ndarray, extent: np.ndarray) -> tuple[
     return np.concatenate(patches), np.concatenate(cells), np.concatenate(fractions)
 
 
+#: How many pairs of conductivities a contact keeps its resistance sums for (the latest ones).
+KEPT_CONDUCTIVITIES = 4
+
+
 class JointContact:
     """The contact of one joint, sampled on one side; the other side a cell part or an axial body."""
 
@@ -254,11 +258,13 @@ class JointContact:
         if "pairing" not in c:
             c["pairing"] = pairing(c["sampled_nodes"], c["other_nodes"], c["areas"])
             c["sums"] = {}
-        key = (self.k_sampled, self.k_other)
-        if key not in c["sums"]:
-            c["sums"][key] = resistance_sums(c["pairing"], c["areas"], c["sampled_d"] / self.k_sampled,
-                                             c["other_d"] / self.k_other)
-        return c["sums"][key]
+        sums, key = c["sums"], (self.k_sampled, self.k_other)
+        if key not in sums:
+            if len(sums) >= KEPT_CONDUCTIVITIES:  # an uncertainty study draws a conductivity per sample
+                del sums[next(iter(sums))]
+            sums[key] = resistance_sums(c["pairing"], c["areas"], c["sampled_d"] / self.k_sampled,
+                                        c["other_d"] / self.k_other)
+        return sums[key]
 
     def share(self, part: str, k: int) -> tuple[np.ndarray, np.ndarray]:
         """Nodes of ``part`` (a side of this joint) at the contact and their shares of its area."""
