@@ -55,7 +55,7 @@ def test_a_joints_area_and_a_materials_numbers_reuse_the_geometry_and_give_the_f
             + [model.averaged_conductance().toarray(), model.capacity, averaged.film, averaged.exposure.toarray(),
                model.boundary_basis(5).film, model.boundary_basis(5).exposure.toarray()]
 
-    reused_model, reused = built(changed)
+    _, reused = built(changed)
     assert len(assemble._GEOMETRY) == before  # no face moved: the same entry
     assemble._GEOMETRY.clear()
     _, fresh = built(changed)
@@ -123,7 +123,7 @@ def test_a_contact_keeps_the_sums_of_its_latest_conductivities_only(paper, empty
     for k in (41.0, 42.0, 43.0, 44.0, 45.0):
         operators(with_values(paper, {"materials.q345b.conductivity": k}).system)
     (cache,) = assemble._GEOMETRY.values()
-    kept = [len(c["sums"]) for contacts in cache["contacts"].values() for c in contacts.values() if "sums" in c]
+    kept = [len(c["sums"]) for by_position in cache["contacts"].values() for c in by_position.values() if "sums" in c]
     assert kept and max(kept) == contacts.KEPT_CONDUCTIVITIES
     again = operators(with_values(paper, {"materials.q345b.conductivity": 40.0}).system)[0]
     np.testing.assert_array_equal(first, again)
