@@ -171,7 +171,7 @@ def test_the_checks_reduced_operators_are_the_points_operators_projected(fem):
     """The steady check weighs projected terms (``VᵀA(θ)V`` as an affine sum) where projecting each
     candidate's operator afresh costs a product with the whole mesh: the same matrix, at a point
     that changes a sliding joint (a moving term), a bolted joint, a material and a fixed coefficient."""
-    from feedtherm.models.reduced.basis import _ProjectedSteadyOperator, _steady_operator
+    from feedtherm.models.reduced.basis import TrainingOperators, _ProjectedSteadyOperator, _steady_operator
 
     V = np.linalg.qr(np.random.default_rng(3).standard_normal((fem.n_nodes, 40)))[0]
     values = {p.name: p.value for p in fem.affine_parameters()}
@@ -181,7 +181,8 @@ def test_the_checks_reduced_operators_are_the_points_operators_projected(fem):
     projected = _ProjectedSteadyOperator(fem, V)
     for at in (point, {}, {"surfaces.base_bottom.coefficient": 4000.0}):
         direct = V.T @ (_steady_operator(fem, at) @ V)
-        assert np.allclose(projected.at(at), direct, rtol=0.0, atol=1e-12 * np.abs(direct).max()), at
+        reduced = projected.at(TrainingOperators(fem, at))
+        assert np.allclose(reduced, direct, rtol=0.0, atol=1e-12 * np.abs(direct).max()), at
 
 
 def test_the_reduced_model_follows_the_fe_model_at_random_points_of_the_declared_ranges(paper, tmp_path, monkeypatch):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
@@ -67,11 +68,12 @@ class FastDiscretization(ThermalModel):
             key = (k, self._source_shares)
             if key not in bases:
                 bases[key] = super().boundary_basis(k)
-            kept, film = bases[key], self._film()
+            kept, film = bases[key], self._film
             same = film is None if kept.film is None else film is not None and np.array_equal(kept.film, film)
             own[k] = kept if same else replace(kept, film=film)
         return own[k]
 
+    @cached_property
     def _film(self) -> np.ndarray | None:
         """Each surface's film resistance (:meth:`surface_film_resistance`), None where all are 0."""
         film = np.array([self.surface_film_resistance(name) for name in self.system.surfaces], dtype=float)

@@ -190,6 +190,10 @@ class TrainingOperators:
             kept[None] = weighted_sum(weights, [model.conductance(k) for k in range(len(model.positions))])
         return kept
 
+    def steady_operator(self) -> sp.csc_matrix:
+        """The cycle-averaged steady operator: :meth:`mean_conductance` and the averaged links."""
+        return (self.mean_conductance() + sp.diags(self.links(None))).tocsc()
+
     def links(self, k: int | None) -> np.ndarray:
         """Node-to-air conductances [W/K] at position k (None: the cycle average)."""
         return self.model.boundary_basis(k).exposure_by_node @ self.coefficients
@@ -475,8 +479,7 @@ def _steady_inputs(model: ThermalModel) -> np.ndarray:
 
 
 def _steady_operator(model: ThermalModel, point: dict[str, float]) -> sp.csc_matrix:
-    ops = TrainingOperators(model, point)
-    return (ops.mean_conductance() + sp.diags(ops.links(None))).tocsc()
+    return TrainingOperators(model, point).steady_operator()
 
 
 def _galerkin(A: sp.spmatrix, V: np.ndarray, inputs_: np.ndarray,
@@ -516,7 +519,7 @@ class _ProjectedSteadyOperator:
     def __init__(self, model: ThermalModel, V: np.ndarray):
         self.model, self.V = model, V
         self.nominal = TrainingOperators(model, {})
-        self._reference = self._project(_steady_operator(model, {}))
+        self._reference = self._project(self.nominal.steady_operator())
         self._terms: dict[str, np.ndarray] = {}
         self._exposures: dict[int, np.ndarray] = {}
 
@@ -525,8 +528,8 @@ class _ProjectedSteadyOperator:
         rows = np.flatnonzero(np.diff(M.indptr))  # VᵀMV = V[rows]ᵀ (M V)[rows]
         return self.V[rows].T @ np.asarray(M[rows] @ self.V)
 
-    def at(self, point: dict[str, float]) -> np.ndarray:
-        ops = TrainingOperators(self.model, point)
+    def at(self, ops: TrainingOperators) -> np.ndarray:
+        """``VᵀA(θ)V`` at the point of ``ops``."""
         reduced = self._reference.copy()
         for name, change in {**ops.moving, **ops.static_changes}.items():
             if name not in self._terms:
@@ -569,8 +572,9 @@ def steady_check(model: ThermalModel, basis: Basis, candidates: tuple[dict[str, 
     projected = _ProjectedSteadyOperator(model, basis.vectors)
     indicators, largest = [], []  # largest: (indicator, candidate, operator, Galerkin answers) of the top ones
     for index, point in enumerate(candidates):
-        A = _steady_operator(model, point)
-        reduced, residual = _galerkin(A, basis.vectors, inputs_, projected.at(point))
+        ops = TrainingOperators(model, point)
+        A = ops.steady_operator()
+        reduced, residual = _galerkin(A, basis.vectors, inputs_, projected.at(ops))
         indicator = _indicator(inputs_, residual)
         indicators.append(indicator)
         largest = sorted([*largest, (indicator, index, A, reduced)], key=lambda c: -c[0])[:checked]
