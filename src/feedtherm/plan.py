@@ -12,7 +12,7 @@ import math
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from .boundary import PHYSICS, BoundaryConditions, LocalTemperatures, SurfaceMemo, boundary_conditions_at
+from .boundary import PHYSICS, BoundaryConditions, EvaluationMemo, LocalTemperatures, boundary_conditions_at
 from .boundary.heat import motor_overloads
 from .boundary.operating import OperatingPoint, operating_point
 from .constants import RPM_PER_RAD_S
@@ -95,7 +95,7 @@ def coupling_of(system: FeedSystem, overlay: Overlay | None, options: ModelOptio
     if system.temperatures.coupling == "frozen":
         return None
 
-    memo: SurfaceMemo = {}  # one run's surfaces, each as last evaluated
+    memo = EvaluationMemo()  # one run's surfaces and sources, each as last evaluated
 
     def evaluate(base: BoundaryConditions, temperatures: LocalTemperatures) -> BoundaryConditions:
         return boundary_conditions_at(system, base.point, overlay, label=base.condition, temperatures=temperatures,

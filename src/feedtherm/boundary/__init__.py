@@ -17,14 +17,13 @@ depends on temperature is evaluated there instead.
 from __future__ import annotations
 
 import warnings
-from contextlib import contextmanager
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 from ..physics.contact import conductance_contact
 from ..physics.validity import CorrelationRangeWarning
 from ..system.overlay import PHYSICS, Overlay
 from ..system.schema import FeedSystem
-from .heat import SourceHeat, named_failure, source_heats
+from .heat import SourceHeat, SourceMemo, named_failure, source_heats
 from .operating import OperatingPoint, operating_point
 from .overlay import scaled
 from .physical import check_coefficient, check_heat, numeric_errors
@@ -71,6 +70,15 @@ class BoundaryConditions:
 SurfaceMemo = dict[str, tuple[tuple[OperatingPoint, float, bool], SurfaceTransfer, list[str]]]
 
 
+@dataclass
+class EvaluationMemo:
+    """A coupled run's boundary conditions as last evaluated, surface by surface and source by source
+    (``memo`` of :func:`boundary_conditions_at`; one per run, that is per description and overlay)."""
+
+    surfaces: SurfaceMemo = field(default_factory=dict)
+    sources: SourceMemo = field(default_factory=dict)
+
+
 def boundary_conditions(system: FeedSystem, condition: str, overlay: Overlay | None = None) -> BoundaryConditions:
     """Boundary conditions of ``condition`` (a name in the description), with ``overlay`` if given."""
     return boundary_conditions_at(system, operating_point(system, system.conditions[condition]), overlay,
@@ -79,16 +87,18 @@ def boundary_conditions(system: FeedSystem, condition: str, overlay: Overlay | N
 
 def boundary_conditions_at(
     system: FeedSystem, point: OperatingPoint, overlay: Overlay | None = None, *, label: str = "",
-    temperatures: LocalTemperatures | None = None, memo: SurfaceMemo | None = None,
+    temperatures: LocalTemperatures | None = None, memo: EvaluationMemo | None = None,
 ) -> BoundaryConditions:
     """Boundary conditions at any operating point (a duty-cycle segment, a standstill, ...).
 
     ``overlay``: printed values to lay over the physics (None: the physics alone).
     ``temperatures``: the surfaces' and sources' own temperatures; None takes them all at the
     frozen temperature (:func:`frozen_surface_temperature`).
-    ``memo``: the surfaces' evaluations of earlier calls for the same ``system`` and overlay
-    (a coupled run's): a surface at the operating point and temperature of its last
-    evaluation takes that evaluation's coefficients and range warnings.
+    ``memo``: the evaluations of earlier calls for the same ``system`` and overlay (a coupled
+    run's): a surface at the operating point and temperature of its last evaluation takes that
+    evaluation's coefficients and range warnings, and a source at the inputs of its last
+    evaluation its heat (:func:`~.heat.source_heats`).  The result is that of an evaluation
+    without the memo.
     """
     if overlay is not None and not isinstance(overlay, Overlay):
         raise TypeError(f"overlay must be a feedtherm.system.overlay.Overlay or None, got {overlay!r}; a mode "
@@ -113,43 +123,52 @@ def frozen_surface_temperature(system: FeedSystem, point: OperatingPoint) -> flo
 
 
 def _physics(system: FeedSystem, point: OperatingPoint, *, with_radiation: bool, caught: list[str] | None = None,
-             temperatures: LocalTemperatures | None = None, memo: SurfaceMemo | None = None):
+             temperatures: LocalTemperatures | None = None, memo: EvaluationMemo | None = None):
     """Physics-mode heats and surface transfer; range warnings go to ``caught``, labelled."""
     sink = [] if caught is None else caught
     frozen = frozen_surface_temperature(system, point)
     local = temperatures or LocalTemperatures()
-    with _collect("sources", sink):
-        heats = source_heats(system, point, local.sources)
+    others = []  # warnings not ours: raised again once the evaluation is done
     surfaces = {}
-    with numeric_errors():  # an overflow raises, for named_failure to name
-        for name in system.surfaces:
-            inputs = (point, local.surfaces.get(name, frozen), with_radiation)
-            kept = None if memo is None else memo.get(name)
-            if kept is not None and kept[0] == inputs:
-                surfaces[name], messages = kept[1], kept[2]
-            else:
-                messages = []
-                with _collect(f"surfaces.{name}", messages), named_failure(f"surfaces.{name}"):
-                    surfaces[name] = surface_transfer(system, name, point, inputs[1], with_radiation=with_radiation)
-                if memo is not None:
-                    memo[name] = (inputs, surfaces[name], messages)
-            sink.extend(message for message in messages if message not in sink)
+    # One record of the warnings for the whole evaluation (a record per surface cost a tenth of it);
+    # each surface's share of it is labelled with the surface's name.
+    with warnings.catch_warnings(record=True) as records:
+        warnings.simplefilter("always", CorrelationRangeWarning)
+        heats = source_heats(system, point, local.sources, memo=None if memo is None else memo.sources,
+                             records=None if memo is None else records)
+        sink.extend(message for message in _labelled("sources", records, others) if message not in sink)
+        del records[:]
+        with numeric_errors():  # an overflow raises, for named_failure to name
+            for name in system.surfaces:
+                inputs = (point, local.surfaces.get(name, frozen), with_radiation)
+                kept = None if memo is None else memo.surfaces.get(name)
+                if kept is not None and kept[0] == inputs:
+                    surfaces[name], messages = kept[1], kept[2]
+                else:
+                    start = len(records)
+                    with named_failure(f"surfaces.{name}"):
+                        surfaces[name] = surface_transfer(system, name, point, inputs[1], with_radiation=with_radiation)
+                    messages = _labelled(f"surfaces.{name}", records[start:], others)
+                    if memo is not None:
+                        memo.surfaces[name] = (inputs, surfaces[name], messages)
+                sink.extend(message for message in messages if message not in sink)
+    for record in others:  # not ours to swallow
+        warnings.warn_explicit(record.message, record.category, record.filename, record.lineno)
     return heats, surfaces
 
 
-@contextmanager
-def _collect(label: str, sink: list[str]):
-    """Record correlation-range warnings raised inside as ``"<label>: <message>"``."""
-    with warnings.catch_warnings(record=True) as records:
-        warnings.simplefilter("always", CorrelationRangeWarning)
-        yield
+def _labelled(label: str, records: list, others: list) -> list[str]:
+    """The correlation-range warnings among ``records`` as ``"<label>: <message>"``, each once; any
+    other warning goes to ``others``."""
+    messages = []
     for record in records:
         if issubclass(record.category, CorrelationRangeWarning):
             message = f"{label}: {record.message}"
-            if message not in sink:
-                sink.append(message)
-        else:  # not ours to swallow
-            warnings.warn_explicit(record.message, record.category, record.filename, record.lineno)
+            if message not in messages:
+                messages.append(message)
+        else:
+            others.append(record)
+    return messages
 
 
 def _overlaid(system: FeedSystem, overlay: Overlay, heats, surfaces):
@@ -178,6 +197,7 @@ def _overlaid(system: FeedSystem, overlay: Overlay, heats, surfaces):
 
 __all__ = [
     "BoundaryConditions",
+    "EvaluationMemo",
     "JointConductance",
     "LocalTemperatures",
     "PHYSICS",

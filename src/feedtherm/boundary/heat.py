@@ -10,6 +10,7 @@ import math
 from collections.abc import Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from functools import partial
 
 from ..errors import ModelError
 from ..physics import (
@@ -100,20 +101,35 @@ def _sign(x: float) -> float:
     return math.copysign(1.0, x) if x != 0.0 else 0.0
 
 
+#: A coupled run's sources, each as last evaluated (:func:`source_heats`): by source name, the
+#: inputs it was evaluated at, its heat, the torques it put on the motors' shafts and the warnings
+#: it raised.
+SourceMemo = dict[str, tuple[tuple, SourceHeat, tuple[tuple[str, float], ...], list]]
+
+
 def source_heats(system: FeedSystem, point: OperatingPoint,
-                 temperatures: Mapping[str, float] | None = None) -> dict[str, SourceHeat]:
+                 temperatures: Mapping[str, float] | None = None, *,
+                 memo: SourceMemo | None = None, records: list | None = None) -> dict[str, SourceHeat]:
     """Heat of every declared source at ``point`` (physics mode), keyed by source name.
 
     ``temperatures`` [K]: each source's own temperature (where its heat enters), at which its
     lubricant's viscosity and its motor winding's resistance are taken; a source left out is
     taken at the frozen temperature of the CHTCs, ambient + ``convection_delta_t``.
+
+    ``memo``, with ``records`` (the list a ``warnings.catch_warnings(record=True)`` around the
+    call fills): the sources of the earlier calls for the same ``system``.  A source whose inputs
+    are those of its last evaluation (the operating point, its own temperature, a screw's axial
+    load, a motor's shaft torque) takes that evaluation's heat, torques and warnings (added to
+    ``records``) without recomputing them; the heats are those of an evaluation without it.
     """
+    if (memo is None) != (records is None):
+        raise TypeError("source_heats: memo and records go together")
     with numeric_errors():  # once: per source, it would cost a quarter of the evaluation
-        return _source_heats(system, point, temperatures)
+        return _source_heats(system, point, temperatures, memo, records)
 
 
-def _source_heats(system: FeedSystem, point: OperatingPoint,
-                  temperatures: Mapping[str, float] | None) -> dict[str, SourceHeat]:
+def _source_heats(system: FeedSystem, point: OperatingPoint, temperatures: Mapping[str, float] | None,
+                  memo: SourceMemo | None = None, records: list | None = None) -> dict[str, SourceHeat]:
     sources = system.sources
     heats: dict[str, SourceHeat] = {}
     # torque each motor must deliver on its shaft, accumulated from the friction elements
@@ -132,42 +148,62 @@ def _source_heats(system: FeedSystem, point: OperatingPoint,
         return (f"the ambient {point.ambient - 273.15:.4g} degC plus temperatures.convection_delta_t "
                 f"{system.temperatures.convection_delta_t:.4g} K")
 
+    def evaluate(name: str, inputs: tuple, compute) -> SourceHeat:
+        """Source ``name``'s heat from ``compute()`` (its heat and its shaft torques), or from the memo
+        when ``inputs`` are those of its last evaluation; its torques added to the shafts in order."""
+        kept = None if memo is None else memo.get(name)
+        if kept is not None and kept[0] == inputs:
+            heat, torques = kept[1], kept[2]
+            records.extend(kept[3])
+        else:
+            start = 0 if records is None else len(records)
+            with named_failure(f"sources.{name}"):
+                heat, torques = compute()
+            if memo is not None:
+                memo[name] = (inputs, heat, torques, records[start:])
+        for shaft, torque in torques:
+            shaft_torque[shaft] += torque
+        heats[name] = heat
+        return heat
+
     for name, src in sources.items():
         if isinstance(src, GuidewaySource):
-            with named_failure(f"sources.{name}"):
-                force = guideways.friction_force_guideway(
-                    src.friction_coefficient, src.moving_mass * GRAVITY + src.external_load,
-                    src.seal_drag_per_carriage, src.carriages,
-                )
-                axial_force += force
-                heats[name] = SourceHeat(
-                    name, guideways.heat_guideway(force, point.table_speed), dict(src.into),
-                    0.0, {"friction_force_N": force, "table_speed_m_per_s": point.table_speed},
-                )
+            heat = evaluate(name, (point,), partial(_guideway, name, src, point))
+            axial_force += heat.details["friction_force_N"]
     for name, src in sources.items():
-        with named_failure(f"sources.{name}"):
-            if isinstance(src, SlidingScrewSource):
-                if src.grease is not None:
-                    check_viscosity(f"sources.{name}.grease", src.grease.viscosity_at(temperature(name)),
-                                    temperature(name), why(name))
-                heats[name] = _sliding_screw(name, src, point, axial_force, shaft_torque, temperature(name))
-            elif isinstance(src, BallScrewSource):
-                heats[name] = _ball_screw(name, src, point, axial_force, shaft_torque)
-            elif isinstance(src, BearingSource):
-                if src.lubricant is not None:
-                    check_viscosity(f"sources.{name}.lubricant", src.lubricant.viscosity_at(temperature(name)),
-                                    temperature(name), why(name))
-                heats[name] = _bearing(name, src, point, shaft_torque, temperature(name))
-            elif isinstance(src, TorqueSource):
-                heats[name] = _torque(name, src, point, axial_force, shaft_torque)
-            elif isinstance(src, FixedSource):
-                heats[name] = SourceHeat(name, src.power, dict(src.into), 0.0)
+        T = temperature(name)
+        if isinstance(src, SlidingScrewSource):
+            evaluate(name, (point, T, axial_force), partial(_sliding_screw, name, src, point, axial_force, T, why))
+        elif isinstance(src, BallScrewSource):
+            evaluate(name, (point, axial_force), partial(_ball_screw, name, src, point, axial_force))
+        elif isinstance(src, BearingSource):
+            evaluate(name, (point, T), partial(_bearing, name, src, point, T, why))
+        elif isinstance(src, TorqueSource):
+            evaluate(name, (point, axial_force), partial(_torque, name, src, point, axial_force))
+        elif isinstance(src, FixedSource):
+            evaluate(name, (), partial(_fixed, name, src))
     for name, src in sources.items():
         if isinstance(src, MotorSource):
-            with named_failure(f"sources.{name}"):
-                heats[name] = _motor(name, src, point, shaft_torque[src.shaft], temperature(name))
+            load = shaft_torque[src.shaft]
+            T = temperature(name)
+            evaluate(name, (point, T, load), partial(_motor, name, src, point, load, T))
     # a source's heat_factor scales its heat alone: the torques it put on its shaft stay
     return {name: _scaled(heats[name], sources[name].heat_factor) for name in sources}  # declaration order
+
+
+# Each source's heat, and the torques [N m] it puts on the motors' shafts (:func:`_source_heats`).
+
+def _guideway(name, src: GuidewaySource, point) -> tuple[SourceHeat, tuple]:
+    force = guideways.friction_force_guideway(
+        src.friction_coefficient, src.moving_mass * GRAVITY + src.external_load,
+        src.seal_drag_per_carriage, src.carriages,
+    )
+    return SourceHeat(name, guideways.heat_guideway(force, point.table_speed), dict(src.into), 0.0,
+                      {"friction_force_N": force, "table_speed_m_per_s": point.table_speed}), ()
+
+
+def _fixed(name, src: FixedSource) -> tuple[SourceHeat, tuple]:
+    return SourceHeat(name, src.power, dict(src.into), 0.0), ()
 
 
 def _scaled(heat: SourceHeat, factor: float) -> SourceHeat:
@@ -177,7 +213,10 @@ def _scaled(heat: SourceHeat, factor: float) -> SourceHeat:
                       {**heat.details, "heat_factor": factor})
 
 
-def _sliding_screw(name, src: SlidingScrewSource, point, axial_force, shaft_torque, temperature) -> SourceHeat:
+def _sliding_screw(name, src: SlidingScrewSource, point, axial_force, temperature, why) -> tuple[SourceHeat, tuple]:
+    """``why(name)``: why the source is at ``temperature`` (the grease's viscosity check says it)."""
+    if src.grease is not None:
+        check_viscosity(f"sources.{name}.grease", src.grease.viscosity_at(temperature), temperature, why(name))
     force = axial_force + src.external_axial_load
     eta = src.grease_viscosity_at(temperature)
     torque = screw_nut.torque_screw_nut_sliding(
@@ -187,17 +226,20 @@ def _sliding_screw(name, src: SlidingScrewSource, point, axial_force, shaft_torq
     )
     # The screw also pushes the table: the ideal torque F*lead/(2 pi) is work, not heat.
     drive = torque.total + torque_screw_drive(force, point.lead)
-    direction = _sign(point.relative_rpm)
-    shaft_torque["screw"] += drive * direction
-    shaft_torque["nut"] -= drive * direction  # friction drags the nut along with the screw
+    on_shafts = _screw_and_nut(drive * _sign(point.relative_rpm))  # friction drags the nut along with the screw
     power = screw_nut.heat_screw_nut(torque.total, point.screw_rpm, point.nut_rpm)
     return SourceHeat(name, power, dict(src.into), point.relative_rpm, {
         "axial_load_N": force, "load_torque_Nm": torque.load, "preload_torque_Nm": torque.preload,
         "grease_viscosity_Pa_s": eta, "grease_torque_Nm": torque.grease, "friction_torque_Nm": torque.total,
-    })
+    }), on_shafts
 
 
-def _ball_screw(name, src: BallScrewSource, point, axial_force, shaft_torque) -> SourceHeat:
+def _screw_and_nut(torque: float) -> tuple[tuple[str, float], tuple[str, float]]:
+    """A screw-nut friction torque [N m] on the screw's shaft, and against it on the nut's."""
+    return ("screw", torque), ("nut", -torque)
+
+
+def _ball_screw(name, src: BallScrewSource, point, axial_force) -> tuple[SourceHeat, tuple]:
     force = axial_force + src.external_axial_load
     sets = ball_screw.axial_loads_preloaded_nut(force, src.preload) if src.preload > 0.0 else (force,)
     sliding, hysteresis, rolling = (sum(terms) for terms in zip(
@@ -205,15 +247,13 @@ def _ball_screw(name, src: BallScrewSource, point, axial_force, shaft_torque) ->
     total = screw_nut_rolling.torque_screw_nut_rolling(sliding, hysteresis, rolling)
     # As for the sliding screw: the screw also pushes the table, and the friction drags the nut.
     drive = total + torque_screw_drive(force, point.lead)
-    direction = _sign(point.relative_rpm)
-    shaft_torque["screw"] += drive * direction
-    shaft_torque["nut"] -= drive * direction
+    on_shafts = _screw_and_nut(drive * _sign(point.relative_rpm))
     power = screw_nut.heat_screw_nut(total, point.screw_rpm, point.nut_rpm)
     return SourceHeat(name, power, dict(src.into), point.relative_rpm, {
         "axial_load_N": force, **{f"ball_set_{i + 1}_load_N": load for i, load in enumerate(sets)},
         "differential_sliding_torque_Nm": sliding, "hysteresis_torque_Nm": hysteresis,
         "rolling_resistance_torque_Nm": rolling, "friction_torque_Nm": total,
-    })
+    }), on_shafts
 
 
 def _ball_set_torques(src: BallScrewSource, set_load, point) -> tuple[float, float, float]:
@@ -252,13 +292,16 @@ def _ball_set_torques(src: BallScrewSource, set_load, point) -> tuple[float, flo
     return z * sliding, z * hysteresis, z * rolling
 
 
-def _bearing(name, src: BearingSource, point, shaft_torque, temperature) -> SourceHeat:
+def _bearing(name, src: BearingSource, point, temperature, why) -> tuple[SourceHeat, tuple]:
+    """``why(name)``: why the bearing is at ``temperature`` (its oil's viscosity check says it)."""
+    if src.lubricant is not None:
+        check_viscosity(f"sources.{name}.lubricant", src.lubricant.viscosity_at(temperature), temperature, why(name))
     n = point.shaft_rpm(src.shaft)
     nu = src.viscosity_at(temperature)
     if src.friction_model == "skf":
-        return _bearing_skf(name, src, n, nu, shaft_torque)
+        return _bearing_skf(name, src, n, nu)
     if src.friction_model == "constant":
-        return _bearing_constant(name, src, n, shaft_torque)
+        return _bearing_constant(name, src, n)
     p0 = src.equivalent_static_load or max(src.axial_load, src.radial_load)
     if src.bearing_type == "angular_contact":
         f1 = bearings.f1_angular_contact_Palmgren(p0, src.static_load_rating)
@@ -268,25 +311,23 @@ def _bearing(name, src: BearingSource, point, shaft_torque, temperature) -> Sour
         f1 = bearings.f1_deep_groove_Palmgren(p0, src.static_load_rating, z=z)
         p1 = bearings.P1_deep_groove_Palmgren(src.axial_load, src.radial_load)
     torque = bearings.torque_bearing_Palmgren(f1, p1, src.dm, src.f0, nu, n)
-    shaft_torque[src.shaft] += torque.total * _sign(n)
     return SourceHeat(name, bearings.heat_bearing(torque.total, n), dict(src.into), n, {
         "lubricant_viscosity_m2_per_s": nu, "f1": f1, "P1_N": p1, "load_torque_Nm": torque.load,
         "viscous_torque_Nm": torque.viscous, "friction_torque_Nm": torque.total,
-    })
+    }), ((src.shaft, torque.total * _sign(n)),)
 
 
-def _bearing_constant(name, src: BearingSource, n, shaft_torque) -> SourceHeat:
+def _bearing_constant(name, src: BearingSource, n) -> tuple[SourceHeat, tuple]:
     """Constant coefficient of friction: each of the set's bearings at P = F_a + F_r/k, the set's torque their sum."""
     k = src.bearings_in_set
     load = src.axial_load + src.radial_load / k
     total = k * bearings.torque_bearing_constant_friction(src.friction_coefficient, load, src.bore_diameter)
-    shaft_torque[src.shaft] += total * _sign(n)
     return SourceHeat(name, bearings.heat_bearing(total, n), dict(src.into), n, {
         "bearings_in_set": k, "equivalent_load_N": load, "friction_torque_Nm": total,
-    })
+    }), ((src.shaft, total * _sign(n)),)
 
 
-def _bearing_skf(name, src: BearingSource, n, nu, shaft_torque) -> SourceHeat:
+def _bearing_skf(name, src: BearingSource, n, nu) -> tuple[SourceHeat, tuple]:
     """SKF model: each of the set's identical bearings on its share of the radial load and
     static rating, with the declared axial load; the set's torque is their sum."""
     k = src.bearings_in_set
@@ -310,26 +351,24 @@ def _bearing_skf(name, src: BearingSource, n, nu, shaft_torque) -> SourceHeat:
                                                     src.seals_per_bearing, full_value=src.seal == "RSL")
     one = bearings_skf.torque_bearing_SKF(rolling, bearings_skf.phi_ish(n, dm, nu), phi_rs, sliding, seal, src.drag_torque)
     total = k * one.total
-    shaft_torque[src.shaft] += total * _sign(n)
     return SourceHeat(name, bearings.heat_bearing(total, n), dict(src.into), n, {
         "lubricant_viscosity_m2_per_s": nu, "bearings_in_set": k, "rolling_torque_Nm": k * one.rolling,
         "phi_ish": one.phi_ish, "phi_rs": one.phi_rs, "mu_sl": mu, "sliding_torque_Nm": k * one.sliding,
         "seal_torque_Nm": k * one.seal, "drag_torque_Nm": k * one.drag, "friction_torque_Nm": total,
-    })
+    }), ((src.shaft, total * _sign(n)),)
 
 
-def _torque(name, src: TorqueSource, point, axial_force, shaft_torque) -> SourceHeat:
+def _torque(name, src: TorqueSource, point, axial_force) -> tuple[SourceHeat, tuple]:
     n = point.shaft_rpm(src.shaft)
     if src.shaft == "relative":  # a screw-nut drag torque: the screw also pushes the table
         drive = src.torque + torque_screw_drive(axial_force, point.lead)
-        shaft_torque["screw"] += drive * _sign(n)
-        shaft_torque["nut"] -= drive * _sign(n)
+        on_shafts = _screw_and_nut(drive * _sign(n))
     else:
-        shaft_torque[src.shaft] += src.torque * _sign(n)
-    return SourceHeat(name, heat_friction(src.torque, n), dict(src.into), n, {"friction_torque_Nm": src.torque})
+        on_shafts = ((src.shaft, src.torque * _sign(n)),)
+    return SourceHeat(name, heat_friction(src.torque, n), dict(src.into), n, {"friction_torque_Nm": src.torque}), on_shafts
 
 
-def _motor(name, src: MotorSource, point, load_torque, temperature) -> SourceHeat:
+def _motor(name, src: MotorSource, point, load_torque, temperature) -> tuple[SourceHeat, tuple]:
     n = point.shaft_rpm(src.shaft)
     torque = load_torque + src.extra_torque * _sign(n)
     output = torque * n * 2.0 * math.pi / 60.0  # > 0 driving, < 0 braking (generating)
@@ -339,7 +378,7 @@ def _motor(name, src: MotorSource, point, load_torque, temperature) -> SourceHea
         if isinstance(src.losses, DatasheetMotorLosses):
             details["continuous_current_A"] = src.continuous_torque / src.losses.torque_constant
     if src.shaft == "nut" and point.nut_motor_off:  # the brake holds the nut: no current
-        return SourceHeat(name, 0.0, dict(src.into), n, {**details, "held_by_brake": True})
+        return SourceHeat(name, 0.0, dict(src.into), n, {**details, "held_by_brake": True}), ()
     if src.losses is not None:
         # Copper loss from the torque, no-load loss from the speed, driving or braking alike; a
         # braking motor's shaft power goes back to the amplifier's DC bus, not into the motor.
@@ -352,9 +391,9 @@ def _motor(name, src: MotorSource, point, load_torque, temperature) -> SourceHea
             copper = servo_motor.heat_motor_copper_rated(torque, losses.rated_torque, losses.rated_copper_loss)
         no_load = servo_motor.heat_motor_no_load(n, losses.friction_torque, losses.viscous_damping)
         details.update(copper_loss_W=copper, no_load_loss_W=no_load)
-        return SourceHeat(name, copper + no_load, dict(src.into), n, details)
+        return SourceHeat(name, copper + no_load, dict(src.into), n, details), ()
     if output >= 0.0:
         loss = motors.heat_motor(torque, n, src.efficiency)
     else:
         loss = motors.heat_motor_braking(torque, n, src.efficiency)
-    return SourceHeat(name, loss, dict(src.into), n, details)
+    return SourceHeat(name, loss, dict(src.into), n, details), ()

@@ -10,7 +10,10 @@ than :data:`REFRESH_SHARE` of the tolerance since their last evaluation; the oth
 the temperature they were evaluated at
 (:meth:`~feedtherm.boundary.temperatures.LocalTemperatures.lagging`), and a surface whose
 temperature and operating point are those of its last evaluation keeps that evaluation's
-coefficients without recomputing them.  Each reading's lag stays bounded by the tolerance;
+coefficients without recomputing them; so does a source whose inputs are those of its last
+evaluation (its temperature and, for a motor, its shaft's torque: a bearing warming by the
+tolerance recomputes that bearing and its shaft's motor, not the other five of the paper
+bench's sources).  Each reading's lag stays bounded by the tolerance;
 one motor warming by the tolerance no longer recomputes the other twenty surfaces (in
 `compensate`, one to five of the paper bench's 28 readings move by the tolerance between two
 re-evaluations, and the surfaces were two thirds of the evaluation's cost).  Steady states

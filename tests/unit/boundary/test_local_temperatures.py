@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import pytest
 
-from feedtherm.boundary import LocalTemperatures, boundary_conditions_at, operating_point, surface_transfer
+from feedtherm.boundary import EvaluationMemo, LocalTemperatures, boundary_conditions_at, operating_point, surface_transfer
 from feedtherm.boundary.heat import source_heats
 from feedtherm.errors import DescriptionError
 from feedtherm.system.load import parse_toml, read_text, validate_data
@@ -127,7 +127,7 @@ def test_a_memo_recomputes_only_the_surfaces_whose_temperature_or_point_changed(
     point = point_of(system)
     reading = {name: 300.0 + 0.1 * i for i, name in enumerate(system.surfaces)}
     plain = boundary_conditions_at(system, point, temperatures=LocalTemperatures(surfaces=reading))
-    memo = {}
+    memo = EvaluationMemo()
     first = boundary_conditions_at(system, point, temperatures=LocalTemperatures(surfaces=reading), memo=memo)
     computed = surface_evaluations
     computed.clear()  # what the second evaluation computes
@@ -144,3 +144,43 @@ def test_a_memo_recomputes_only_the_surfaces_whose_temperature_or_point_changed(
     computed.clear()
     boundary_conditions_at(system, point_of(system, "I"), temperatures=LocalTemperatures(surfaces=moved), memo=memo)
     assert sorted(computed) == sorted(system.surfaces)
+
+
+@pytest.fixture
+def source_evaluations(monkeypatch):
+    """The names of the sources whose heat the boundary conditions compute, in order, from now on."""
+    from feedtherm.boundary import heat
+
+    computed = []
+    for function in ("_guideway", "_sliding_screw", "_bearing", "_motor"):
+        def counted(name, *args, original=getattr(heat, function)):
+            computed.append(name)
+            return original(name, *args)
+        monkeypatch.setattr(heat, function, counted)
+    return computed
+
+
+def test_a_memo_recomputes_only_the_sources_whose_inputs_changed(paper, source_evaluations):
+    system = paper.system
+    point = point_of(system, "I")  # both shafts turn
+    # at 500 K the bearings' oil is thinner than Walther's equation holds for: their heats come with warnings
+    hot = {name: 500.0 for name in system.sources}
+    memo = EvaluationMemo()
+    first = boundary_conditions_at(system, point, temperatures=LocalTemperatures(sources=hot), memo=memo)
+    assert sorted(source_evaluations) == sorted(system.sources)
+    assert any(w.startswith("sources: kinematic_viscosity_Walther") for w in first.warnings)
+    source_evaluations.clear()
+    warmer = dict(hot, rear_bearing=501.0)
+    second = boundary_conditions_at(system, point, temperatures=LocalTemperatures(sources=warmer), memo=memo)
+    # the bearing, and the motor whose shaft it loads; the nut's side and the thread as last evaluated
+    assert source_evaluations == ["rear_bearing", "screw_motor"]
+    assert second.heats["nut_motor"] is first.heats["nut_motor"]
+    assert second.heats["rear_bearing"].power < first.heats["rear_bearing"].power  # thinner oil, less drag
+    # the heats, to the last digit, and the labelled range warnings are those of an evaluation without the memo
+    fresh = boundary_conditions_at(system, point, temperatures=LocalTemperatures(sources=warmer))
+    assert second.heats == fresh.heats
+    assert second.warnings == fresh.warnings
+    # another operating point recomputes every source
+    source_evaluations.clear()
+    boundary_conditions_at(system, point_of(system, "III"), temperatures=LocalTemperatures(sources=warmer), memo=memo)
+    assert sorted(source_evaluations) == sorted(system.sources)
