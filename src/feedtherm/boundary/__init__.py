@@ -130,8 +130,8 @@ def _physics(system: FeedSystem, point: OperatingPoint, *, with_radiation: bool,
     local = temperatures or LocalTemperatures()
     others = []  # warnings not ours: raised again once the evaluation is done
     surfaces = {}
-    # One record of the warnings for the whole evaluation (a record per surface cost a tenth of it);
-    # each surface's share of it is labelled with the surface's name.
+    # One record of the warnings for the whole evaluation, not one per surface and one for the
+    # sources: each surface's share of it is labelled with the surface's name.
     with warnings.catch_warnings(record=True) as records:
         warnings.simplefilter("always", CorrelationRangeWarning)
         heats = source_heats(system, point, local.sources, memo=None if memo is None else memo.sources,

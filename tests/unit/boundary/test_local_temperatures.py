@@ -180,6 +180,9 @@ def test_a_memo_recomputes_only_the_sources_whose_inputs_changed(paper, source_e
     fresh = boundary_conditions_at(system, point, temperatures=LocalTemperatures(sources=warmer))
     assert second.heats == fresh.heats
     assert second.warnings == fresh.warnings
+    # a memo needs the record of the warnings its sources replay
+    with pytest.raises(TypeError, match="memo and records"):
+        source_heats(system, point, warmer, memo={})
     # another operating point recomputes every source
     source_evaluations.clear()
     boundary_conditions_at(system, point_of(system, "III"), temperatures=LocalTemperatures(sources=warmer), memo=memo)
