@@ -95,3 +95,26 @@ def test_greedy_selection_finds_the_informative_sensors_and_refuses_too_many():
     assert result.rms < 1e-12 and result.reduction == pytest.approx(1.0)
     with pytest.raises(FeedthermError, match="K = 5 but there are 4 candidates"):
         greedy_selection(train, validation, 5)
+
+
+def test_the_lag_is_the_first_order_filter_written_out():
+    # by hand: a step from 0 to 1 K at t = 10 s, τ = 10 s, samples every 10 s: a = e^-1,
+    # L = 0, (1 - e^-1) = 0.63212, e^-1·0.63212 + (1 - e^-1) = 0.86466
+    lag = lagged(np.array([0.0, 10.0, 20.0]), np.array([[0.0], [1.0], [1.0]]), 10.0)[:, 0]
+    np.testing.assert_allclose(lag, [0.0, 0.632120558828558, 0.864664716763387], rtol=1e-12)
+    # the recurrence sample by sample, on even stretches (the filter's runs), uneven steps between
+    # them, a step at the end and temperatures of either sign: the same floats, not merely close ones
+    rng = np.random.default_rng(11)
+    times = np.concatenate([np.arange(50) * 10.0, 495.0 + np.cumsum(rng.uniform(1.0, 20.0, 30)),
+                            1000.0 + np.arange(40) * 7.5])
+    times[-1] += 2.0
+    readings = rng.normal(0.0, 50.0, (len(times), 3))
+    for tau in (5.0, 900.0):
+        decay = np.exp(-np.diff(times) / tau)
+        expected = np.empty_like(readings)
+        expected[0] = readings[0]
+        for n in range(1, len(times)):
+            expected[n] = decay[n - 1] * expected[n - 1] + (1.0 - decay[n - 1]) * readings[n]
+        np.testing.assert_array_equal(lagged(times, readings, tau), expected)
+        np.testing.assert_array_equal(lagged(times, readings[:, 1], tau), expected[:, 1])
+    np.testing.assert_array_equal(lagged(np.array([3.0]), np.array([[290.0, 291.0]]), 900.0), [[290.0, 291.0]])

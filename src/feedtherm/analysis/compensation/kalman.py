@@ -160,13 +160,17 @@ class KalmanEstimator:
         x = np.stack([s[0] for s in start])
         P = np.stack([s[1] for s in start])
         out = np.zeros((b, n, self.r))
+        held = None  # (Δt, speeds) of the previous update and its stacked steps: a segment's samples share them
         for j in range(n):
             if j:
                 dt = float(times[j]) - float(times[j - 1])
                 if not dt > 0:
                     raise ValueError(f"readings must come in increasing time, got {times[j]} after {times[j - 1]}")
-                steps = [self._step(dt, screw_rpm[i, j], nut_rpm[i, j]) for i in range(b)]
-                x, P = self._predict(x, P, *(np.stack(part) for part in zip(*steps)), ambient[:, j, None])
+                screw, nut = screw_rpm[:, j], nut_rpm[:, j]
+                if held is None or not (dt == held[0] and np.array_equal(screw, held[1]) and np.array_equal(nut, held[2])):
+                    steps = [self._step(dt, screw[i], nut[i]) for i in range(b)]
+                    held = (dt, screw, nut, tuple(np.stack(part) for part in zip(*steps)))
+                x, P = self._predict(x, P, *held[3], ambient[:, j, None])
             if self.sensors:
                 x, P = self._correct(x, P, readings[:, j, :])
             out[:, j] = x[:, :self.r]

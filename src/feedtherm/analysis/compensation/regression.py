@@ -44,6 +44,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.signal import lfilter
 
 from ...errors import FeedthermError
 
@@ -77,13 +78,22 @@ def ridge_weights(X: np.ndarray, y: np.ndarray, alphas) -> list[np.ndarray]:
 
 
 def lagged(times: np.ndarray, readings: np.ndarray, tau: float) -> np.ndarray:
-    """The first-order lag of each column of ``readings`` (time along axis 0) with time constant ``tau`` [s]."""
+    """The first-order lag of each column of ``readings`` (time along axis 0) with time constant ``tau`` [s].
+
+    ``L_n = a L_{n-1} + (1 - a) T_n``, ``a = exp(-Δt_n/τ)``, ``L_0 = T_0`` (module notes).  Over each
+    run of samples at one spacing the recurrence is a first-order IIR filter, run by
+    ``scipy.signal.lfilter`` (transposed direct form II: each value is ``a·L_{n-1} + (1 − a)·T_n``,
+    the same two products and one sum as the recurrence written out, so the same floats).
+    """
     readings = np.asarray(readings, dtype=float)
     out = np.empty_like(readings)
     out[0] = readings[0]
     decay = np.exp(-np.diff(np.asarray(times, dtype=float)) / tau)
-    for n in range(1, len(readings)):
-        out[n] = decay[n - 1] * out[n - 1] + (1.0 - decay[n - 1]) * readings[n]
+    starts = [0, *(np.flatnonzero(decay[1:] != decay[:-1]) + 1).tolist()] if decay.size else []
+    for start, end in zip(starts, [*starts[1:], decay.size]):
+        a = decay[start]
+        state = (a * out[start])[None]  # the filter's delay before sample start + 1: a·L_start
+        out[start + 1:end + 1] = lfilter([1.0 - a, 0.0], [1.0, -a], readings[start + 1:end + 1], axis=0, zi=state)[0]
     return out
 
 

@@ -62,8 +62,9 @@ def _fit(cube: list[np.ndarray], targets: list[np.ndarray], chosen: list[int], a
 def _best_ridge(train_cube, train_y, val_cube, val_all, trial, alphas) -> tuple[float, float]:
     """(validation RMS [m], α [K²]) of the ridge strength of ``alphas`` with the smallest validation RMS."""
     best = None
+    regressors = [f[:, trial, :].reshape(len(f), -1) for f in val_cube]  # the trial's, once for every α
     for alpha, (w, b) in zip(alphas, _fit(train_cube, train_y, trial, alphas)):
-        pred = np.concatenate([f[:, trial, :].reshape(len(f), -1) @ w + b for f in val_cube])
+        pred = np.concatenate([X @ w + b for X in regressors])
         rms = float(np.sqrt(np.mean((val_all - pred) ** 2)))
         if best is None or rms < best[0]:
             best = (rms, float(alpha))
