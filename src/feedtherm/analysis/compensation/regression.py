@@ -44,7 +44,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.signal import lfilter
 
 from ...errors import FeedthermError
 
@@ -85,6 +84,8 @@ def lagged(times: np.ndarray, readings: np.ndarray, tau: float) -> np.ndarray:
     ``scipy.signal.lfilter`` (transposed direct form II: each value is ``a·L_{n-1} + (1 − a)·T_n``,
     the same two products and one sum as the recurrence written out, so the same floats).
     """
+    from scipy.signal import lfilter  # here: importing scipy.signal takes half a second, and `correct` imports this module
+
     readings = np.asarray(readings, dtype=float)
     out = np.empty_like(readings)
     out[0] = readings[0]
