@@ -81,7 +81,7 @@ def lagged(times: np.ndarray, readings: np.ndarray, tau: float) -> np.ndarray:
 
     ``L_n = a L_{n-1} + (1 - a) T_n``, ``a = exp(-Δt_n/τ)``, ``L_0 = T_0`` (module notes).  Over each
     run of samples at one spacing the recurrence is a first-order IIR filter, run by
-    ``scipy.signal.lfilter`` (transposed direct form II: each value is ``a·L_{n-1} + (1 − a)·T_n``,
+    ``scipy.signal.lfilter`` (in its transposed direct form each value is ``a·L_{n-1} + (1 − a)·T_n``,
     the same two products and one sum as the recurrence written out, so the same floats).
     """
     from scipy.signal import lfilter  # here: importing scipy.signal takes half a second, and `correct` imports this module
