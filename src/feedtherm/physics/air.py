@@ -112,6 +112,8 @@ def film_temperature(T_surface, T_ambient):
     >>> round(film_temperature(303.15, 293.15), 2)
     298.15
     """
+    if type(T_surface) is float and type(T_ambient) is float:  # a boundary condition's call: the same sum, no arrays
+        return (T_surface + T_ambient) / 2.0
     mean = (np.asarray(T_surface, dtype=float) + np.asarray(T_ambient, dtype=float)) / 2.0
     return float(mean) if mean.ndim == 0 else mean
 
@@ -192,6 +194,13 @@ def properties_air(T, p=P_ATM):
     T = _positive_finite("T", T)
     p = _positive_finite("p", p)
     check_range("properties_air (CoolProp Air)", "T [K]", T, T_MIN, T_MAX)
+    return _properties(T, p)
+
+
+@functools.lru_cache(maxsize=64)
+def _properties(T: float, p: float) -> AirProperties:
+    """:func:`properties_air` past its checks, kept: a surface in mixed convection takes the air at
+    its film temperature twice, for the forced and for the natural part."""
     if p == P_TABLE and T_FIRST <= T <= T_LAST:
         rho, cp, mu, k = _tabulated(T)
     else:

@@ -61,7 +61,10 @@ def grashof(L, T_surface, T_ambient, nu, beta, g=G_STANDARD):
     1.2946
     """
     L, nu = _arr(L, "L", positive=True), _arr(nu, "nu", positive=True)
-    dT = np.abs(np.asarray(T_surface, dtype=float) - np.asarray(T_ambient, dtype=float))
+    if type(T_surface) is float and type(T_ambient) is float:  # a boundary condition's call: the same difference
+        dT = abs(T_surface - T_ambient)
+    else:
+        dT = np.abs(np.asarray(T_surface, dtype=float) - np.asarray(T_ambient, dtype=float))
     return _out(g * _arr(beta, "beta", positive=True) * dT * L**3 / nu**2)
 
 

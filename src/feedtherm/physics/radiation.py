@@ -37,6 +37,15 @@ def _validate(emissivity, T_surface, T_ambient):
     return eps, Ts, Ta
 
 
+def _validate_scalars(emissivity: float, T_surface: float, T_ambient: float) -> None:
+    """:func:`_validate` for Python floats, with its messages."""
+    if not (math.isfinite(emissivity) and 0.0 < emissivity <= 1.0):
+        raise ValueError(f"emissivity must lie in (0, 1], got {emissivity!r}")
+    for name, T in (("T_surface", T_surface), ("T_ambient", T_ambient)):
+        if not (math.isfinite(T) and 0.0 < T):
+            raise ValueError(f"{name} must be an absolute temperature in K (> 0)")
+
+
 def _out(a):
     return float(a) if np.ndim(a) == 0 else a
 
@@ -88,6 +97,11 @@ def h_radiation(emissivity, T_surface, T_ambient):
     >>> round(h_radiation(0.8, 300.0, 300.0), 4)
     4.8992
     """
+    if type(emissivity) is float and type(T_surface) is float and type(T_ambient) is float:
+        # a boundary condition's call, checked and computed without arrays: the same products (numpy
+        # squares an array by multiplying it by itself, which Python's ** 2 does not always match)
+        _validate_scalars(emissivity, T_surface, T_ambient)
+        return emissivity * SIGMA * (T_surface * T_surface + T_ambient * T_ambient) * (T_surface + T_ambient)
     eps, Ts, Ta = _validate(emissivity, T_surface, T_ambient)
     return _out(eps * SIGMA * (Ts**2 + Ta**2) * (Ts + Ta))
 

@@ -18,6 +18,7 @@ import pytest
 from feedtherm.physics import convection as cv
 from feedtherm.physics import dimensionless, forced_convection, natural_convection
 from feedtherm.physics.air import properties_air
+from feedtherm.physics.validity import CorrelationRangeWarning
 
 RTOL_HAND = 0.03
 
@@ -133,3 +134,29 @@ def test_convection_all_resolves_and_keeps_the_names_boundary_uses():
     for name in ("h_natural", "h_rotating_cylinder", "h_flat_plate_laminar_average",
                  "h_plate_normal_to_flow", "h_mixed"):
         assert name in cv.__all__
+
+
+def test_calls_with_floats_give_the_arrays_numbers_to_the_last_bit():
+    # the boundary conditions call Grashof, the film temperature and the air's properties with Python
+    # floats, which take paths without arrays (and the air's properties a small cache): the same numbers
+    import numpy as np
+
+    from feedtherm.physics import air as air_module
+    from feedtherm.physics.air import film_temperature
+
+    rng = np.random.default_rng(4)
+    for Ts, Ta, L in zip(rng.uniform(250.0, 450.0, 2000), rng.uniform(250.0, 320.0, 2000), rng.uniform(0.01, 2.0, 2000)):
+        Ts, Ta, L = float(Ts), float(Ta), float(L)
+        film = film_temperature(Ts, Ta)
+        assert type(film) is float and film == film_temperature(np.array([Ts]), np.array([Ta]))[0]
+        air = properties_air(film)
+        assert properties_air(film) is air  # kept
+        air_module._properties.cache_clear()
+        assert properties_air(film) == air  # and what it keeps is what a fresh evaluation gives
+        gr = cv.grashof(L, Ts, Ta, air.kinematic_viscosity, air.expansion_coefficient)
+        assert type(gr) is float
+        assert gr == cv.grashof(L, np.array([Ts]), np.array([Ta]), air.kinematic_viscosity, air.expansion_coefficient)[0]
+    # a kept value still warns outside the range the properties are checked for, at every call
+    for _ in range(2):
+        with pytest.warns(CorrelationRangeWarning, match="properties_air"):
+            properties_air(650.0)

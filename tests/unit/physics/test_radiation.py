@@ -77,3 +77,16 @@ def test_rejects_non_absolute_temperatures(T):
         h_radiation(0.5, T, 293.15)
     with pytest.raises(ValueError):
         heat_flux_radiation(0.5, 293.15, T)
+
+
+def test_a_call_with_floats_gives_the_arrays_numbers_to_the_last_bit():
+    # the boundary conditions call with Python floats, which take a path without arrays: the same
+    # products, T_s·T_s where numpy squares an array (Python's T_s ** 2 differs in the last bit at times)
+    rng = np.random.default_rng(3)
+    for eps, Ts, Ta in zip(rng.uniform(0.01, 1.0, 2000), rng.uniform(250.0, 900.0, 2000), rng.uniform(250.0, 400.0, 2000)):
+        scalar = h_radiation(float(eps), float(Ts), float(Ta))
+        assert type(scalar) is float
+        assert scalar == h_radiation(np.array([eps]), np.array([Ts]), np.array([Ta]))[0]
+    for bad in (float("inf"), float("nan")):
+        with pytest.raises(ValueError, match="T_surface must be an absolute temperature"):
+            h_radiation(0.5, bad, 293.15)
