@@ -77,6 +77,10 @@ class EvaluationMemo:
 
     surfaces: SurfaceMemo = field(default_factory=dict)
     sources: SourceMemo = field(default_factory=dict)
+    #: an overlay's reference condition, by its operating point: its physics' heats and surfaces
+    #: (taken at the frozen temperatures, so the same at every evaluation)
+    reference: dict[OperatingPoint, tuple[dict[str, SourceHeat], dict[str, SurfaceTransfer]]] = field(
+        default_factory=dict)
 
 
 def boundary_conditions(system: FeedSystem, condition: str, overlay: Overlay | None = None) -> BoundaryConditions:
@@ -97,8 +101,9 @@ def boundary_conditions_at(
     ``memo``: the evaluations of earlier calls for the same ``system`` and overlay (a coupled
     run's): a surface at the operating point and temperature of its last evaluation takes that
     evaluation's coefficients and range warnings, and a source at the inputs of its last
-    evaluation its heat (:func:`~.heat.source_heats`).  The result is that of an evaluation
-    without the memo.
+    evaluation its heat (:func:`~.heat.source_heats`); an overlay's reference condition, whose
+    physics is taken at the frozen temperatures, is evaluated once.  The result is that of an
+    evaluation without the memo.
     """
     if overlay is not None and not isinstance(overlay, Overlay):
         raise TypeError(f"overlay must be a feedtherm.system.overlay.Overlay or None, got {overlay!r}; a mode "
@@ -107,7 +112,7 @@ def boundary_conditions_at(
     heats, surfaces = _physics(system, point, with_radiation=overlay is None, caught=caught,
                                temperatures=temperatures, memo=memo)
     if overlay is not None:
-        heats, surfaces = _overlaid(system, overlay, heats, surfaces)
+        heats, surfaces = _overlaid(system, overlay, heats, surfaces, memo)
     for name, heat in heats.items():  # the physics' and an overlay's alike
         check_heat(f"sources.{name}", heat.power, heat.details, system.sources[name].heat_factor)
     for name, transfer in surfaces.items():
@@ -171,9 +176,14 @@ def _labelled(label: str, records: list, others: list) -> list[str]:
     return messages
 
 
-def _overlaid(system: FeedSystem, overlay: Overlay, heats, surfaces):
+def _overlaid(system: FeedSystem, overlay: Overlay, heats, surfaces, memo: EvaluationMemo | None = None):
     reference = operating_point(system, system.conditions[overlay.reference_condition])
-    ref_heats, ref_surfaces = _physics(system, reference, with_radiation=False)
+    kept = None if memo is None else memo.reference.get(reference)
+    if kept is None:
+        kept = _physics(system, reference, with_radiation=False)
+        if memo is not None:
+            memo.reference[reference] = kept
+    ref_heats, ref_surfaces = kept
     printed_heat, printed_chtc = overlay.printed_heats(), overlay.printed_chtcs()
     heats = {
         # the physics ratio cancels a heat_factor, so it multiplies the printed value

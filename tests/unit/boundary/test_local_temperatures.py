@@ -187,3 +187,31 @@ def test_a_memo_recomputes_only_the_sources_whose_inputs_changed(paper, source_e
     source_evaluations.clear()
     boundary_conditions_at(system, point_of(system, "III"), temperatures=LocalTemperatures(sources=warmer), memo=memo)
     assert sorted(source_evaluations) == sorted(system.sources)
+
+
+def test_a_memo_takes_an_overlays_reference_condition_once(paper, monkeypatch):
+    from feedtherm import boundary
+    from feedtherm.plan import with_mode
+
+    loaded = with_mode(paper, "paper")  # the printed values over the physics, scaled by its ratio to condition I
+    system, overlay = loaded.system, loaded.overlay
+    point = point_of(system, "II")
+    evaluated = []
+    physics = boundary._physics
+
+    def counted(system, point, **options):
+        evaluated.append(point)
+        return physics(system, point, **options)
+
+    monkeypatch.setattr(boundary, "_physics", counted)
+    memo = EvaluationMemo()
+    readings = [LocalTemperatures({n: t for n in system.surfaces}, {n: t + 1.0 for n in system.sources})
+                for t in (301.0, 302.0)]
+    first = boundary_conditions_at(system, point, overlay, temperatures=readings[0], memo=memo)
+    second = boundary_conditions_at(system, point, overlay, temperatures=readings[1], memo=memo)
+    reference = point_of(system, overlay.reference_condition)
+    # condition II at each reading, and the reference condition once: its physics is at the frozen temperatures
+    assert evaluated == [point, reference, point]
+    for kept, reading in zip((first, second), readings):
+        fresh = boundary_conditions_at(system, point, overlay, temperatures=reading)
+        assert kept.heats == fresh.heats and kept.surfaces == fresh.surfaces and kept.warnings == fresh.warnings
