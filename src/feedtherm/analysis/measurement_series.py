@@ -29,11 +29,10 @@ from dataclasses import dataclass
 from typing import Collection, Mapping
 
 import numpy as np
-import pint
 
 from ..constants import ELONGATION_PROBE, KELVIN_OFFSET
 from ..errors import DescriptionError
-from ..system.quantities import TEMPERATURE_LIMIT, registry
+from ..system.quantities import TEMPERATURE_LIMIT, pint, registry  # pint as system.quantities imports it
 
 COLUMNS = ["condition", "time [<unit>]", "quantity", "value", "unit"]
 OPTIONAL = "uncertainty"

@@ -17,14 +17,40 @@ from __future__ import annotations
 
 import math
 import re
+import sys
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Annotated
 
-import pint
 from pydantic import BeforeValidator
 
 from ..constants import cache_root
+
+
+def _import_pint():
+    """pint, imported without its support for dask arrays where dask is not imported yet.
+
+    ``pint.compat`` imports ``dask.base`` wherever dask is installed, and dask imports jinja2:
+    85 ms of the 0.48 s every command spends importing (``python -X importtime``), for
+    quantities of dask arrays, which feedtherm never forms.  So pint is imported with dask
+    marked absent in ``sys.modules`` (an import of it fails, ``find_spec`` finds none), and
+    the mark is taken away at once: a later ``import dask`` (a batch on a Dask cluster) imports
+    it as usual.  Where dask is imported already (a Dask worker), pint finds it as it would.
+    """
+    if "pint" in sys.modules or "dask" in sys.modules:
+        import pint
+
+        return pint
+    sys.modules["dask"] = None
+    try:
+        import pint
+    finally:
+        if sys.modules.get("dask", False) is None:
+            del sys.modules["dask"]
+    return pint
+
+
+pint = _import_pint()
 
 _NUMBER_AND_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
 _KELVIN_AT_0C = 273.15

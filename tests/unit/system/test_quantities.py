@@ -105,3 +105,24 @@ def test_limits_accept_the_ends_of_their_ranges():
     assert TypeAdapter(Temperature).validate_python("-150 degC") == pytest.approx(123.15)
     assert TypeAdapter(AngularSpeed).validate_python("-100000 rpm") == pytest.approx(-100000 * 2 * math.pi / 60)
     assert TypeAdapter(PosConductivity).validate_python("5000 W/(m*K)") == 5000.0
+
+
+def test_loading_a_description_imports_pint_without_dask_and_dask_still_imports_after_it():
+    """pint imports dask (and jinja2) wherever dask is installed, 85 ms of every command's start;
+    feedtherm imports it without (system/quantities.py).  In a fresh interpreter: a description
+    loads and its units convert without dask imported, and dask then imports and works."""
+    import subprocess
+    import sys
+
+    script = (
+        "import sys\n"
+        "from feedtherm.system.load import load_system\n"
+        "from feedtherm.system.quantities import to_si\n"
+        "loaded = load_system('paper')\n"
+        "assert to_si('396 rpm', 'rad/s') > 41.4 and to_si('20 degC', 'K') == 293.15\n"
+        "assert 'dask' not in sys.modules and 'jinja2' not in sys.modules, 'dask imported'\n"
+        "import dask, dask.array\n"
+        "assert float(dask.array.ones(4).sum().compute()) == 4.0\n"
+    )
+    result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr[-2000:]
