@@ -116,6 +116,18 @@ def paper_with_equation_models() -> LoadedSystem:
     return validate_data(data, "bundled:paper (the paper's equation loss models)")
 
 
+@pytest.fixture(scope="module", autouse=True)
+def models_built_in_this_module():
+    """The models the registry keeps (models/registry.py, ``build_options``) are the ones this module
+    built: a module's runs of one description share an FE model, as a command's do, and no module
+    gets one that another module, run before it on the same worker, left behind."""
+    from feedtherm.models.registry import forget_built_models
+
+    forget_built_models()
+    yield
+    forget_built_models()
+
+
 @pytest.fixture(scope="session")
 def paper():
     """The paper's bench, loaded once for the whole session (descriptions are frozen)."""

@@ -35,8 +35,18 @@ class ModelEntry:
     #: built once before a batch's runs (:func:`feedtherm.simulate.prepare`): it keeps on disk what a
     #: build makes for the runs that follow (the reduced model's projection)
     prepares: bool = False
+    #: what of the options a build depends on, for a model whose build is worth keeping: the last
+    #: model built is then given again to a build of the same description (the same object) with
+    #: the same of these (:func:`forget_built_models`)
+    build_options: Callable[[ModelOptions], object] | None = None
 
     def build(self, system: FeedSystem, options: ModelOptions) -> ThermalModel:
+        if self.build_options is not None:
+            key = self.build_options(options)
+            kept = _kept.pop(self.name, None)  # dropped before another build: one kept model alive at a time
+            if kept is not None and kept[0] is system and kept[1] == key:
+                _kept[self.name] = kept
+                return kept[2]
         factory = self.factory
         if isinstance(factory, str):  # heavy libraries (gmsh, scikit-fem) load only when used
             module, _, attribute = factory.partition(":")
@@ -44,7 +54,18 @@ class ModelEntry:
         model = factory(system, options)
         if not isinstance(model, ThermalModel):
             raise FeedthermError(f"model {self.name!r}: its factory returned {type(model).__name__}, not a ThermalModel")
+        if self.build_options is not None:
+            _kept[self.name] = (system, key, model)
         return model
+
+
+#: The last model built of each entry with ``build_options``: (description, key, model).
+_kept: dict[str, tuple[FeedSystem, object, ThermalModel]] = {}
+
+
+def forget_built_models() -> None:
+    """Drop the kept models (:attr:`ModelEntry.build_options`), and the memory they hold."""
+    _kept.clear()
 
 
 def _fast(system: FeedSystem, options: ModelOptions) -> ThermalModel:
@@ -88,8 +109,12 @@ def _reduced_inputs(system: FeedSystem, options: ModelOptions) -> dict | None:
 _BUILT_IN = (
     ModelEntry("fast", "thermal network: the screw in axial cells × rings, the other parts in sub-volumes "
                        "(docs/fast-model.md)", _fast),
+    # An FE model's build (mesh, matrices), its contacts at every position and its elastic factor take
+    # 5 s on the coarse mesh and 15 s on the medium one: the runs of one description (a validation's
+    # conditions, a calibration point's) share them, as they share the model's caches
     ModelEntry("fem", "3D finite elements (gmsh + scikit-fem), every part meshed, joints as interface "
-                      "conductances (docs/fem-model.md)", _fem, uses_mesh=True),
+                      "conductances (docs/fem-model.md)", _fem, uses_mesh=True,
+               build_options=lambda options: tuple(_fem_arguments(options).items())),
     ModelEntry("reduced", "the FE model projected onto a moment-matching basis: the same mesh and moving nut, "
                           "a few hundred unknowns (docs/reduced-model.md)", _reduced, uses_mesh=True,
                prepares=True),

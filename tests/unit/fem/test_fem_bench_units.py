@@ -9,7 +9,7 @@ from skfem import MeshTet
 from feedtherm.models.fem.conduction import cell_basis, conduction_matrix
 from feedtherm.models.fem.coupling import Contact, interface_matrix, side_load
 from feedtherm.models.fem.faces import curvature_sag, surface_facets
-from feedtherm.models.fem.facets import RULE, boundary_triangles, closest_points
+from feedtherm.models.fem.facets import RULE, NearestFacets, boundary_triangles, closest_points
 from feedtherm.models.fem.geometry import mesh_size, mesh_system
 from feedtherm.models.fem.readout import (
     point_matrix,
@@ -60,6 +60,39 @@ def test_boundary_triangles_of_a_box_are_its_faces_with_outward_normals():
     assert (outward > 0).all()
     # a surface integral of the normal over a closed surface vanishes
     np.testing.assert_allclose((tri.normals * tri.areas).sum(axis=1), 0.0, atol=1e-15)
+
+
+def test_the_facets_bounds_drop_only_candidates_the_closest_point_test_refuses(monkeypatch):
+    """NearestFacets.query takes a candidate to the closest-point test only within the facet's plane
+    gap and radius: every answer is the one of the test applied to all 16 candidates, bit for bit.
+
+    A block's facets against the quadrature points of a second, differently meshed block that
+    slides along x (a sliding contact's queries), of a tilted copy, and points scattered near
+    the face: hits, misses past the face's rim, misses across the gap."""
+    pa, ta = _box_mesh(np.linspace(0.0, 0.01, 4), np.linspace(0, 0.01, 4), np.linspace(0, 0.01, 3))
+    pb, tb = _box_mesh(np.linspace(0.01, 0.03, 6), np.linspace(0, 0.01, 5), np.linspace(0, 0.01, 6))
+    points = np.hstack([pa, pb])
+    tri_a, tri_b = boundary_triangles(points, ta), boundary_triangles(points, tb + pa.shape[1])
+    facets = NearestFacets(points, tri_b)
+    x, _, owner = tri_a.quadrature(points, level=2)
+    normals = tri_a.normals[:, owner]
+    rng = np.random.default_rng(3)
+    scattered = np.array([[0.01], [0.005], [0.005]]) + rng.uniform(-1, 1, (3, 4000)) * [[3e-4], [7e-3], [7e-3]]
+    tilt = np.array([[1.0, 0.0, 0.0], [0.0, np.cos(0.02), -np.sin(0.02)], [0.0, np.sin(0.02), np.cos(0.02)]])
+    queries = [(x + [[shift], [0.0], [0.0]], normals) for shift in (0.0, 1e-4, -2e-3, 4e-3)]
+    queries += [(tilt @ x, tilt @ normals), (scattered, np.tile([[1.0], [0.0], [0.0]], (1, 4000)))]
+    bounded = [facets.query(q, n, 1e-4, 5e-4) for q, n in queries]
+    monkeypatch.setattr(NearestFacets, "_within_bounds", lambda self, x, cand, point, normals, tol, tangential:
+                        (cand, point, normals))
+    for (q, n), (facet, bary, dist) in zip(queries, bounded):
+        every_facet, every_bary, every_dist = facets.query(q, n, 1e-4, 5e-4)
+        hit = every_facet >= 0
+        np.testing.assert_array_equal(facet, every_facet)
+        np.testing.assert_array_equal(dist, every_dist)
+        np.testing.assert_array_equal(bary[hit], every_bary[hit])
+        assert not bary[~hit].any()
+    hits = [int((facet >= 0).sum()) for facet, _, _ in bounded]
+    assert hits[0] > 500 and 0 < hits[-1] < 4000  # contacts found, and points missing the face
 
 
 @pytest.mark.parametrize("lumped", [True, False])
