@@ -127,3 +127,42 @@ def test_a_contact_keeps_the_sums_of_its_latest_conductivities_only(paper, empty
     assert kept and max(kept) == contacts.KEPT_CONDUCTIVITIES
     again = operators(with_values(paper, {"materials.q345b.conductivity": 40.0}).system)[0]
     np.testing.assert_array_equal(first, again)
+
+
+def test_the_parts_grids_are_kept_read_only_and_equal_a_fresh_cut(paper):
+    """A model per run of a batch cuts the same primitives again (three quarters of a build): the grids
+    are kept by primitive, holes, cell size and feature lines, shared read-only by the models, and each
+    equals the grid cut afresh; another cell size or another feature line is another grid."""
+    from dataclasses import fields as dataclass_fields
+
+    from feedtherm.models.fast import grids
+
+    system = paper.system
+    base = system.parts["base"]
+    box, holes = base.boxes[0], list(base.holes)
+    breaks = ([box.origin[0] + 0.1], [], [box.origin[2] + 0.01])
+    kept = grids.box_grid(box, holes, 0.04, breaks)
+    assert grids.box_grid(box, holes, 0.04, [list(b) for b in breaks]) is kept
+    assert grids.box_grid(box, holes, 0.03, breaks) is not kept
+    assert grids.box_grid(box, holes, 0.04, ([box.origin[0] + 0.2], [], [])) is not kept
+    fresh = grids._box_grid(box, holes, 0.04, [list(b) for b in breaks])
+    cylinder = next(c for p in system.parts.values() for c in p.cylinders)
+    pairs = [(kept, fresh), (grids.cylinder_grid(cylinder, 0.02, (cylinder.origin[0] + 0.01,)),
+                             grids._cylinder_grid(cylinder, 0.02, (cylinder.origin[0] + 0.01,)))]
+    for grid, cut in pairs:
+        arrays = 0
+        for f in dataclass_fields(grid):
+            a, b = getattr(grid, f.name), getattr(cut, f.name)
+            for x, y in zip(*((v if isinstance(v, (list, tuple)) else [v]) for v in (a, b))):
+                if isinstance(x, np.ndarray):
+                    np.testing.assert_array_equal(x, y)
+                    assert not x.flags.writeable
+                    arrays += 1
+                else:
+                    assert x == y
+        assert arrays >= 4
+        with pytest.raises(ValueError):
+            grid.volumes[0] = 1.0
+    one, two = (discretize(with_values(paper, {"materials.q345b.conductivity": k}).system, "fast", ModelOptions())
+                for k in (41.0, 50.0))
+    assert one.layout.cells["base"].grids[0] is two.layout.cells["base"].grids[0]

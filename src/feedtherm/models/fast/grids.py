@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 
@@ -211,8 +212,37 @@ def graded_edges(lo: float, hi: float, tiers, cell_size: float) -> np.ndarray:
     return np.asarray(edges)
 
 
+#: Grids kept by their primitive, holes, cell size and feature lines: a batch builds a model per run
+#: (calibration, sensitivities, uncertainty), and a value that moves no face leaves every grid as it
+#: was; cutting the paper bench's boxes took three quarters of a fast model's build.  A kept grid's
+#: arrays are read-only: every model that has it shares them.
+GRIDS_KEPT = 512
+
+
+def _frozen(grid):
+    for value in vars(grid).values():
+        for array in (value if isinstance(value, (list, tuple)) else (value,)):
+            if isinstance(array, np.ndarray):
+                array.flags.writeable = False
+    return grid
+
+
+def _breaks_key(breaks) -> tuple | None:
+    return None if breaks is None else tuple(tuple(float(x) for x in axis) for axis in breaks)
+
+
 def box_grid(box: Box, holes: list[Cylinder], cell_size: float, breaks=None) -> BoxGrid:
-    """The cells of ``box``; ``breaks`` (three lists) are feature coordinates the grid passes through."""
+    """The cells of ``box``; ``breaks`` (three lists) are feature coordinates the grid passes through
+    (kept: :data:`GRIDS_KEPT`)."""
+    return _kept_box_grid(box, tuple(holes), float(cell_size), _breaks_key(breaks))
+
+
+@lru_cache(maxsize=GRIDS_KEPT)
+def _kept_box_grid(box: Box, holes: tuple[Cylinder, ...], cell_size: float, breaks) -> BoxGrid:
+    return _frozen(_box_grid(box, list(holes), cell_size, None if breaks is None else [list(b) for b in breaks]))
+
+
+def _box_grid(box: Box, holes: list[Cylinder], cell_size: float, breaks=None) -> BoxGrid:
     holes = holes_of_box(box, holes)
     lo = np.asarray(box.origin, dtype=float)
     hi = lo + np.asarray(box.size, dtype=float)
@@ -339,7 +369,17 @@ def _open_fractions(grid: BoxGrid, axis: int) -> np.ndarray:
 
 
 def cylinder_grid(cyl: Cylinder, cell_size: float, breaks=()) -> CylinderGrid:
-    """The cells of ``cyl``; ``breaks`` are feature coordinates along its axis (machine frame)."""
+    """The cells of ``cyl``; ``breaks`` are feature coordinates along its axis (machine frame; kept:
+    :data:`GRIDS_KEPT`)."""
+    return _kept_cylinder_grid(cyl, float(cell_size), tuple(float(b) for b in breaks))
+
+
+@lru_cache(maxsize=GRIDS_KEPT)
+def _kept_cylinder_grid(cyl: Cylinder, cell_size: float, breaks: tuple[float, ...]) -> CylinderGrid:
+    return _frozen(_cylinder_grid(cyl, cell_size, breaks))
+
+
+def _cylinder_grid(cyl: Cylinder, cell_size: float, breaks=()) -> CylinderGrid:
     r_in, r_out = cyl.inner_diameter / 2.0, cyl.outer_diameter / 2.0
     start = cyl.origin[_AXES[cyl.axis]]
     axial_edges = graded_edges(0.0, cyl.length, [([b - start for b in breaks], max(MIN_GAP, FEATURE_GAP * cell_size))],
