@@ -13,7 +13,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from feedtherm.models import registry
 from feedtherm.models.fast.discretization import FastDiscretization
 from feedtherm.models.options import ModelOptions
 from feedtherm.models.registry import ModelEntry, build_model, forget_built_models, register_model, unregister_model
