@@ -227,22 +227,19 @@ def _frozen(grid):
     return grid
 
 
-def _breaks_key(breaks) -> tuple | None:
-    return None if breaks is None else tuple(tuple(float(x) for x in axis) for axis in breaks)
-
-
 def box_grid(box: Box, holes: list[Cylinder], cell_size: float, breaks=None) -> BoxGrid:
     """The cells of ``box``; ``breaks`` (three lists) are feature coordinates the grid passes through
     (kept: :data:`GRIDS_KEPT`)."""
-    return _kept_box_grid(box, tuple(holes), float(cell_size), _breaks_key(breaks))
+    key = None if breaks is None else tuple(tuple(float(x) for x in axis) for axis in breaks)
+    return _kept_box_grid(box, tuple(holes), float(cell_size), key)
 
 
 @lru_cache(maxsize=GRIDS_KEPT)
 def _kept_box_grid(box: Box, holes: tuple[Cylinder, ...], cell_size: float, breaks) -> BoxGrid:
-    return _frozen(_box_grid(box, list(holes), cell_size, None if breaks is None else [list(b) for b in breaks]))
+    return _frozen(_box_grid(box, holes, cell_size, breaks))
 
 
-def _box_grid(box: Box, holes: list[Cylinder], cell_size: float, breaks=None) -> BoxGrid:
+def _box_grid(box: Box, holes, cell_size: float, breaks=None) -> BoxGrid:
     holes = holes_of_box(box, holes)
     lo = np.asarray(box.origin, dtype=float)
     hi = lo + np.asarray(box.size, dtype=float)

@@ -206,11 +206,12 @@ class NearestFacets:
             cand, point, facet_normals = cand[facing], point[facing], facet_normals[:, facing]
             cand, point, facet_normals = self._within_bounds(x, cand, point, facet_normals, tol, tangential)
             a, b, c = (self.corners[i][:, cand].T for i in range(3))
-            d, bc = closest_points(x[:, point].T, a, b, c)
+            at = x[:, point].T
+            d, bc = closest_points(at, a, b, c)
             # the gap along the facet's normal may be up to ``tol`` (chord heights of curved
             # faces); the closest point must lie on the facet within ``tangential`` of the
             # point's projection, so that a face's rim does not reach past the facet's edge
-            gap = x[:, point].T - (bc[:, :1] * a + bc[:, 1:2] * b + bc[:, 2:] * c)
+            gap = at - (bc[:, :1] * a + bc[:, 1:2] * b + bc[:, 2:] * c)
             normal_gap = np.abs(np.einsum("ij,ji->i", gap, facet_normals))
             side = np.sqrt(np.maximum(d**2 - normal_gap**2, 0.0))
             d = np.where((side <= tangential) & (normal_gap <= tol), d, np.inf)
