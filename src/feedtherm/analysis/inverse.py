@@ -36,8 +36,7 @@ from dataclasses import dataclass, replace
 from typing import Mapping
 
 import numpy as np
-from scipy.optimize import lsq_linear
-from scipy.stats import norm
+from scipy.special import ndtri
 
 from ..constants import ELONGATION_PROBE, KELVIN_OFFSET
 from ..errors import FeedthermError
@@ -326,13 +325,15 @@ def _estimate(transfer_: Transfer | TransientTransfer, names: list[str], y: np.n
     tau = np.maximum(prior_width * prior, prior_width * 1.0)
     A = np.vstack([R / sigma[:, None], np.diag(1.0 / tau)])
     b = np.concatenate([(y - y0) / sigma, prior / tau])
+    from scipy.optimize import lsq_linear  # imported where an estimate runs (module notes of :mod:`.calibration`)
+
     result = lsq_linear(A, b, bounds=(0.0, np.inf), method="bvls")
     q = np.maximum(result.x, 0.0)
     information = (R / sigma[:, None]).T @ (R / sigma[:, None])
     covariance = np.linalg.inv(information + np.diag(1.0 / tau**2))
     resolution = np.diag(covariance @ information)
     sd = np.sqrt(np.diag(covariance))
-    z = norm.ppf(0.975)
+    z = ndtri(0.975)  # the normal's 97.5 % quantile (scipy.stats.norm.ppf is this function)
     correlation = covariance / np.outer(sd, sd)
     groups = list(transfer_.groups)
     estimates = [GroupEstimate(g, transfer_.groups[g], float(prior[i]), float(q[i]), max(0.0, float(q[i] - z * sd[i])),

@@ -9,8 +9,7 @@ correlated: their columns go through a Gaussian copula (:func:`to_values`).
 from __future__ import annotations
 
 import numpy as np
-from scipy import stats
-from scipy.stats import qmc
+from scipy.special import ndtri
 
 from ...errors import FeedthermError
 from .types import UncertainParameter
@@ -30,6 +29,8 @@ def unit_points(n: int, d: int, seed: int) -> np.ndarray:
     """``n`` scrambled Sobol' points in [0, 1)^d (``n`` a power of 2: only such sets are balanced)."""
     if not is_power_of_two(n):
         raise FeedthermError(f"--samples: must be a power of 2 (Sobol' points are balanced only in such sets), got {n}")
+    from scipy.stats import qmc  # scipy.stats takes 0.35 s to import: only where a study samples
+
     return qmc.Sobol(d, scramble=True, seed=seed).random_base2(int(np.log2(n)))
 
 
@@ -46,14 +47,18 @@ def ppf(parameter: UncertainParameter, u) -> np.ndarray:
     if p.distribution == "uniform":
         return p.low + u * (p.high - p.low)
     if p.distribution == "triangular":
+        from scipy import stats  # 0.35 s to import: only for the distributions scipy.special lacks
+
         c = (p.declared - p.low) / (p.high - p.low)
         return stats.triang.ppf(u, c, loc=p.low, scale=p.high - p.low)
     if p.distribution in ("normal", "lognormal"):
         log = p.distribution == "lognormal"
         centre = np.log(p.declared) if log else p.declared
         if p.low is None:
-            z = stats.norm.ppf(u)
+            z = ndtri(u)  # Φ⁻¹ (scipy.stats.norm.ppf is this function)
         else:
+            from scipy import stats
+
             a, b = ((np.log(v) if log else v) for v in (p.low, p.high))
             z = stats.truncnorm.ppf(u, (a - centre) / p.sigma, (b - centre) / p.sigma)
         x = centre + p.sigma * z
@@ -77,7 +82,7 @@ def to_values(parameters: list[UncertainParameter], u: np.ndarray, correlation: 
         if i not in posterior:
             x[:, i] = ppf(p, u[:, i])
     if posterior:
-        z = stats.norm.ppf(np.clip(u[:, posterior], EDGE, 1.0 - EDGE))
+        z = ndtri(np.clip(u[:, posterior], EDGE, 1.0 - EDGE))
         if correlation is not None:
             z = z @ correlation_root(correlation).T
         for j, i in enumerate(posterior):
