@@ -161,6 +161,24 @@ def test_a_run_of_too_many_steps_is_refused_before_it_starts(tmp_path):
                                               "--motion averaged", inputs=["fast.toml"])
 
 
+#: [s] CPU time of a run past its imports, loading and build, inside the integration (about 0.8 s
+#: gets there; a 300,000 s run takes far longer than this in all).
+INTEGRATING_CPU_S = 2.0
+
+
+def cpu_seconds(pid: int) -> float | None:
+    """The CPU time [s] process ``pid`` has used, from Linux's /proc (fields 14 and 15 of its
+    stat line, utime and stime in clock ticks); None where there is no /proc."""
+    import os
+    from pathlib import Path
+
+    try:
+        fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except (OSError, IndexError):
+        return None
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
 def test_sigterm_stops_a_run_cleanly(tmp_path):
     """SIGTERM mid-run: exit 128 + 15, one line, no output directory and no staging folder."""
     import signal
@@ -169,7 +187,17 @@ def test_sigterm_stops_a_run_cleanly(tmp_path):
     process = subprocess.Popen([sys.executable, "-m", "feedtherm", "run", "paper", "--condition", "III",
                                 "--duration", "300000", "--out", "out"], cwd=tmp_path, text=True,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-    time.sleep(6.0)  # past the imports, inside the integration (a 300,000 s run takes far longer)
+    # sent once the run has used the CPU time that takes it inside the integration (on a loaded
+    # machine that is later in wall time, not sooner); without /proc, after a generous 6 s
+    deadline = time.monotonic() + 60.0
+    while process.poll() is None and time.monotonic() < deadline:
+        used = cpu_seconds(process.pid)
+        if used is None:
+            time.sleep(6.0)
+            break
+        if used >= INTEGRATING_CPU_S:
+            break
+        time.sleep(0.05)
     assert process.poll() is None, process.communicate()
     process.send_signal(signal.SIGTERM)
     _, err = process.communicate(timeout=60)

@@ -95,3 +95,32 @@ def test_positions_beyond_the_memory_budget_are_stepped_by_conjugate_gradients(p
     for name in ("T1", "T2", "T3", "T4", "T5"):
         assert budgeted.summary_values("final")[name] == pytest.approx(reference.summary_values("final")[name],
                                                                          abs=1e-3)
+
+
+def test_mkl_is_located_before_pypardisos_import_makes_its_own_solver():
+    """pypardiso's import makes a solver, which searches the environment's whole tree for MKL
+    (0.25 s) unless ``PYPARDISO_MKL_RT`` names it: a fresh interpreter's first factorisation sets
+    it first, and no search walks a tree."""
+    import os
+    import subprocess
+    import sys
+
+    script = (
+        "import glob, sys\n"
+        "searches = []\n"
+        "original = glob.glob\n"
+        "def recorded(pattern, *args, **kwargs):\n"
+        "    if kwargs.get('recursive'):\n"
+        "        searches.append(pattern)\n"
+        "    return original(pattern, *args, **kwargs)\n"
+        "glob.glob = recorded\n"
+        "import numpy as np, scipy.sparse as sp\n"
+        "from feedtherm.models import pardiso\n"
+        "A = sp.diags([np.full(99, -1.0), np.full(100, 2.5), np.full(99, -1.0)], [-1, 0, 1], format='csr')\n"
+        "x = pardiso.PardisoCholesky(A).solve(np.ones(100))\n"
+        "assert np.allclose(A @ x, 1.0)\n"
+        "assert 'pypardiso' in sys.modules and not searches, searches\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k != "PYPARDISO_MKL_RT"}
+    result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120, env=env)
+    assert result.returncode == 0, result.stderr[-2000:]

@@ -61,7 +61,9 @@ def _locate_mkl() -> None:
     """Tell pypardiso where MKL's runtime library is, and MKL's threads not to spin; once per process.
 
     Without ``PYPARDISO_MKL_RT`` (pypardiso's documented setting) every solver object searches
-    the whole environment's tree for it, 0.15 s each: more than a factorisation of the medium mesh.
+    the whole environment's tree for it, 0.15-0.25 s each: more than a factorisation of the medium
+    mesh.  pypardiso's import makes one such object (its scipy-like functions' solver), so this
+    runs before pypardiso is imported.
     """
     # MKL's OpenMP threads spin 200 ms after each parallel region by default, taking the core the
     # time loop's own numpy work between two solves needs (the energy account doubled in time)
@@ -114,9 +116,9 @@ class PardisoCholesky:
     """
 
     def __init__(self, A: sp.spmatrix):
+        _locate_mkl()  # before pypardiso's import, which makes a solver of its own (module notes of _locate_mkl)
         import pypardiso
 
-        _locate_mkl()
         solver = pypardiso.PyPardisoSolver(mtype=_SPD)
         for index, value in _PARAMETERS.items():
             solver.set_iparm(index, value)
