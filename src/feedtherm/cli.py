@@ -141,13 +141,17 @@ PROGRESS_DELAY_S = 1.0
 def cmd_run(args: argparse.Namespace) -> int:
     from .outputs.files import check_output_dir
     from .outputs.run_files import default_out_dir, equilibrium_line, summary_line, write_run
+    from .models.options import ModelOptions
     from .plan import plan_run
 
     loaded = _load_in_mode(args)
+    # one description: a reduced model built for it is trained at its own numbers (models/reduced/store.py)
+    options = ModelOptions(reduced_training="description")
     with _naming(loaded.origin):
         plan = plan_run(loaded, condition=args.condition, cycle=args.cycle, model=args.model,
                         duration=args.duration, single_drive=args.single_drive, sample_interval=args.sample_interval,
-                        motion=args.motion, mesh=args.mesh, solver=args.solver, factor_memory=args.factor_memory)
+                        motion=args.motion, mesh=args.mesh, solver=args.solver, factor_memory=args.factor_memory,
+                        options=options)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, plan.label, plan.mode)
     check_output_dir(out_dir)
     # Imported only now: every input error above is reported without loading the model.

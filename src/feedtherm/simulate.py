@@ -9,7 +9,7 @@ from the registry, and :func:`~feedtherm.solution.pack.pack_solution`.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable
 
 import numpy as np
@@ -129,7 +129,8 @@ def prepare(system: FeedSystem, model: str, mesh: str | None = None) -> None:
     from .models.registry import model_entry
 
     if model_entry(model).prepares:
-        build_model(model, system, ModelOptions() if mesh is None else ModelOptions(mesh=mesh))
+        options = ModelOptions(reduced_training="batch")
+        build_model(model, system, options if mesh is None else replace(options, mesh=mesh))
 
 
 def discretize(system: FeedSystem, model: str, options: ModelOptions | None = None) -> ThermalModel:

@@ -105,6 +105,7 @@ def test_the_reduced_runs_readings_follow_the_fe_runs(runs):
     summary = json.loads((runs["reduced"] / "summary.json").read_text(encoding="utf-8"))
     stats = summary["mesh"]
     assert not stats["projection_cached"]  # the command built it in the fresh cache
+    assert stats["trained_over"] == "description"  # a single run's basis: at its own numbers (models/reduced/store.py)
     assert stats["basis_size"] < stats["reduced_from"] // 20
 
 

@@ -195,3 +195,55 @@ def test_the_code_digest_covers_the_code_that_makes_operators_only(monkeypatch, 
     store.operator_code_digest.cache_clear()
     assert digests[0] == digests[1] == digests[2]  # bytecode is not code; an analysis makes no operator
     assert len({digests[2], digests[3], digests[4]}) == 3
+
+
+def test_a_single_run_trains_at_its_description_and_a_batch_prepares_a_projection_over_the_declared_ranges(
+        paper, tmp_path, monkeypatch):
+    """``reduced_training`` (models/reduced/store.py): a single run builds a basis at its description's
+    own numbers; a batch's preparation does not take that one, and builds one over the declared
+    ranges, which then serves the batch's runs at other numbers inside them and any single run it holds."""
+    from dataclasses import replace
+
+    from feedtherm.models.reduced import training
+
+    monkeypatch.setenv("FEEDTHERM_CACHE", str(tmp_path))
+    monkeypatch.setattr(training, "RANDOM_POINTS", 0)  # the declared domain's corners only: three points
+    monkeypatch.setattr(store, "_in_memory", type(store._in_memory)())
+    builds = []
+    fem_factory = registry._fem
+    monkeypatch.setattr(registry, "_fem", lambda system, options: builds.append(system) or fem_factory(system, options))
+    # the FE model on the coarse mesh with five positions; one declared range (the bolted joints' tcr)
+    options = ModelOptions(reduction_tolerance=1e-3, mesh="coarse", axial_cells=10, steps_per_stroke=4)
+    narrow = paper.system.model_copy(update={"calibration": None, "uncertainty": paper.system.uncertainty.model_copy(
+        update={"parameters": {"tcr_bolted": paper.system.uncertainty.parameters["tcr_bolted"]}})})
+    bolted = training.omitted_values(narrow)["joints[9].conductance"]
+
+    single = registry.build_model("reduced", narrow, replace(options, reduced_training="description"))
+    assert (single.stats["trained_over"], single.stats["projection_cached"], len(builds)) == ("description", False, 1)
+    assert single.projection.domain["joints[9].conductance"] == pytest.approx((bolted, bolted))
+
+    batch = registry.build_model("reduced", narrow, replace(options, reduced_training="batch"))
+    assert (batch.stats["trained_over"], batch.stats["projection_cached"], len(builds)) == ("declared", False, 2)
+    assert batch.projection.domain["joints[9].conductance"] == pytest.approx((160.0, 4000.0))
+    assert batch.basis.snapshots > 2 * single.basis.snapshots  # trained at three points, not one
+
+    within = narrow.model_copy(update={"joints": [j.model_copy(update={"tcr": j.tcr * (3.0 if i >= 9 else 1.0)})
+                                                  for i, j in enumerate(narrow.joints)]})
+    store._in_memory.clear()  # from disk, as another process reads them
+    for system, training_ in ((within, "declared"), (within, "description"), (narrow, "batch")):
+        model = registry.build_model("reduced", system, replace(options, reduced_training=training_))
+        assert model.stats["projection_cached"] and model.stats["trained_over"] == "declared", training_
+    again = registry.build_model("reduced", narrow, replace(options, reduced_training="description"))
+    assert again.stats["projection_cached"] and len(builds) == 2
+    assert len(list((tmp_path / "projections").glob("*.npz"))) == 2
+
+
+def test_a_batch_prepares_its_reduced_model_over_the_declared_ranges(paper, monkeypatch):
+    import feedtherm.simulate as simulate
+
+    asked = []
+    monkeypatch.setattr(simulate, "build_model", lambda name, system, options: asked.append((name, options)))
+    simulate.prepare(paper.system, "reduced", "medium")
+    simulate.prepare(paper.system, "reduced")
+    assert [(name, o.mesh, o.reduced_training) for name, o in asked] == [("reduced", "medium", "batch"),
+                                                                         ("reduced", "coarse", "batch")]

@@ -89,7 +89,7 @@ def _reduced(system: FeedSystem, options: ModelOptions) -> ThermalModel:
     from .reduced.store import cached_projected_model
 
     return cached_projected_model(system, options.reduction_tolerance, lambda: _fem(system, options),
-                                  lambda: _reduced_inputs(system, options))
+                                  lambda: _reduced_inputs(system, options), training=options.reduced_training)
 
 
 def _reduced_inputs(system: FeedSystem, options: ModelOptions) -> dict | None:

@@ -249,4 +249,5 @@ class ProjectedModel(ThermalModel):
         b = self.basis
         return {**self.projection.full_stats, "reduced_from": int(self.projection.full_capacity.size),
                 "basis_size": b.size, "basis_tolerance": b.tolerance, "basis_snapshots": b.snapshots,
-                "basis_seconds": round(b.seconds, 2), "basis_cached": b.cached, **self._extra_stats}
+                "basis_seconds": round(b.seconds, 2), "basis_cached": b.cached,
+                "trained_over": self.projection.trained_over, **self._extra_stats}

@@ -84,6 +84,9 @@ class Projection:
     #: [SI] the parameters' ranges the basis was trained over (name → (low, high)); a description
     #: outside them is another model (models/reduced/store.py)
     domain: dict | None = None
+    #: what the basis was trained over: "declared", the ranges the description declares (every point
+    #: of a batch's runs inside them), or "description", its own numbers only (a single run's)
+    trained_over: str = "declared"
 
     @property
     def V(self) -> np.ndarray:

@@ -23,9 +23,21 @@ and nothing else:
 ``<domain>`` is the digest of the ranges its basis was trained over (:mod:`.training`): a
 description of the same key whose parameters lie inside a file's ranges runs on it
 (:class:`~.model.ProjectedModel` weighs the terms by its values); one outside builds a
-projection of its own, trained over its own declared ranges.  The last projection read or
-built stays in memory, so the runs of a calibration or an uncertainty study read the file once
-per process.
+projection of its own.  The last projection read or built stays in memory, so the runs of a
+calibration or an uncertainty study read the file once per process.
+
+What a projection built here is trained over is the caller's choice
+(:attr:`~feedtherm.models.options.ModelOptions.reduced_training`):
+
+- a batch (calibration, uncertainty, compensation) prepares one trained over the ranges the
+  description declares, and takes only such a one from the cache: its runs at other numbers
+  then find it (``"batch"``);
+- a single run (``feedtherm run``) builds one trained at the description's own numbers
+  (``"description"``): the basis of one point, not of the eight a declared domain trains at,
+  so the paper bench's coarse projection takes 10 s to build, not 26 s (one thread), and it is
+  exact where it runs;
+- either takes a cached projection that holds the description, whatever it was trained over,
+  and so does the default (``"declared"``, which trains over the declared ranges when it builds).
 
 Files are written atomically, a damaged one is rebuilt, and the directory keeps the most
 recently used within the basis cache's budget (:mod:`.disk`).
@@ -62,7 +74,7 @@ from .training import (CHECK_SEED, declared_domain, domain_digest, inside, omitt
 __all__ = ["cached_projected_model", "file_digest", "operator_code_digest", "projection_key", "projection_cache_path"]
 
 #: Changes whenever the file layout below changes.
-STORE_VERSION = 5
+STORE_VERSION = 6
 #: The distributions whose code builds a full model, its basis or its projection.
 LIBRARIES = ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "pymor")
 _PACKAGE = Path(__file__).resolve().parents[2]  # src/feedtherm
@@ -170,19 +182,20 @@ def _remember(path: Path, projection: Projection) -> None:
         _in_memory.popitem(last=False)
 
 
-def _find(key: str, system: FeedSystem) -> Projection | None:
-    """A projection of ``key`` whose domain holds ``system``'s parameters: from memory, or from disk
-    (the most recently used file first)."""
+def _find(key: str, system: FeedSystem, declared_only: bool = False) -> Projection | None:
+    """A projection of ``key`` whose domain holds ``system``'s parameters (with ``declared_only``, one
+    trained over the declared ranges): from memory, or from disk (the most recently used file first)."""
     directory = projection_cache_path(key).parent
     for path, (projection, identity) in reversed(_in_memory.items()):
         if path.parent == directory and path.name.startswith(f"{key}-") and _identity(path) == identity \
-                and _holds(projection.domain or {}, system):
+                and _holds(projection.domain or {}, system) \
+                and not (declared_only and projection.trained_over != "declared"):
             _in_memory.move_to_end(path)
             return projection
     files = sorted(directory.glob(f"{key}-*.npz"), key=_last_used, reverse=True)
     for path in files:
         stem = path.stem
-        projection = read_npz(path, lambda data: _from_arrays(data, stem, system))
+        projection = read_npz(path, lambda data: _from_arrays(data, stem, system, declared_only))
         if projection is not None:
             _remember(path, projection)
             return projection
@@ -190,30 +203,38 @@ def _find(key: str, system: FeedSystem) -> Projection | None:
 
 
 def cached_projected_model(system: FeedSystem, tolerance: float, build_full: Callable[[], ThermalModel],
-                           inputs: Callable[[], dict | None]) -> ProjectedModel:
+                           inputs: Callable[[], dict | None], training: str = "declared") -> ProjectedModel:
     """The reduced model of ``build_full()``'s full model, from the cache when it holds one that fits.
 
     ``inputs()`` gives what the full model is built from (module notes), or None when it cannot
     be said before building it (its mesh file does not exist yet): the model is then built and
-    saved under the inputs the build leaves.  A model built here has its basis trained over the
-    ranges ``system`` declares for its parameters (:mod:`.training`).
+    saved under the inputs the build leaves.  ``training`` (module notes): "declared" and "batch"
+    train a basis built here over the ranges ``system`` declares for its parameters
+    (:mod:`.training`), "description" at ``system``'s own numbers; "batch" takes from the cache
+    only a projection trained over declared ranges.
     """
+    if training not in ("declared", "description", "batch"):
+        raise ValueError(f"reduced_training: no training {training!r}")
     started = time.perf_counter()
     known = inputs()
     if known is not None:
-        projection = _find(projection_key(known, tolerance), system)
+        projection = _find(projection_key(known, tolerance), system, declared_only=training == "batch")
         if projection is not None:
             return ProjectedModel.from_projection(projection, system, build_full, projection_cached=True,
                                                   projection_seconds=round(time.perf_counter() - started, 2))
     full = build_full()
     kinds = {p.name: p.kind for p in full.affine_parameters()}
-    trained = declared_domain(system, [n for n, kind in kinds.items() if kind == "conductance"] + list(film_parameters(full)))
+    declared = declared_domain(system, [n for n, kind in kinds.items() if kind == "conductance"] + list(film_parameters(full)))
+    # at the description's own numbers: its declared ranges left out (a description that declares none
+    # trains alike either way, and its projection serves a batch too)
+    own = training == "description" and any(high > low for low, high in declared.values())
+    trained = {} if own else declared
     basis = moment_basis(full, tolerance=tolerance, points=training_points(trained, {}))
     projection = project(full, basis)
     candidates = random_points(trained, CHECK_CANDIDATES, CHECK_SEED)
     check = steady_check(full, basis, tuple(candidates)) if candidates else {}
-    projection = replace(projection, domain=full_domain(system, trained, kinds),
-                         full_stats={**projection.full_stats, **check})
+    projection = replace(projection, domain=full_domain(system, trained, kinds), trained_over="description" if own
+                         else "declared", full_stats={**projection.full_stats, **check})
     known = inputs()  # the full model's build has written its mesh file
     if known is not None:
         key = projection_key(known, tolerance)
@@ -257,7 +278,7 @@ def _to_arrays(p: Projection, key: str) -> dict[str, np.ndarray]:
                "basis_cached": b.cached,
                "conductance_parameters": np.array(p.conductance_parameters, dtype=str),
                "expansion_parameters": np.array(p.expansion_parameters, dtype=str),
-               "domain_names": np.array(list(p.domain or {}), dtype=str),
+               "domain_names": np.array(list(p.domain or {}), dtype=str), "trained_over": np.array(p.trained_over),
                "domain_bounds": np.array(list((p.domain or {}).values()), dtype=float).reshape(-1, 2)}
     arrays |= _sparse("averaged_exposure", p.averaged.exposure) | _sparse("averaged_distribution", p.averaged.distribution)
     arrays["has_film"] = p.averaged.film is not None
@@ -273,11 +294,14 @@ def _to_arrays(p: Projection, key: str) -> dict[str, np.ndarray]:
     return arrays
 
 
-def _from_arrays(data, key: str, system: FeedSystem | None = None) -> Projection | None:
-    """The projection in ``data``; None when it is another layout or another file's, or (with
-    ``system``) when ``system``'s parameters lie outside the ranges it was trained over."""
+def _from_arrays(data, key: str, system: FeedSystem | None = None, declared_only: bool = False) -> Projection | None:
+    """The projection in ``data``; None when it is another layout or another file's, (with ``system``)
+    when ``system``'s parameters lie outside the ranges it was trained over, or (``declared_only``)
+    when it was not trained over declared ranges."""
     if int(data["store_version"]) != STORE_VERSION or str(data["key"]) != key:
         return None  # another layout, or a file copied under another name: not this model's
+    if declared_only and str(data["trained_over"]) != "declared":
+        return None
     names = lambda name: tuple(str(s) for s in data[name])  # noqa: E731
     domain = {name: (float(low), float(high)) for name, (low, high) in zip(names("domain_names"), data["domain_bounds"])}
     if system is not None and not _holds(domain, system):
@@ -302,5 +326,5 @@ def _from_arrays(data, key: str, system: FeedSystem | None = None) -> Projection
         displacement_basis=data["displacement_basis"] if bool(data["has_displacement_fields"]) else None,
         displacement_origin=data["displacement_origin"] if bool(data["has_displacement_fields"]) else None,
         conductance_parameters=names("conductance_parameters"), expansion_parameters=names("expansion_parameters"),
-        domain=domain, **{name: data[name] for name in _ARRAYS},
+        domain=domain, trained_over=str(data["trained_over"]), **{name: data[name] for name in _ARRAYS},
     )
