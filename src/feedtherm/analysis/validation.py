@@ -12,6 +12,7 @@ from typing import Callable
 from ..benches import ReportNotes, bench, bench_name_of
 from ..boundary import boundary_conditions
 from ..constants import KELVIN_OFFSET, RPM_PER_RAD_S
+from ..models.options import ModelOptions
 from ..simulate import provenance, simulate
 from ..system.checks import check_system
 from ..system.load import LoadedSystem
@@ -71,13 +72,16 @@ def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = No
             progress(done / steps)
 
     solutions, single, budget, comparisons, transients = {}, {}, {}, [], []
+    # one description's runs: a reduced model built for them is trained at its own numbers (models/reduced/store.py)
+    options = ModelOptions(reduced_training="description")
     for condition in conditions:
-        run = simulate(loaded, condition=condition, model=model, mesh=mesh, motion=motion)
+        run = simulate(loaded, condition=condition, model=model, mesh=mesh, motion=motion, options=options)
         solutions[condition] = run
         transients += compare_series(condition, run, data.for_condition(condition))
         tick()
         if dual:
-            single[condition] = simulate(loaded, condition=condition, model=model, mesh=mesh, motion=motion, single_drive=True)
+            single[condition] = simulate(loaded, condition=condition, model=model, mesh=mesh, motion=motion,
+                                         single_drive=True, options=options)
             tick()
         budget[condition] = {name: h.power for name, h in boundary_conditions(system, condition, loaded.overlay).heats.items()}
         final = run.summary_values("final")
