@@ -32,10 +32,10 @@ What a projection built here is trained over is the caller's choice
 - a batch (calibration, uncertainty, compensation) prepares one trained over the ranges the
   description declares, and takes only such a one from the cache: its runs at other numbers
   then find it (``"batch"``);
-- a single run (``feedtherm run``, a validation's runs) builds one trained at the description's own numbers
-  (``"description"``): the basis of one point, not of the eight a declared domain trains at,
-  so the paper bench's coarse projection takes 10 s to build, not 26 s (one thread), and it is
-  exact where it runs;
+- a single run (``feedtherm run``, a validation's runs) builds one trained at the description's
+  own numbers (``"description"``): the basis of one point, not of the eight a declared domain
+  trains at, so the paper bench's coarse projection takes 10 s to build, not 26 s (one thread),
+  and it is exact where it runs;
 - either takes a cached projection that holds the description, whatever it was trained over,
   and so does the default (``"declared"``, which trains over the declared ranges when it builds).
 
