@@ -49,7 +49,11 @@ setup-test: $(STAMP)
 # (tests/conftest.py); TEST_WORKERS=0 runs it in this process.  benchmarks/README.md, *Test suite time*.
 TEST_WORKERS ?= 2
 
+# The package is compiled first: where PYTHONDONTWRITEBYTECODE is set (as on this project's
+# machines), the commands the tests start (about 150, and Dask's workers) would each compile every
+# module they import again, 0.09 s a command (benchmarks/README.md, *Test suite time*).
 test: $(STAMP) setup-test
+	$(BIN)/python -m compileall -q src >/dev/null
 	$(BIN)/python -m pytest -n $(TEST_WORKERS) --dist loadscope --durations=30
 
 clean:
