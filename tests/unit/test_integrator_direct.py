@@ -91,3 +91,53 @@ def test_the_time_loop_is_implicit_euler_written_out(paper, motion):
     np.testing.assert_allclose(trace.final_state, T, rtol=0.0, atol=1e-9)
     assert trace.heat_lost == pytest.approx(heat_lost, rel=1e-10)
     assert trace.heat_in == pytest.approx(seg.bc.total_heat * 600.0, rel=1e-12)
+
+
+def test_the_sample_readings_taken_in_blocks_are_each_sample_states_readings(paper, monkeypatch):
+    """The screw profile, the displacements and the part means of the samples are read a block of
+    states at a time: a block that fills several times and a last one left part-full give each
+    sample's readings of its own state (every sample is kept as a snapshot here to compare)."""
+    from dataclasses import replace
+
+    import feedtherm.models.integrator as integrator_module
+
+    plan = plan_run(paper, condition="I", duration=600.0)
+    options = replace(plan.options, snapshot_interval=0.0)
+    model = plan.model.build(paper.system, options)
+    monkeypatch.setattr(integrator_module, "SAMPLE_BLOCK_ENTRIES", 4 * model.n_nodes)
+    times = np.arange(0.0, 601.0, 10.0)  # 61 samples: 15 full blocks of 4 and one of 1
+    trace = Integrator(model, options, None).run(plan.segments, model.uniform_state(293.15), times)
+    states = [state for _, state, _ in trace.snapshots]
+    assert len(states) == len(trace.sample_screw) == len(trace.sample_displacement) == len(trace.sample_parts) == 61
+    for state, screw, displacement, parts in zip(states, trace.sample_screw, trace.sample_displacement,
+                                                 trace.sample_parts):
+        np.testing.assert_allclose(screw, model.screw_mean(state), rtol=1e-13)
+        np.testing.assert_allclose(displacement, model.displacements(state), rtol=1e-12, atol=1e-15)  # [m]
+        assert parts == pytest.approx({p: float(v) for p, v in model.part_means(state).items()}, rel=1e-13)
+    assert np.ptp(np.array(trace.sample_displacement)[:, 0]) > 0.0  # D moves: the samples are not one state
+
+
+def test_step_matrices_are_keyed_by_the_surface_coefficients_so_equal_links_share_a_factorisation(paper):
+    """A full-state model's ambient operator carries its coefficients as its key: boundary conditions
+    that differ only in a sink temperature (the links are the same) share a position's factors,
+    a changed coefficient gets its own."""
+    from dataclasses import replace
+
+    plan = plan_run(paper, condition="I", duration=60.0)
+    model = plan.model.build(paper.system, plan.options)
+    integrator = Integrator(model, plan.options, None)
+    bc = plan.segments[0].bc
+    name = next(iter(bc.surfaces))
+    surface = bc.surfaces[name]
+    warmer_sink = replace(bc, surfaces={**bc.surfaces, name: replace(surface, sink=surface.sink + 5.0)})
+    more_convection = replace(bc, surfaces={**bc.surfaces, name: replace(surface, convection=2.0 * surface.convection)})
+    h = model.boundary_basis(4).coefficients(bc)[0]
+    assert model.ambient_coupling(bc, 4).key == h.tobytes() == model.ambient_coupling(warmer_sink, 4).key
+    np.testing.assert_array_equal(model.ambient_coupling(bc, 4).matrix, model.ambient_coupling(warmer_sink, 4).matrix)
+    first = integrator.factors(0, bc, 4, 1.5)
+    assert integrator.factors(1, warmer_sink, 4, 1.5) is first
+    other = integrator.factors(2, more_convection, 4, 1.5)
+    assert other is not first
+    A = integrator._step_matrix(2, more_convection, 4, 1.5)
+    b = model.capacity * 300.0
+    np.testing.assert_allclose(other.solve(b), spsolve(A.tocsc(), b), rtol=1e-11)

@@ -50,6 +50,8 @@ from .options import ModelOptions
 DIRECT_SOLVER_LIMIT = 60_000
 #: Relative tolerance of a steady solve by conjugate gradients (from zero: relative to the heat that drives it).
 STEADY_CG_RTOL = 1e-10
+#: Sample states kept before their readings are taken together (entries: 16 MB of states, any model's size).
+SAMPLE_BLOCK_ENTRIES = 2_000_000
 
 
 @dataclass(frozen=True)
@@ -234,6 +236,7 @@ class Integrator:
         self._coarse_space = None
         self.over_budget = 0  # step matrices solved by cg because their factors would exceed the budget
         self.cg_iterations = 0  # conjugate-gradient iterations of every time step so far
+        self._samples = []  # sample states whose readings :meth:`_read_samples` has yet to take
 
     def release(self) -> None:
         """Drop every cached factorisation and iterative solver (a later step builds them again)."""
@@ -486,6 +489,7 @@ class Integrator:
              progress: Callable[[float], None] | None) -> Trace:
         m = self.model
         trace = Trace()
+        self._samples = []
         T = initial.copy()
         path = PositionPath(len(m.positions))
         t = segments[0].t0
@@ -575,6 +579,7 @@ class Integrator:
                 for stale in {id(bc): bc, id(factorised): factorised}.values():
                     if stale is not seg.bc:
                         self._forget(seg_id, stale)
+        self._read_samples(trace)
         trace.final_state = T
         trace.final_position = path.k
         return trace
@@ -602,10 +607,23 @@ class Integrator:
     def _record_sample(self, trace: Trace, state: np.ndarray, k: int) -> None:
         m = self.model
         trace.sample_probe.append(m.probe(state, k))
-        trace.sample_screw.append(m.screw_mean(state))
-        trace.sample_displacement.append(m.displacements(state))
-        trace.sample_parts.append({p: float(v) for p, v in m.part_means(state).items()})
         trace.sample_offset.append(m.positions[k])
+        self._samples.append(state)
+        if len(self._samples) * m.n_nodes >= SAMPLE_BLOCK_ENTRIES:
+            self._read_samples(trace)
+
+    def _read_samples(self, trace: Trace) -> None:
+        """The screw profile, the displacements and the part means of the samples kept since the last
+        reading, read at once: one product with a block of states costs a fraction of one a state."""
+        if not self._samples:
+            return
+        m = self.model
+        states = np.array(self._samples)
+        self._samples = []
+        trace.sample_screw.extend(m.screw_mean(states))
+        trace.sample_displacement.extend(m.displacements(states))
+        parts = m.part_means(states)
+        trace.sample_parts.extend({p: float(v[i]) for p, v in parts.items()} for i in range(len(states)))
 
     def _step(self, seg: Segment) -> tuple[float, float]:
         """Nominal time step [s] and grid positions advanced per step in ``seg``."""

@@ -54,9 +54,9 @@ class AmbientCoupling:
         return float(self.load @ state) - self.source_total
 
     @classmethod
-    def diagonal(cls, links: np.ndarray, sink_heat: np.ndarray) -> "AmbientCoupling":
+    def diagonal(cls, links: np.ndarray, sink_heat: np.ndarray, key: bytes | None = None) -> "AmbientCoupling":
         """Node-to-sink conductances ``g`` [W/K] and ``g·T_s`` [W] of a full-state model."""
-        return cls(links, links, sink_heat, float(sink_heat.sum()))
+        return cls(links, links, sink_heat, float(sink_heat.sum()), key)
 
 
 @dataclass(frozen=True)
@@ -151,6 +151,10 @@ class BoundaryBasis:
         :func:`surface_coefficients` in series with :attr:`film` (:func:`film_coefficient`)."""
         h, sinks = surface_coefficients(bc, self.surfaces)
         return (h if self.film is None else film_coefficient(h, self.film)), sinks
+
+    def links(self, h: np.ndarray, sinks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Node-to-sink conductances ``g`` [W/K] and ``g·T_s`` [W] of the surfaces' coefficients and sinks."""
+        return self.exposure_by_node @ h, self.exposure_by_node @ (h * sinks)
 
     @cached_property
     def exposure_by_node(self) -> sp.csr_matrix:
@@ -291,13 +295,16 @@ class ThermalModel(ABC):
 
     def ambient_coupling(self, bc: BoundaryConditions, k: int | None) -> AmbientCoupling:
         """The ambient operator of the step equations at position k (None: the cycle average)."""
-        return AmbientCoupling.diagonal(*self._links(bc, k))
+        basis = self.boundary_basis(k)
+        h, sinks = basis.coefficients(bc)
+        # with the position (the integrator's key holds it), the coefficients make the links: a
+        # fingerprint of a few numbers where the links' own is one of every node's
+        return AmbientCoupling.diagonal(*basis.links(h, sinks), h.tobytes())
 
     def _links(self, bc: BoundaryConditions, k: int | None) -> tuple[np.ndarray, np.ndarray]:
         """Node-to-sink conductances ``g`` [W/K] and their heat at the sink temperatures ``g·T_s`` [W]."""
         basis = self.boundary_basis(k)
-        h, sinks = basis.coefficients(bc)
-        return basis.exposure_by_node @ h, basis.exposure_by_node @ (h * sinks)
+        return basis.links(*basis.coefficients(bc))
 
     def heat_vector(self, bc: BoundaryConditions, k: int | None) -> np.ndarray:
         """Heat [W] into every state entry at position k (None: the cycle average), placed by :func:`heat_inputs`."""
@@ -406,10 +413,14 @@ class ThermalModel(ABC):
         """``∂(rows, offset)/∂θ`` of :meth:`displacement_rows` for the expansion parameter ``name``."""
         raise NotImplementedError(f"{type(self).__name__} has no affine parameter {name!r}")
 
-    def displacements(self, state: np.ndarray) -> np.ndarray:
-        """D, then the screw's axial displacement profile [m], of ``state`` (:meth:`displacement_rows`)."""
+    def displacements(self, states: np.ndarray) -> np.ndarray:
+        """D, then the screw's axial displacement profile [m], of ``states`` (:meth:`displacement_rows`),
+        shape ``(..., 1 + sections)``: one state, or several stacked along the first axis."""
         rows, offset = self.displacement_rows()
-        return rows @ state + offset
+        states = np.asarray(states)
+        if states.ndim == 1:
+            return rows @ states + offset
+        return np.asarray(rows @ states.reshape(-1, states.shape[-1]).T).T.reshape(*states.shape[:-1], -1) + offset
 
     def displacement_field(self, state: np.ndarray) -> np.ndarray | None:
         """The displacement [m] of every vertex of :meth:`field_mesh`, shape (n, 3), or None if the
