@@ -107,3 +107,19 @@ def test_the_threaded_product_equals_the_plain_one(monkeypatch):
     np.testing.assert_array_equal(operator.matvec(v), A @ v)
     monkeypatch.setattr(iterative.os, "cpu_count", lambda: 1)
     assert matrix_operator(A) is A  # one core: the matrix itself
+
+
+def test_a_steps_guess_extrapolates_the_last_two_increments_at_its_phase():
+    history = iterative.IncrementHistory()
+    start, fallback = np.full(3, 300.0), np.full(3, 301.0)
+    assert history.guess("up 4", start, fallback) is fallback  # no step at this phase yet
+    history.record("up 4", np.array([1.0, 2.0, 3.0]))
+    np.testing.assert_array_equal(history.guess("up 4", start, fallback), [301.0, 302.0, 303.0])
+    history.record("down 4", np.array([9.0, 9.0, 9.0]))  # another phase keeps its own
+    history.record("up 4", np.array([1.5, 2.0, 2.0]))
+    # 2 d₋₁ − d₋₂: the increment keeps changing as it changed between the last two cycles
+    np.testing.assert_array_equal(history.guess("up 4", start, fallback), [302.0, 302.0, 301.0])
+    history.record("up 4", np.array([2.0, 2.0, 1.0]))  # only the last two are kept
+    np.testing.assert_array_equal(history.guess("up 4", start, fallback), [302.5, 302.0, 300.0])
+    history.clear()
+    assert history.guess("up 4", start, fallback) is fallback

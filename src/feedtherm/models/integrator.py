@@ -6,7 +6,9 @@ position at the end of the step.  While the table moves, a step advances the gro
 number of grid positions, so each position's matrix can be factorised once and reused
 (:mod:`.direct`: a symmetric fill-reducing ordering, dense Cholesky for a projected model); large FE
 meshes use conjugate gradients on the step's increment instead (:mod:`.iterative`), started
-from the linear extrapolation of the last two states.  The energy account is kept apart from
+from the increments of the last two steps at the same phase of the reciprocation
+(:class:`~.iterative.IncrementHistory`; the linear extrapolation of the last two states where
+there are none yet).  The energy account is kept apart from
 the solver's matrices: heat in from the boundary conditions (not the model's heat vector),
 heat lost from the ambient coupling, heat stored from the capacities.
 """
@@ -41,7 +43,7 @@ from .coupling import (
 )
 from . import pardiso
 from .direct import EliminationOrder, _pattern, dense_factors, factorize
-from .iterative import StepCG, jacobi
+from .iterative import IncrementHistory, StepCG, jacobi
 from .interface import AmbientCoupling, Operator, ThermalModel, source_powers
 from .options import ModelOptions
 
@@ -507,7 +509,9 @@ class Integrator:
         trace.sources = list(m.system.sources)
         heat_in = np.zeros(len(trace.sources))  # each source's heat since the start [J]
         heat_lost = 0.0  # [J]
+        increments = IncrementHistory()  # conjugate gradients' starting guesses (:mod:`.iterative`)
         for seg_id, seg in enumerate(segments):
+            increments.clear()  # another operating point: another pattern of increments
             moving = seg.speed > 0.0
             resolved = moving and not averaged
             dt_nominal, cells_per_step = self._step(seg)
@@ -541,8 +545,10 @@ class Integrator:
                 if step.lu is not None:
                     T_new = step.lu.solve(rhs)
                 else:
-                    guess = T if T_old is None else T + (T - T_old) * (dt / dt_old)
-                    T_new = self.solve(seg_id, factorised, k_step, dt, rhs, T, guess)
+                    phase = (round(math.fmod(path.u, period), 6) if period else 0.0, round(dt, 12))
+                    extrapolated = T if T_old is None else T + (T - T_old) * (dt / dt_old)
+                    T_new = self.solve(seg_id, factorised, k_step, dt, rhs, T, increments.guess(phase, T, extrapolated))
+                    increments.record(phase, T_new - T)
                 t_new = t + dt
                 # energy account: heat in from the boundary conditions, losses from the surfaces,
                 # both as the step's equations had them
