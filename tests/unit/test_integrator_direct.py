@@ -141,3 +141,32 @@ def test_step_matrices_are_keyed_by_the_surface_coefficients_so_equal_links_shar
     A = integrator._step_matrix(2, more_convection, 4, 1.5)
     b = model.capacity * 300.0
     np.testing.assert_allclose(other.solve(b), spsolve(A.tocsc(), b), rtol=1e-11)
+
+
+@pytest.mark.parametrize("max_step, kept", [(30.0, True), (0.7, False)])
+def test_cg_steps_keep_increments_only_where_the_phases_of_the_stroke_recur(paper, monkeypatch, max_step, kept):
+    """Conjugate gradients start from earlier cycles' increments where a step advances the nut by
+    whole grid cells; a step capped below that (a slow table) advances it by a fraction, its phases
+    need not recur, and keeping an increment for each would grow without bound: none is kept."""
+    from dataclasses import replace
+
+    from feedtherm.models.iterative import IncrementHistory
+
+    phases = set()
+    plain_record = IncrementHistory.record
+    monkeypatch.setattr(IncrementHistory, "record",
+                        lambda self, phase, increment: (phases.add(phase), plain_record(self, phase, increment)))
+    plan = plan_run(paper, condition="I", duration=300.0, solver="cg")
+    options = replace(plan.options, max_step=max_step)
+    model = plan.model.build(paper.system, options)
+    integrator = Integrator(model, options, None)
+    assert not integrator.direct
+    trace = integrator.run(plan.segments, model.uniform_state(293.15), np.array([0.0, 300.0]))
+    if kept:
+        cells = integrator._step(plan.segments[0])[1]
+        assert cells >= 1.0 and cells.is_integer()
+        assert len(phases) == 20 * 2  # 20 steps a stroke, each way
+    else:
+        assert 0.0 < integrator._step(plan.segments[0])[1] < 1.0
+        assert not phases
+    assert len(trace.step_end) > 100

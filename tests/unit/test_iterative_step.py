@@ -123,3 +123,22 @@ def test_a_steps_guess_extrapolates_the_last_two_increments_at_its_phase():
     np.testing.assert_array_equal(history.guess("up 4", start, fallback), [302.5, 302.0, 300.0])
     history.clear()
     assert history.guess("up 4", start, fallback) is fallback
+
+
+def test_a_step_on_two_threads_is_the_step_on_one(monkeypatch):
+    """A large step matrix is kept only as the two halves its threaded product uses: the solver's
+    forcing, corrections and iterations all go through them, and give the one-thread answer."""
+    n = 900
+    A = step_matrix(n, 10)
+    start = np.linspace(290.0, 300.0, n)
+    rhs = A @ start + np.random.default_rng(11).uniform(0.0, 1.0, n)
+    groups = indicators(halves(n))
+    plain = StepCG(A, groups)
+    assert sp.issparse(plain.operator)  # small: the matrix itself, once
+    monkeypatch.setattr(iterative, "THREADED_ROWS", 10)
+    monkeypatch.setattr(iterative.os, "cpu_count", lambda: 2)
+    threaded = StepCG(A, groups)
+    assert not sp.issparse(threaded.operator)
+    assert not any(sp.issparse(value) and value.shape == A.shape for value in vars(threaded).values())
+    np.testing.assert_allclose(threaded.solve(rhs, start), plain.solve(rhs, start), rtol=0.0, atol=1e-12)
+    assert threaded.iterations == plain.iterations

@@ -515,6 +515,8 @@ class Integrator:
             moving = seg.speed > 0.0
             resolved = moving and not averaged
             dt_nominal, cells_per_step = self._step(seg)
+            # whole grid cells a step (or none): the phases of the stroke recur, and so do their increments
+            repeating = float(cells_per_step).is_integer()
             if moving and trace.time_step == 0.0:
                 trace.time_step = dt_nominal
             bc = factorised = seg.bc  # latest evaluation; the one the step matrix was factorised with
@@ -545,10 +547,13 @@ class Integrator:
                 if step.lu is not None:
                     T_new = step.lu.solve(rhs)
                 else:
-                    phase = (round(math.fmod(path.u, period), 6) if period else 0.0, round(dt, 12))
-                    extrapolated = T if T_old is None else T + (T - T_old) * (dt / dt_old)
-                    T_new = self.solve(seg_id, factorised, k_step, dt, rhs, T, increments.guess(phase, T, extrapolated))
-                    increments.record(phase, T_new - T)
+                    guess = T if T_old is None else T + (T - T_old) * (dt / dt_old)
+                    phase = (round(math.fmod(path.u, period), 6) if period else 0.0, round(dt, 12)) if repeating else None
+                    if phase is not None:
+                        guess = increments.guess(phase, T, guess)
+                    T_new = self.solve(seg_id, factorised, k_step, dt, rhs, T, guess)
+                    if phase is not None:
+                        increments.record(phase, T_new - T)
                 t_new = t + dt
                 # energy account: heat in from the boundary conditions, losses from the surfaces,
                 # both as the step's equations had them
