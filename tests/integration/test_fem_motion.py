@@ -53,37 +53,3 @@ def test_conjugate_gradients_follow_the_cached_lu_through_a_moving_run(paper):
     assert runs["cg"].elongation == pytest.approx(runs["direct"].elongation, abs=1e-10)
     assert abs(runs["cg"].energy.relative_error) < 1e-4
 
-
-def test_conjugate_gradients_start_from_the_increments_of_earlier_cycles(paper, monkeypatch):
-    """A step at a phase of the stroke starts from the increments of the last two steps at that phase
-    (models/iterative.py, *Where the iterations start*).  From the cycle-averaged steady state the
-    resolved field settles into its cycle over many cycles: by the ninth the steps need less than
-    half the iterations they need from the extrapolated states, for the same transient."""
-    from feedtherm.models.integrator import Integrator
-    from feedtherm.models.iterative import IncrementHistory
-
-    plain_solve = Integrator.solve
-
-    def run() -> tuple:
-        counts = []
-
-        def counted(self, *args):
-            before = self.cg_iterations
-            state = plain_solve(self, *args)
-            counts.append(self.cg_iterations - before)
-            return state
-
-        monkeypatch.setattr(Integrator, "solve", counted)
-        solution = simulate(paper, condition="I", model="fem", mesh="coarse", duration=600.0, sample_interval=10.0,
-                            start="steady", solver="cg")
-        assert len(counts) == 360  # nine cycles of 40 steps
-        return solution, sum(counts[-80:])  # the last two cycles
-
-    cycles, late = run()
-    monkeypatch.setattr(IncrementHistory, "guess", lambda self, phase, start, fallback: fallback)
-    extrapolated, late_extrapolated = run()
-    assert late < 0.6 * late_extrapolated, (late, late_extrapolated)
-    for name in ["T1", "T2", "T3", "T4", "T5"]:
-        assert cycles.sensors[name] == pytest.approx(extrapolated.sensors[name], abs=1e-4), name
-    assert cycles.elongation == pytest.approx(extrapolated.elongation, abs=1e-10)
-    assert abs(cycles.energy.relative_error) < 1e-4
