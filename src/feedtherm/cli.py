@@ -16,7 +16,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from . import __version__
-from .errors import FeedthermError, ModelError
+from .errors import FeedthermError, ModelError, Terminated
 
 
 class _Parser(argparse.ArgumentParser):
@@ -911,12 +911,8 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-class _Terminated(KeyboardInterrupt):
-    """SIGTERM, raised where the program is, so that it stops as cleanly as on Ctrl-C."""
-
-
 def _raise_terminated(signum, frame) -> None:
-    raise _Terminated()
+    raise Terminated()
 
 
 def _what_was_kept(stop: KeyboardInterrupt) -> str:
@@ -937,7 +933,7 @@ def main(argv: list[str] | None = None) -> int:
     except FeedthermError as exc:
         print(f"feedtherm: error: {exc}", file=sys.stderr)
         return 2
-    except _Terminated as stop:
+    except Terminated as stop:
         print(f"feedtherm: terminated{_what_was_kept(stop)}", file=sys.stderr)
         return 128 + signal.SIGTERM
     except KeyboardInterrupt as stop:

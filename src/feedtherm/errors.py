@@ -11,3 +11,8 @@ class DescriptionError(FeedthermError):
 
 class ModelError(FeedthermError):
     """A valid description asks for something the models cannot do."""
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised where the program is (the CLI's handler), so that it stops as cleanly as on
+    Ctrl-C and says it was terminated; a batch that re-raises an interruption keeps this kind."""

@@ -21,7 +21,7 @@ import re
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field, replace
 
-from ..errors import FeedthermError
+from ..errors import FeedthermError, Terminated
 from . import dask_worker
 
 #: The variable Dask's own tools read for the scheduler's address.
@@ -147,8 +147,9 @@ def _serial(function, items, describe, progress, passes_progress, on_done) -> It
         try:
             result = function(item, **kwargs)
         except Exception as exc:  # one run's failure is reported with its inputs; the others go on
-            if interrupted(exc):
-                raise KeyboardInterrupt from exc
+            kind = interruption(exc)
+            if kind is not None:
+                raise kind() from exc
             result = TaskFailure(index, describe(item), _message(exc))
         if on_done is not None:
             on_done(index, result)
@@ -157,17 +158,22 @@ def _serial(function, items, describe, progress, passes_progress, on_done) -> It
             progress((index + 1) / count)
 
 
-def interrupted(exc: BaseException) -> bool:
-    """Whether ``exc`` carries a Ctrl-C: a KeyboardInterrupt in its chain, or in the message of
-    pydantic-core's serialisation error, which reports a Ctrl-C that lands inside a wrap
-    serialiser as ``PydanticSerializationError: ... KeyboardInterrupt`` and keeps no chain.  The
-    batch stops then, as at any other Ctrl-C, and does not count a failed run."""
+def interruption(exc: BaseException) -> type[KeyboardInterrupt] | None:
+    """The interruption ``exc`` carries, or None: a KeyboardInterrupt (Ctrl-C) or a
+    :class:`~feedtherm.errors.Terminated` (SIGTERM) in its chain, or named in the message of
+    pydantic-core's serialisation error, which reports one that lands inside a wrap serialiser as
+    ``PydanticSerializationError: ... KeyboardInterrupt`` and keeps no chain.  The batch stops
+    then, as at any other interruption of that kind, and does not count a failed run."""
     seen: BaseException | None = exc
     while seen is not None:
         if isinstance(seen, KeyboardInterrupt):
-            return True
+            return type(seen)
         seen = seen.__cause__ or seen.__context__
-    return type(exc).__name__ == "PydanticSerializationError" and "KeyboardInterrupt" in str(exc)
+    if type(exc).__name__ == "PydanticSerializationError":
+        for kind in (Terminated, KeyboardInterrupt):  # the subclass first: a message names the class raised
+            if kind.__name__ in str(exc):
+                return kind
+    return None
 
 
 def progress_share(progress: Callable[[float], None], index: int, count: int) -> Callable[[float], None]:

@@ -7,7 +7,7 @@ import time
 import pytest
 
 from feedtherm.analysis.execution import Execution, TaskFailure, resolve_execution, run_ordered
-from feedtherm.errors import FeedthermError
+from feedtherm.errors import FeedthermError, Terminated
 
 # --------------------------------------------------------------------------- choosing
 
@@ -85,6 +85,31 @@ def test_a_ctrl_c_that_a_library_reports_as_its_own_error_stops_the_serial_batch
         for _, result in run_ordered(task, ["a", "b", "c"], on_done=lambda i, r: done.append(r)):
             pass
     assert all(not isinstance(r, TaskFailure) for r in done)  # no run was counted as failed
+
+
+def _terminated_inside_a_serialiser(item):
+    from pydantic_core import PydanticSerializationError
+
+    if item == "b":  # the CLI's SIGTERM handler's exception, landing in a wrap serialiser
+        raise PydanticSerializationError("Error calling function `serialise`: Terminated")
+    return item
+
+
+def _terminated_and_chained(item):
+    try:
+        raise Terminated
+    except Terminated as exc:
+        raise RuntimeError("a library caught the signal's exception and raised its own error") from exc
+
+
+@pytest.mark.parametrize("task", [_terminated_inside_a_serialiser, _terminated_and_chained])
+def test_a_sigterm_that_a_library_reports_as_its_own_error_stops_the_batch_as_a_sigterm(task):
+    """The interruption is raised again of its own kind: the CLI then says the run was terminated and
+    exits 143, not 130 as after Ctrl-C (a sweep's SIGTERM test saw 130 once, with the signal inside a
+    library's call)."""
+    with pytest.raises(Terminated):
+        for _ in run_ordered(task, ["a", "b", "c"]):
+            pass
 
 
 def test_a_serialisers_own_error_or_a_mention_of_the_word_is_a_failed_run():
