@@ -63,53 +63,43 @@ def test_serial_results_in_order_with_a_failure_in_its_place():
     assert seen == pytest.approx([1 / 3, 2 / 3, 1.0])
 
 
-def _interrupted_inside_a_serialiser(item):
+def _inside_a_serialiser(kind):
+    """A task that pydantic-core interrupts as it does when ``kind`` (Ctrl-C's KeyboardInterrupt, or the
+    CLI's SIGTERM handler's Terminated) lands in a wrap serialiser: its error names the class, no chain."""
     from pydantic_core import PydanticSerializationError
 
-    if item == "b":  # what pydantic-core raises when Ctrl-C lands in a wrap serialiser: no chain
-        raise PydanticSerializationError("Error calling function `serialise`: KeyboardInterrupt")
-    return item
+    def task(item):
+        if item == "b":
+            raise PydanticSerializationError(f"Error calling function `serialise`: {kind.__name__}")
+        return item
+
+    return task
 
 
-def _interrupted_and_chained(item):
-    try:
-        raise KeyboardInterrupt
-    except KeyboardInterrupt as exc:
-        raise RuntimeError("a library caught the interrupt and raised its own error") from exc
+def _chained(kind):
+    """A task whose library catches ``kind`` and raises its own error from it."""
+
+    def task(item):
+        try:
+            raise kind
+        except kind as exc:
+            raise RuntimeError("a library caught the interruption and raised its own error") from exc
+
+    return task
 
 
-@pytest.mark.parametrize("task", [_interrupted_inside_a_serialiser, _interrupted_and_chained])
-def test_a_ctrl_c_that_a_library_reports_as_its_own_error_stops_the_serial_batch(task):
+@pytest.mark.parametrize("kind", [KeyboardInterrupt, Terminated], ids=["ctrl-c", "sigterm"])
+@pytest.mark.parametrize("form", [_inside_a_serialiser, _chained])
+def test_an_interruption_that_a_library_reports_as_its_own_error_stops_the_serial_batch_as_itself(kind, form):
+    """The interruption is raised again of its own kind: after a SIGTERM the CLI then says the run was
+    terminated and exits 143, not 130 as after Ctrl-C (a sweep's SIGTERM test saw 130 once, with the
+    signal inside a library's call)."""
     done = []
-    with pytest.raises(KeyboardInterrupt):
-        for _, result in run_ordered(task, ["a", "b", "c"], on_done=lambda i, r: done.append(r)):
+    with pytest.raises(KeyboardInterrupt) as stopped:
+        for _, result in run_ordered(form(kind), ["a", "b", "c"], on_done=lambda i, r: done.append(r)):
             pass
+    assert type(stopped.value) is kind
     assert all(not isinstance(r, TaskFailure) for r in done)  # no run was counted as failed
-
-
-def _terminated_inside_a_serialiser(item):
-    from pydantic_core import PydanticSerializationError
-
-    if item == "b":  # the CLI's SIGTERM handler's exception, landing in a wrap serialiser
-        raise PydanticSerializationError("Error calling function `serialise`: Terminated")
-    return item
-
-
-def _terminated_and_chained(item):
-    try:
-        raise Terminated
-    except Terminated as exc:
-        raise RuntimeError("a library caught the signal's exception and raised its own error") from exc
-
-
-@pytest.mark.parametrize("task", [_terminated_inside_a_serialiser, _terminated_and_chained])
-def test_a_sigterm_that_a_library_reports_as_its_own_error_stops_the_batch_as_a_sigterm(task):
-    """The interruption is raised again of its own kind: the CLI then says the run was terminated and
-    exits 143, not 130 as after Ctrl-C (a sweep's SIGTERM test saw 130 once, with the signal inside a
-    library's call)."""
-    with pytest.raises(Terminated):
-        for _ in run_ordered(task, ["a", "b", "c"]):
-            pass
 
 
 def test_a_serialisers_own_error_or_a_mention_of_the_word_is_a_failed_run():
