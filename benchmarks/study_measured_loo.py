@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from feedtherm.analysis.measurements import ELONGATION_QUANTITY, read_measurements
+from feedtherm.system.measurements import ELONGATION_QUANTITY, read_measurements
 from feedtherm.system.load import load_system
 
 

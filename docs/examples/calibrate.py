@@ -13,7 +13,7 @@ measured conditions and writes the calibrated description.
 import math
 
 from feedtherm.analysis.calibration import calibrate
-from feedtherm.analysis.measurements import MeasurementSet, read_measurements
+from feedtherm.system.measurements import MeasurementSet, read_measurements
 from feedtherm.system.load import load_system
 
 

@@ -518,7 +518,7 @@ def cmd_compensate(args: argparse.Namespace) -> int:
     from .outputs.compensation_files import summary_line, write_compensation
 
     from .analysis.compensation.adaptation import adapt_study, check_adaptation_file, loco_study
-    from .analysis.measurements import read_measurements
+    from .system.measurements import read_measurements
 
     adapt_data = None
     if args.adapt:  # read and checked before the long run; sensors chosen by the study are checked after it

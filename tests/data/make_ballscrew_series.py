@@ -3,7 +3,7 @@
 The bundled ``ballscrew_example`` bench has its own (8 h) series; this one is shorter. It runs its condition
 ``v10`` for 20 min with the fast model, takes T1, T3, T4 and the elongation D every 2 min, adds
 seeded Gaussian noise (0.1 K, 0.5 µm) and writes them in the long format of
-``feedtherm.analysis.measurement_series`` with standard uncertainties of 0.2 K and 1 µm, in
+``feedtherm.system.measurement_series`` with standard uncertainties of 0.2 K and 1 µm, in
 mixed units (°C, K, mm) so that the reader's conversions are exercised. The tests validate
 against it a description whose ``v10`` lasts 20 min (tests/integration/test_cli_validate_series.py).
 

@@ -20,7 +20,7 @@ import pytest
 
 from feedtherm.analysis.calibration import calibrate
 from feedtherm.analysis.inverse import Noise, infer_conditions
-from feedtherm.analysis.measurements import MeasurementSet
+from feedtherm.system.measurements import MeasurementSet
 from feedtherm.analysis.validation import measurements_of
 from feedtherm.boundary import boundary_conditions
 from feedtherm.system.load import load_system

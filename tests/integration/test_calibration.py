@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from feedtherm.analysis.calibration import calibrate, cross_validate, resolve_parameters
-from feedtherm.analysis.measurements import read_measurements
+from feedtherm.system.measurements import read_measurements
 from feedtherm.analysis.validation import calibrated_values
 from feedtherm.errors import FeedthermError
 from feedtherm.outputs.calibration_files import write_calibration
@@ -102,7 +102,7 @@ def test_held_out_predictions_fall_in_their_intervals_and_flagged_values_are_not
     predict the held-out condition inside its 95 % intervals."""
     from feedtherm.analysis.calibration import EQUILIBRIUM_QUANTITY, _Model
     from feedtherm.analysis.consistency import ConsistencyReport, Flag
-    from feedtherm.analysis.measurements import Measurement, MeasurementSet
+    from feedtherm.system.measurements import Measurement, MeasurementSet
 
     names = ["screw_nut_preload"]
     truth = apply_values(paper, names, [220.0])  # a machine its motors can run (under 240 N)

@@ -17,7 +17,7 @@ import pytest
 from feedtherm import cli
 from feedtherm.analysis.calibration import RunCache, calibrate, cross_validate
 from feedtherm.analysis.consistency import check_description_measurements
-from feedtherm.analysis.measurements import MeasurementSet
+from feedtherm.system.measurements import MeasurementSet
 from feedtherm.analysis.uncertainty.study import run_uncertainty
 from feedtherm.analysis.uncertainty.update import bayesian_update
 from feedtherm.analysis.validation import measurements_of

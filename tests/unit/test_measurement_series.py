@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from feedtherm.analysis.measurements import read_measurements
+from feedtherm.system.measurements import read_measurements
 from feedtherm.errors import DescriptionError
 
 SENSORS = ["A", "B"]

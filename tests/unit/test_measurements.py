@@ -1,6 +1,6 @@
 import pytest
 
-from feedtherm.analysis.measurements import read_measurements
+from feedtherm.system.measurements import read_measurements
 from feedtherm.benches import bench
 from feedtherm.errors import DescriptionError
 

@@ -62,8 +62,8 @@ from ..system.references import closest
 from ..system.variants import expand_path, get_path, with_values
 from .consistency import ConsistencyReport
 from .execution import Execution, TaskFailure, kept_open, run_ordered
-from .measurement_series import Series
-from .measurements import MeasurementSet
+from ..system.measurement_series import Series
+from ..system.measurements import MeasurementSet
 from .transient_scores import TransientComparison, simulated_series
 from .validation_types import ELONGATION_QUANTITY
 

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..constants import KELVIN_OFFSET, RPM_PER_RAD_S
-from .measurements import ELONGATION_QUANTITY, MeasurementSet
+from ..system.measurements import ELONGATION_QUANTITY, MeasurementSet
 
 #: Coverage factor of the tolerances (about 99.7 % for a normal error).
 COVERAGE = 3.0

@@ -48,8 +48,8 @@ from ..simulate import steady_solve
 from ..solution.pack import sample_times
 from ..system.load import LoadedSystem
 from ..system.variants import with_values
-from .measurement_series import ELONGATION_QUANTITY
-from .measurements import MeasurementSet
+from ..system.measurement_series import ELONGATION_QUANTITY
+from ..system.measurements import MeasurementSet
 
 #: Groups whose estimates correlate beyond this are reported as not told apart.
 CORRELATION_LIMIT = 0.8

@@ -14,8 +14,8 @@ import numpy as np
 
 from ..errors import FeedthermError
 from ..solution import Solution
-from .measurement_series import ELONGATION_QUANTITY
-from .measurements import Measurement
+from ..system.measurement_series import ELONGATION_QUANTITY
+from ..system.measurements import Measurement
 
 #: Slack on the run's time span [s]: a sample at the run's end is not rounded out of it.
 _TIME_SLACK = 1e-6

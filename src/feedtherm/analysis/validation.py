@@ -19,7 +19,7 @@ from ..system.load import LoadedSystem
 from ..system.overlay import available_overlay
 from .consistency import check_description_measurements
 from .inverse import Noise, infer_conditions
-from .measurements import MeasurementSet, measurement_spec, read_measurements
+from ..system.measurements import MeasurementSet, measurement_spec, read_measurements
 from .sensitivity import sensitivities
 from .sweep import sensor_labels
 from .transient_scores import compare_series

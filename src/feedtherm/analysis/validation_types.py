@@ -8,7 +8,7 @@ from ..benches import ReportNotes
 from ..solution import Solution
 from .consistency import ConsistencyReport
 from .inverse import Inference
-from .measurements import ELONGATION_QUANTITY  # noqa: F401 (re-exported for the report and CLI)
+from ..system.measurements import ELONGATION_QUANTITY  # noqa: F401 (re-exported for the report and CLI)
 from .transient_scores import TransientComparison
 
 

@@ -4,7 +4,7 @@ A bench folder holds::
 
     description.toml        the system description (required; docs/system-description.md)
     measurements.csv        measured values to validate and calibrate against (optional; the
-                            layout is in feedtherm.analysis.measurements)
+                            layout is in feedtherm.system.measurements)
     equilibrium_times.csv   the equilibrium time the source states per condition (optional)
     overlay.toml            values the source prints, laid over the physics by --mode (optional;
                             feedtherm.system.overlay)

@@ -32,7 +32,7 @@ from ..analysis.compensation.adapt import AdaptedLaw
 from ..analysis.compensation.adaptation import ADAPTED_FILES, adaptation_block
 from ..analysis.compensation.law import adapted_law_document, law_document, stroke_law_document
 from ..analysis.compensation.leave_one_out import LeaveOneOut
-from ..analysis.measurements import MeasurementSet
+from ..system.measurements import MeasurementSet
 from ..analysis.compensation.measured import MeasuredPrediction
 from ..analysis.compensation.stroke import stroke_conditioning
 from ..analysis.compensation.study import LawResult, StrokeResult, StudyResult

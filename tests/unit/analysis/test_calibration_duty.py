@@ -5,7 +5,7 @@ import pytest
 
 from feedtherm.analysis.calibration import (DUTY_LIMIT, DUTY_SIGMA, _DutyPenalty, apply, calibrate,
                                             resolve_parameters)
-from feedtherm.analysis.measurements import read_measurements
+from feedtherm.system.measurements import read_measurements
 from feedtherm.boundary import boundary_conditions
 from feedtherm.boundary.heat import motor_duties
 from feedtherm.plan import with_mode

@@ -11,7 +11,7 @@ from rich.console import Console
 
 from feedtherm.analysis import calibration
 from feedtherm.analysis.calibration import RunCache, calibrate, cross_validate, series_key
-from feedtherm.analysis.measurements import read_measurements
+from feedtherm.system.measurements import read_measurements
 from feedtherm.errors import FeedthermError
 from feedtherm.outputs.calibration_files import calibration_summary, cross_summary, print_calibration
 from feedtherm.system.variants import get_path, with_values

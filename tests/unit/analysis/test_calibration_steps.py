@@ -9,7 +9,7 @@ import pytest
 
 from feedtherm.analysis import calibration
 from feedtherm.analysis.calibration import RunCache, _Broyden, _converged, calibrate, cross_validate
-from feedtherm.analysis.measurements import read_measurements
+from feedtherm.system.measurements import read_measurements
 from feedtherm.system.variants import get_path
 
 PARAMS = ["screw_nut_preload", "chtc_screw"]

@@ -10,7 +10,7 @@ from feedtherm.analysis.compensation.pairs import Pairs, measured_pairs
 from feedtherm.analysis.compensation.evaluator import CompensationLaw
 from feedtherm.analysis.compensation.law import adapted_law_document
 from feedtherm.analysis.compensation.regression import RegressionLaw
-from feedtherm.analysis.measurements import read_measurements
+from feedtherm.system.measurements import read_measurements
 from feedtherm.errors import FeedthermError
 
 

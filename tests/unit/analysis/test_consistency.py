@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from feedtherm.analysis.consistency import OperatingPoint, check_consistency, operating_points
-from feedtherm.analysis.measurements import Measurement, MeasurementSet, read_measurements
+from feedtherm.system.measurements import Measurement, MeasurementSet, read_measurements
 
 SENSORS = ("T1", "T2")
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from feedtherm.analysis.inverse import Noise, infer_conditions, parse_groups, transient_transfer
-from feedtherm.analysis.measurements import read_measurements
+from feedtherm.system.measurements import read_measurements
 from feedtherm.benches import bench
 from feedtherm.boundary import boundary_conditions
 from feedtherm.errors import FeedthermError

@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from feedtherm.analysis.measurement_series import Series
-from feedtherm.analysis.measurements import Measurement
+from feedtherm.system.measurement_series import Series
+from feedtherm.system.measurements import Measurement
 from feedtherm.analysis.transient_scores import TransientComparison, compare_series
 from feedtherm.errors import FeedthermError
 from feedtherm.solution import EnergyBalance, Solution

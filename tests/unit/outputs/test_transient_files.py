@@ -9,8 +9,8 @@ import json
 import numpy as np
 import pytest
 
-from feedtherm.analysis.measurement_series import Series
-from feedtherm.analysis.measurements import Measurement
+from feedtherm.system.measurement_series import Series
+from feedtherm.system.measurements import Measurement
 from feedtherm.analysis.transient_scores import compare_series
 from feedtherm.outputs.report import render_report
 from feedtherm.outputs.transient_files import transient_lines, write_transient_files

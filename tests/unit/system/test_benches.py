@@ -5,7 +5,7 @@ from importlib import metadata
 import pytest
 
 from feedtherm import benches
-from feedtherm.analysis.measurements import measurement_spec
+from feedtherm.system.measurements import measurement_spec
 from feedtherm.analysis.validation import measurements_of
 from feedtherm.benches import GROUP, Bench, bench, bench_names
 from feedtherm.cli import main

@@ -5,7 +5,7 @@ import os
 
 import pytest
 
-from feedtherm.analysis.measurements import read_measurements
+from feedtherm.system.measurements import read_measurements
 from feedtherm.benches import bench
 from feedtherm.cli import main
 from feedtherm.errors import DescriptionError

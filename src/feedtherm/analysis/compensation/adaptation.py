@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...system.load import LoadedSystem
-from ..measurements import ELONGATION_QUANTITY, MeasurementSet
+from ...system.measurements import ELONGATION_QUANTITY, MeasurementSet
 from .adapt import AdaptedLaw, adapt_law, feature_scale
 from .leave_one_out import LeaveOneOut, leave_one_condition_out
 from .pairs import elongation_sigma, measured_pairs

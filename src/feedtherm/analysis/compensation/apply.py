@@ -26,7 +26,7 @@ import numpy as np
 
 from ...constants import KELVIN_OFFSET
 from ...errors import FeedthermError
-from ..measurements import ELONGATION_QUANTITY, read_measurements
+from ...system.measurements import ELONGATION_QUANTITY, read_measurements
 from .evaluator import CompensationLaw
 from .pairs import union_times, values_at
 

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..measurements import ELONGATION_QUANTITY, MeasurementSet
+from ...system.measurements import ELONGATION_QUANTITY, MeasurementSet
 from .adapt import adapt_law, minimum_norm_fit
 from .pairs import Pairs
 from .regression import RegressionLaw

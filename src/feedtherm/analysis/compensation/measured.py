@@ -19,7 +19,7 @@ import numpy as np
 
 from ...constants import KELVIN_OFFSET
 from ...system.load import LoadedSystem
-from ..measurements import ELONGATION_QUANTITY, MeasurementSet
+from ...system.measurements import ELONGATION_QUANTITY, MeasurementSet
 from ...constants import RPM_PER_RAD_S
 from .kalman import KalmanLaw
 from .regression import RegressionLaw

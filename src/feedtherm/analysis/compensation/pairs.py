@@ -21,7 +21,7 @@ import numpy as np
 
 from ...constants import KELVIN_OFFSET
 from ...errors import FeedthermError
-from ..measurements import ELONGATION_QUANTITY, MeasurementSet
+from ...system.measurements import ELONGATION_QUANTITY, MeasurementSet
 from .regression import RegressionLaw, features
 
 #: Standard uncertainty of a measured D [m] where neither the file nor the description gives one

@@ -35,7 +35,7 @@ from ...system.load import LoadedSystem
 from ...system.overlay import mode_of
 from ..consistency import ConsistencyReport
 from ..execution import Execution, TaskFailure, run_ordered
-from ..measurements import MeasurementSet
+from ...system.measurements import MeasurementSet
 from ..validation_types import ELONGATION_QUANTITY
 from .declared import resolve_uncertainties, variant
 from .posterior import Posterior

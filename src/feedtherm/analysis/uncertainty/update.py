@@ -59,7 +59,7 @@ from ...system.load import LoadedSystem
 from ..calibration import FTOL, XTOL, _data, _sigma
 from ..consistency import ConsistencyReport
 from ..execution import Execution, TaskFailure, kept_open, run_ordered
-from ..measurements import MeasurementSet
+from ...system.measurements import MeasurementSet
 from .declared import resolve_uncertainties, variant
 from .runs import SampleRun, run_sample
 from .sampling import ppf

@@ -13,7 +13,7 @@ measurements file of a bench (feedtherm.benches), or a path relative to the desc
 (for a bench's description: relative to its folder). A description loaded from a bench that
 names none is compared with the bench's own measurements file.
 
-Time series, one row per sample (:mod:`~feedtherm.analysis.measurement_series`)::
+Time series, one row per sample (:mod:`~feedtherm.system.measurement_series`)::
 
     condition,time [min],quantity,value,unit[,uncertainty]
     v10,0,front_bearing,20.0,degC,0.2
@@ -35,7 +35,7 @@ from typing import Collection, Mapping
 
 from ..benches import MEASUREMENTS, ORIGIN_PREFIX, bench, bench_name_of
 from ..errors import DescriptionError
-from ..system.files import MAX_DATA_BYTES, read_text_file
+from .files import MAX_DATA_BYTES, read_text_file
 from .measurement_series import ELONGATION_QUANTITY, SERIES_HEADER, Series, is_series_header, parse_series
 
 HEADER = ["condition", "quantity", "unit", "measured"]

@@ -32,7 +32,7 @@ import numpy as np
 
 from ..constants import ELONGATION_PROBE, KELVIN_OFFSET
 from ..errors import DescriptionError
-from ..system.quantities import TEMPERATURE_LIMIT, pint, registry  # pint as system.quantities imports it
+from .quantities import TEMPERATURE_LIMIT, pint, registry  # pint as system.quantities imports it
 
 COLUMNS = ["condition", "time [<unit>]", "quantity", "value", "unit"]
 OPTIONAL = "uncertainty"
