@@ -112,8 +112,8 @@ def cmd_check(args: argparse.Namespace) -> int:
     # What `heat` and `run` would meet: every condition's and duty cycle's heats and
     # coefficients evaluated, and its step count planned (a model is not built).
     costs = []
-    for kind, names in (("condition", system.conditions), ("cycle", system.duty_cycles)):
-        section = "conditions" if kind == "condition" else "duty_cycles"
+    for kind, names in (("condition", system.conditions), ("cycle", system.duty_cycles), ("test", system.tests)):
+        section = {"condition": "conditions", "cycle": "duty_cycles", "test": "tests"}[kind]
         for name in names:
             try:
                 plan = plan_run(loaded, **{kind: name})
@@ -147,11 +147,16 @@ def cmd_run(args: argparse.Namespace) -> int:
     loaded = _load_in_mode(args)
     # one description: a reduced model built for it is trained at its own numbers (models/reduced/store.py)
     options = ModelOptions(reduced_training="description")
+    measured = None
+    if args.measured:
+        from .system.measurements import read_description_measurements
+
+        measured = read_description_measurements(loaded.system, args.measured, None)
     with _naming(loaded.origin):
         plan = plan_run(loaded, condition=args.condition, cycle=args.cycle, model=args.model,
                         duration=args.duration, single_drive=args.single_drive, sample_interval=args.sample_interval,
                         motion=args.motion, mesh=args.mesh, solver=args.solver, factor_memory=args.factor_memory,
-                        options=options)
+                        options=options, measured=measured)
     out_dir = Path(args.out) if args.out else default_out_dir(args.system, plan.label, plan.mode)
     check_output_dir(out_dir)
     # Imported only now: every input error above is reported without loading the model.
@@ -710,9 +715,13 @@ def build_parser() -> argparse.ArgumentParser:
     run = sub.add_parser("run", help="simulate a condition or a duty cycle and write CSV, JSON and PNG files")
     _system_argument(run)
     operation = run.add_mutually_exclusive_group(required=True)
-    operation.add_argument("--condition", help="a condition of the description")
+    operation.add_argument("--condition", help="a condition or a test of the description")
+    operation.add_argument("--test", dest="condition", help="a test of the description (docs/tests.md), or a condition")
     operation.add_argument("--cycle", help="a duty cycle declared in the description, or a CSV file "
                                            "(time_s,screw_rpm,nut_rpm,ambient_C)")
+    run.add_argument("--measured", metavar="FILE",
+                     help="the measurements a test whose room or start is measured reads (default: the test's own "
+                          "file, else the description's)")
     run.add_argument("--model", default="fast",
                      help="a model of `feedtherm models`: fast (thermal network, seconds), fem (3D finite "
                           "elements, minutes), ... (default fast)")

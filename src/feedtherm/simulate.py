@@ -21,7 +21,9 @@ from .models.integrator import Integrator, Segment
 from .models.interface import ThermalModel
 from .models.options import ModelOptions
 from .models.registry import build_model
-from .plan import RunPlan, plan_run
+from .boundary.room import at_air
+from .plan import FromReadings, RunPlan, Soaked, Uniform, plan_run
+from .system.measurements import MeasurementSet
 from .system.overlay import mode_of
 from .solution import Solution
 from .solution.health import check_health
@@ -32,21 +34,23 @@ from .system.schema import FeedSystem
 
 
 def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str | None = None,
-             model: str = "fast", duration: float | None = None,
+             test: str | None = None, model: str = "fast", duration: float | None = None,
              single_drive: bool = False, sample_interval: float = 10.0,
              progress: Callable[[float], None] | None = None, motion: str | None = None,
              mesh: str | None = None, start: str = "initial", options: ModelOptions | None = None,
-             solver: str | None = None, allow_overload: bool = False) -> Solution:
-    """Simulate a condition or a duty cycle of ``loaded`` and return its Solution.
+             solver: str | None = None, allow_overload: bool = False,
+             measured: MeasurementSet | None = None) -> Solution:
+    """Simulate a test, a condition or a duty cycle of ``loaded`` and return its Solution.
 
     The boundary conditions take the overlay ``loaded`` carries, if any
     (:func:`feedtherm.plan.with_mode`).
 
     Parameters
     ----------
-    condition, cycle : str
-        Exactly one: a condition name, or a duty cycle (a name in the description or a CSV
-        path, ``time_s,screw_rpm,nut_rpm,ambient_C``).
+    condition, test, cycle : str
+        Exactly one: a test or a condition by name (``condition`` and ``test`` are the same
+        argument: a condition is the simplest test; docs/tests.md), or a duty cycle (a name in the
+        description or a CSV path, ``time_s,screw_rpm,nut_rpm,ambient_C``).
     model : str
         A model of the registry (:func:`feedtherm.models.registry.available_models`):
         ``"fast"`` or ``"fem"`` built in.
@@ -69,10 +73,13 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
     allow_overload : bool
         Run even where a motor needs more than its declared continuous torque (refused by default:
         :func:`feedtherm.plan.refuse_overloads`); studies that vary the preloads report such points.
+    measured : MeasurementSet, optional
+        The measurements a test with a measured room or start reads (default: its own file, else the
+        description's).
     """
-    plan = plan_run(loaded, condition=condition, cycle=cycle, model=model, duration=duration,
+    plan = plan_run(loaded, condition=condition, cycle=cycle, test=test, model=model, duration=duration,
                     single_drive=single_drive, sample_interval=sample_interval, motion=motion, mesh=mesh,
-                    solver=solver, start=start, options=options, allow_overload=allow_overload)
+                    solver=solver, start=start, options=options, allow_overload=allow_overload, measured=measured)
     return execute(plan, progress)
 
 
@@ -84,14 +91,9 @@ def execute(plan: RunPlan, progress: Callable[[float], None] | None = None,
     segments = plan.segments
     disc = model if model is not None else plan.model.build(system, plan.options)
     integrator = Integrator(disc, plan.options, plan.coupling)
-    if plan.start == "steady":
-        first = segments[0]
-        T0 = integrator.steady(0, first.bc, None if first.speed > 0 else 0)
-    else:
-        initial = system.temperatures.initial
-        T0 = disc.uniform_state(segments[0].bc.point.ambient if initial == "ambient" else initial)
+    T0 = initial_state(plan, disc, integrator)
     times = sample_times(plan.end, plan.sample_interval)
-    trace = integrator.run(segments, T0, times, progress)
+    trace = integrator.run(segments, T0, times, progress, plan.air)
     last = segments[-1].bc.point
     stats = disc.stats
     kin = system.kinematics
@@ -119,6 +121,51 @@ def execute(plan: RunPlan, progress: Callable[[float], None] | None = None,
     solution.info["wall_time_s"] = time.perf_counter() - started
     check_health(solution)
     return solution
+
+
+def initial_state(plan: RunPlan, model: ThermalModel, integrator: Integrator) -> np.ndarray:
+    """The state ``plan`` starts from (:class:`~feedtherm.plan.Initial`), on ``model``."""
+    first = plan.segments[0]
+    if plan.start == "steady":
+        return integrator.steady(0, first.bc, None if first.speed > 0 else 0)
+    initial = plan.initial
+    if isinstance(initial, Soaked):  # the other run first, on the same model, from its own start
+        soak = initial.plan
+        inner = Integrator(model, soak.options, soak.coupling)
+        return inner.run(soak.segments, initial_state(soak, model, inner), np.array([soak.end]), air=soak.air).final_state
+    if isinstance(initial, FromReadings):
+        k = 0 if first.table_at is None else integrator.held_position(first.table_at)
+        return matched_state(model, integrator, at_air(first.bc, model.system, initial.air), k, initial.readings)
+    if isinstance(initial, Uniform):
+        return model.uniform_state(initial.temperature)
+    raise FeedthermError(f"a run plan without a start ({initial!r})")
+
+
+def matched_state(model: ThermalModel, integrator: Integrator, bc, k: int, readings: dict[str, float]) -> np.ndarray:
+    """The state that reads ``readings`` [K] (sensor → temperature) at position ``k``: the steady field of
+    the surfaces at ``bc``'s air with a heat [W] at each read sensor, no other heat, the heats chosen so
+    that every sensor reads its reading.
+
+    Of the fields that match the readings it is the one conduction and the surfaces would hold if the
+    sensors' points were kept at their readings: smooth, at the air far from every sensor.  With ``R``
+    the sensors' rows and ``A`` the steady operator, ``T = A⁻¹(s + Rᵀλ)`` with ``(R A⁻¹ Rᵀ) λ = y − R A⁻¹ s
+    − offset``.
+    """
+    names = [n for n in model.probe_names if n in readings]
+    given = model.probe_rows(k)
+    if given is None:
+        raise FeedthermError(f"the {type(model).__name__} cannot start from measured temperatures: it does not give "
+                             "its sensors' rows")
+    rows, offset = given
+    index = [model.probe_names.index(n) for n in names]
+    R = rows[index]
+    R = R.toarray() if hasattr(R, "toarray") else np.asarray(R)
+    loads = integrator.loads(-1, bc, k)
+    base = integrator.steady(-1, bc, k, rhs=np.asarray(loads.ambient.source, dtype=float))
+    columns = np.column_stack([integrator.steady(-1, bc, k, rhs=R[i].copy()) for i in range(len(names))])
+    target = np.array([readings[n] for n in names]) - np.asarray(offset)[index] - R @ base
+    heats, *_ = np.linalg.lstsq(R @ columns, target, rcond=None)
+    return base + columns @ heats
 
 
 def prepare(system: FeedSystem, model: str, mesh: str | None = None) -> None:

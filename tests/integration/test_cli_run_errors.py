@@ -42,7 +42,7 @@ def assert_one_line_error_and_nothing_written(result, tmp_path, *fragments, inpu
         (["--condition", "I", "--sample-interval", "ten"], ["--sample-interval", "'ten'"]),
         (["--condition", "I", "--cycle", "I_then_standstill"], ["--cycle", "not allowed with", "--condition"]),
         ([], ["one of the arguments --condition --cycle is required"]),
-        (["--condition", "IX"], ["no condition 'IX'", "I, II, III, IV, V"]),
+        (["--condition", "IX"], ["no condition or test 'IX'", "I, II, III, IV, V"]),
         (["--cycle", "I_then_standstil"], ["'I_then_standstil'", "I_then_standstill"]),
         (["--cycle", "missing.csv"], ["'missing.csv'", "nor an existing CSV file"]),
         (["--condition", "I", "--model", "ansys"], ["--model", "no model 'ansys'", "fast, fem"]),

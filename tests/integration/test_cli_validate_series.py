@@ -55,7 +55,7 @@ def assert_fails_in_one_line(capsys, system, bad: Path, out: Path, *fragments):
     "body, fragments",
     [
         (GOOD + "v10,2,T9,21.0,degC,0.2\n", ["line 3", "unknown quantity 'T9'"]),
-        (GOOD + "v99,2,T1,21.0,degC,0.2\n", ["line 3", "unknown condition 'v99'"]),
+        (GOOD + "v99,2,T1,21.0,degC,0.2\n", ["line 3", "unknown test 'v99'"]),
         (GOOD + "v10,2,T1,nan,degC,0.2\n", ["line 3", "the value must be a finite number"]),
         (GOOD + "v10,nan,T1,21.0,degC,0.2\n", ["line 3", "the time must be a finite number"]),
         (GOOD + "v10,2,T1,21.0,mm,0.2\n", ["line 3", "'mm' is not a temperature's unit"]),
@@ -76,7 +76,7 @@ def test_a_bad_series_file_fails_before_any_run(tmp_path, capsys, body, fragment
 def test_a_finals_file_with_an_unknown_condition_names_its_line(tmp_path, capsys):
     bad = tmp_path / "bad.csv"
     bad.write_text("condition,quantity,unit,measured\nv10,T1,C,25.0\nv99,T1,C,25.0\n")
-    assert_fails_in_one_line(capsys, "ballscrew_example", bad, tmp_path / "out", "line 3", "unknown condition 'v99'")
+    assert_fails_in_one_line(capsys, "ballscrew_example", bad, tmp_path / "out", "line 3", "unknown test 'v99'")
 
 
 def test_the_process_exits_2_with_one_line_and_writes_nothing(tmp_path):

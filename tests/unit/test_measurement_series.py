@@ -75,7 +75,7 @@ def test_finals_only_files_have_no_series(tmp_path):
         # names
         (HEADER + "run1,0,T9,20,degC,\n", "line 2: unknown quantity 'T9'"),
         (HEADER + "run1,0,D_um,20,um,\n", "line 2: the long format names the elongation D"),
-        (HEADER + "run9,0,A,20,degC,\n", "line 2: unknown condition 'run9'"),
+        (HEADER + "run9,0,A,20,degC,\n", "line 2: unknown test 'run9'"),
         # numbers
         (HEADER + "run1,0,A,20,degC,\nrun1,1,A,nan,degC,\n", "line 3: the value must be a finite number"),
         (HEADER + "run1,0,A,inf,degC,\n", "line 2: the value must be a finite number"),
@@ -111,11 +111,11 @@ def test_bad_series_files_name_the_line(tmp_path, text, fragment):
 
 def test_a_sample_after_the_end_of_the_run_is_an_error(tmp_path):
     text = HEADER + "run1,0,A,20,degC,\nrun1,61,A,21,degC,\n"
-    with pytest.raises(DescriptionError, match="line 3: time 3660 s lies after the end of condition run1's run"):
+    with pytest.raises(DescriptionError, match="line 3: time 3660 s lies after the end of run1's run"):
         _read(tmp_path, text, run_end={"run1": 3600.0})
     assert _read(tmp_path, text, run_end={"run1": 3660.0}).rows[0].measured == 21.0
 
 
 def test_finals_with_an_unknown_condition_name_the_line(tmp_path):
-    with pytest.raises(DescriptionError, match="line 3: unknown condition 'run9'"):
+    with pytest.raises(DescriptionError, match="line 3: unknown test 'run9'"):
         _read(tmp_path, "condition,quantity,unit,measured\nrun1,A,C,27.1\nrun9,A,C,27.1\n")

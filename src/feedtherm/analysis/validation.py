@@ -19,7 +19,7 @@ from ..system.load import LoadedSystem
 from ..system.overlay import available_overlay
 from .consistency import check_description_measurements
 from .inverse import Noise, infer_conditions
-from ..system.measurements import MeasurementSet, measurement_spec, read_measurements
+from ..system.measurements import MeasurementSet, measurement_spec, read_description_measurements
 from .sensitivity import sensitivities
 from .sweep import sensor_labels
 from .transient_scores import compare_series
@@ -32,12 +32,9 @@ INCONSISTENCY_RATIO = 2.0
 def measurements_of(loaded: LoadedSystem, measured: str | None) -> MeasurementSet:
     """The measurement file given, else the description's ``meta.measurements``, else its bench's own."""
     spec = measurement_spec(measured, loaded.system.meta.measurements, loaded.origin)
-    sensors = [n for n in loaded.system.sensors]
-    conditions = loaded.system.conditions
     # a file given on the command line is where the user says; one the description names is beside it.
-    # A series may not outlast its condition's run: validate simulates each condition's duration.
-    return read_measurements(spec, relative_to=None if measured else loaded.origin, sensors=sensors,
-                             conditions=list(conditions), run_end={n: c.duration for n, c in conditions.items()})
+    # A series may not outlast its run: validate simulates each test's duration.
+    return read_description_measurements(loaded.system, spec, None if measured else loaded.origin)
 
 
 def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = None, motion: str | None = None,

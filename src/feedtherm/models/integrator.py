@@ -26,6 +26,8 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import cg
 
 from ..boundary import BoundaryConditions, LocalTemperatures
+from ..boundary.room import RoomAir, at_air
+from ..system.geometry import nut_centre_x
 from ..errors import ModelError
 from ..system.quantities import TEMPERATURE_LIMIT
 from .coupling import (
@@ -58,11 +60,16 @@ SAMPLE_BLOCK_ENTRIES = 2_000_000
 
 @dataclass(frozen=True)
 class Segment:
-    """A stretch of constant operating point, [t0, t1) in seconds."""
+    """A stretch of constant operating point, [t0, t1) in seconds.
+
+    ``table_at``: a standstill with the table held at this position (the nut's centre along x in
+    the machine frame [m]; a measuring stop), None: where the last segment left it.
+    """
 
     t0: float
     t1: float
     bc: BoundaryConditions
+    table_at: float | None = None
 
     @property
     def speed(self) -> float:
@@ -96,6 +103,7 @@ class Trace:
     final_position: int = 0
     final_bc: BoundaryConditions | None = None  # the last step's (coupled: the last evaluation)
     coupling_updates: int = 0  # evaluations of the boundary conditions at the state (coupled runs)
+    air: RoomAir | None = None  # the room's measured air the sinks followed, None: each segment's ambient
 
 
 class PositionPath:
@@ -223,6 +231,7 @@ class Integrator:
         self._loads = {}  # (segment, boundary conditions' id, position) → (boundary conditions, Loads)
         self._matrix_keys = {}  # same keys → key of the step matrix (without C/dt)
         self._link_changes = {}  # (segment, evaluated bc's id, factorised bc's id, position) → link difference
+        self._air_links = {}  # (segment, boundary conditions' id, position) → the air sinks' heat per kelvin
         self._orders = {}  # sparsity pattern → elimination order (direct solver; links and dt keep the pattern)
         solver = options.solver
         self.dense = isinstance(model.conductance(0), np.ndarray)
@@ -306,6 +315,8 @@ class Integrator:
             del self._loads[key]
         stale -= set(self._matrix_keys.values())
         self._link_changes.clear()
+        for key in [key for key in self._air_links if key[:2] == (seg_id, id(bc))]:
+            del self._air_links[key]
         for cache in (self._lu, self._cg):
             for key in [key for key in cache if key[0] in stale or key[1:3] == (seg_id, id(bc))]:
                 del cache[key]
@@ -429,6 +440,16 @@ class Integrator:
             factorised = evaluated
         return evaluated, factorised
 
+    def air_links(self, seg_id: int, bc: BoundaryConditions, k: int | None) -> tuple[np.ndarray, float]:
+        """What one kelvin more of the room's air adds to the step's right-hand side [W per state entry],
+        and to the links' heat at their sinks [W]: the air surfaces' links, their coefficients as in ``bc``."""
+        key = (seg_id, id(bc), k)
+        if key not in self._air_links:
+            base = self.loads(seg_id, bc, k).ambient
+            moved = self.model.ambient_coupling(at_air(bc, self.model.system, bc.point.ambient + 1.0), k)
+            self._air_links[key] = (bc, np.asarray(moved.source - base.source), moved.source_total - base.source_total)
+        return self._air_links[key][1:]
+
     def _link_change(self, seg_id: int, bc: BoundaryConditions, factorised: BoundaryConditions, k: int | None,
                      state: np.ndarray) -> np.ndarray:
         """Heat [W] the links of ``bc`` lose beyond those of the factorised step matrix, at ``state``:
@@ -479,21 +500,30 @@ class Integrator:
 
     # -------------------------------------------------------------- time loop
     def run(self, segments: list[Segment], initial: np.ndarray, sample_times: np.ndarray,
-            progress: Callable[[float], None] | None = None) -> Trace:
-        """Step through ``segments`` from ``initial``, recording at ``sample_times``."""
+            progress: Callable[[float], None] | None = None, air: RoomAir | None = None) -> Trace:
+        """Step through ``segments`` from ``initial``, recording at ``sample_times``; ``air``: the room's
+        measured air, which the air surfaces' sinks follow at the end of every step (None: each
+        segment's ambient)."""
         # A projected model's factorisations are of the basis's size: a second OpenBLAS thread saves
         # little there and, busy-waiting between calls, slows the other process of a batch's pair
         one_thread = self.uses_pardiso or self.dense
         with pardiso.openblas_on_one_thread() if one_thread else contextlib.nullcontext():
-            return self._run(segments, initial, sample_times, progress)
+            return self._run(segments, initial, sample_times, progress, air)
+
+    def held_position(self, table_at: float) -> int:
+        """The grid position nearest the table position ``table_at`` [m] (the nut's centre along x)."""
+        offset = table_at - nut_centre_x(self.model.system)
+        return int(np.argmin(np.abs(np.asarray(self.model.positions) - offset)))
 
     def _run(self, segments: list[Segment], initial: np.ndarray, sample_times: np.ndarray,
-             progress: Callable[[float], None] | None) -> Trace:
+             progress: Callable[[float], None] | None, air: RoomAir | None = None) -> Trace:
         m = self.model
-        trace = Trace()
+        trace = Trace(air=air)
         self._samples = []
         T = initial.copy()
         path = PositionPath(len(m.positions))
+        if segments[0].table_at is not None:
+            path.u = float(self.held_position(segments[0].table_at))
         t = segments[0].t0
         t_end = segments[-1].t1
         samples = iter(sample_times)
@@ -519,6 +549,8 @@ class Integrator:
             repeating = float(cells_per_step).is_integer()
             if moving and trace.time_step == 0.0:
                 trace.time_step = dt_nominal
+            if seg.table_at is not None:  # a measuring stop: the table moved there, held
+                path.u = float(self.held_position(seg.table_at))
             bc = factorised = seg.bc  # latest evaluation; the one the step matrix was factorised with
             steps = {}  # (position, dt) → _Step at (bc, factorised): rebuilt whenever they change
             reading, checked = None, path.u
@@ -544,6 +576,10 @@ class Integrator:
                     step = steps[k_step, dt] = self._step_kernel(seg_id, bc, factorised, k_step, dt)
                 rhs = _apply(step.rhs_operator, T)
                 rhs += step.load
+                shift = 0.0 if air is None else air.at(t + dt) - bc.point.ambient  # the sinks at the step's end
+                if shift:
+                    air_source, air_total = self.air_links(seg_id, bc, k_step)
+                    rhs += shift * air_source
                 if step.lu is not None:
                     T_new = step.lu.solve(rhs)
                 else:
@@ -558,6 +594,8 @@ class Integrator:
                 # energy account: heat in from the boundary conditions, losses from the surfaces,
                 # both as the step's equations had them
                 lost = step.heat_lost(T, T_new)
+                if shift:
+                    lost -= shift * air_total
                 trace.heat_in += step.heat_in * dt
                 trace.heat_lost += lost * dt
                 if trace.first_heat_in is None:

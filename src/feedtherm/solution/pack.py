@@ -68,8 +68,12 @@ def pack_solution(system: FeedSystem, integrator: Integrator, segments: list[Seg
                                   ELONGATION_PROBE)
     sensors = {n: samples[:, names.index(n)] for n in sensor_names}
     ambient = system.room.ambient_sensor
-    sensors[ambient] = np.array([ambient_at(segments, t) for t in times])
-    final[ambient] = window_ambient(segments, t_end - window, t_end)
+    if trace.air is not None:  # the room's measured air, which the sinks followed
+        sensors[ambient] = np.asarray(trace.air.at(times), dtype=float)
+        final[ambient] = trace.air.mean(max(t_end - window, segments[0].t0), t_end)
+    else:
+        sensors[ambient] = np.array([ambient_at(segments, t) for t in times])
+        final[ambient] = window_ambient(segments, t_end - window, t_end)
     steady[ambient] = last.bc.point.ambient
     screw_T = np.array(trace.sample_screw)
     displacement = np.array(trace.sample_displacement)[:, 1:]

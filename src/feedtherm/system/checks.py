@@ -20,7 +20,7 @@ import re
 from ..physics.mechanics import speed_table
 from . import topology
 from .finding import Finding
-from .geometry import bounds, contains, gap, screw_axis, surface_area
+from .geometry import bounds, contains, gap, screw_axis, surface_area, table_travel
 from .holding import free_motions
 from .quantities import same_dimension, to_base_si
 from .schema import FeedSystem
@@ -55,6 +55,13 @@ def _uncertainties(system: FeedSystem, severity: str) -> list[Finding]:
     return [Finding(path, reason, kind) for path, reason, kind in uncertainty_problems(system) if kind == severity]
 
 
+class _Moved:
+    screw_speed, nut_speed = 1.0, 0.0
+
+
+_MOVED = _Moved()
+
+
 def check_errors(system: FeedSystem) -> list[Finding]:
     """The findings no model can run past (see the module's docstring)."""
     stroke = _stroke(system)
@@ -68,6 +75,7 @@ def check_errors(system: FeedSystem) -> list[Finding]:
         *calibration_bounds(system),
         *_ambient_paths(system),
         *_held(system),
+        *_table_positions(system),
     ]
     # The priors are judged against a valid description: a bad value is reported as such, not
     # (also) as a prior that excludes it.
@@ -217,6 +225,29 @@ def _joints_unique(system: FeedSystem) -> list[Finding]:
     return findings
 
 
+def _table_positions(system: FeedSystem) -> list[Finding]:
+    """A held table and a measuring stop's targets lie within the table's travel."""
+    held = [(f"duty_cycles.{name}.segments[{i}].table_at", seg.table_at)
+            for name, cycle in system.duty_cycles.items() for i, seg in enumerate(cycle.segments)
+            if seg.table_at is not None]
+    held += [(f"duty_cycles.{name}.measuring.targets[{i}]", x)
+             for name, cycle in system.duty_cycles.items() if cycle.measuring is not None
+             for i, x in enumerate(cycle.measuring.targets)]
+    if not held:
+        return []
+    kin = system.kinematics
+    if kin is None:
+        return [Finding(held[0][0], "the system has no feed drive ([kinematics] is left out): no table to hold", "error")]
+    lo, hi = table_travel(system)
+    return [Finding(path, f"{x * 1e3:g} mm lies outside the table's travel, {lo * 1e3:g}..{hi * 1e3:g} mm (the nut's "
+                    "centre along x in the machine frame)", "error")
+            for path, x in held if not lo - TABLE_TOLERANCE <= x <= hi + TABLE_TOLERANCE]
+
+
+#: How far a held position may lie beyond the travel's ends [m]: a rounding of the written value.
+TABLE_TOLERANCE = 1e-6
+
+
 def _stroke(system: FeedSystem) -> list[Finding]:
     """The nut must travel its stroke on the screw (where any condition moves the table)."""
     kin = system.kinematics
@@ -224,6 +255,8 @@ def _stroke(system: FeedSystem) -> list[Finding]:
         return []
     screw, nut = system.parts[kin.screw], system.parts[kin.nut]
     points = [*system.conditions.values(), *(s for cycle in system.duty_cycles.values() for s in cycle.segments)]
+    if any(cycle.measuring is not None for cycle in system.duty_cycles.values()):
+        points.append(_MOVED)  # a measuring stop moves the table to its targets
     if not (screw.cylinders and (nut.cylinders or nut.boxes)) or all(p.screw_speed == p.nut_speed for p in points):
         return []
     axis = screw_axis(screw)

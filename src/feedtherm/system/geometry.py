@@ -136,6 +136,12 @@ def nut_centre_x(system) -> float:
     return 0.5 * (lo[0] + hi[0])
 
 
+def table_travel(system) -> tuple[float, float]:
+    """The table positions [m] the stroke reaches: the nut's centre along x, ends included."""
+    centre = nut_centre_x(system)
+    return centre - 0.5 * system.kinematics.stroke, centre + 0.5 * system.kinematics.stroke
+
+
 def drive_point(system) -> tuple[float, float, float] | None:
     """Where the thread holds the nut to the screw along the axis [m]: on the screw's surface
     (its top), at the nut's centre along x (the moving group at the middle of the stroke); None

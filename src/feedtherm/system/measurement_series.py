@@ -2,14 +2,20 @@
 
 One row per sample::
 
-    condition,time [min],quantity,value,unit[,uncertainty]
-    v10,0,front_bearing,20.0,degC,0.2
-    v10,10,front_bearing,21.8,degC,0.2
-    v10,10,D,0.0415,mm,0.001
+    test,time [min],quantity,value,unit[,uncertainty][,target [mm]]
+    v10,0,front_bearing,20.0,degC,0.2,
+    v10,10,front_bearing,21.8,degC,0.2,
+    v10,10,D,0.0415,mm,0.001,
+    drift,12,E,3.1,um,1.0,150
 
+- the first column names the run: a test or a condition of the description (headed ``test`` or
+  ``condition``, the same thing: a condition is the simplest test).
 - ``time [<unit>]``: the header carries the time unit of the whole file, any time unit pint
-  reads (``s``, ``min``, ``h``); times count from the start of the condition's run (0).
-- ``quantity``: a sensor of the description, or ``D``, the elongation probe.
+  reads (``s``, ``min``, ``h``); times count from the start of the run (0).
+- ``quantity``: a sensor of the description, the room's air (``room.ambient_sensor``), ``D``, the
+  elongation probe, or ``E``, the positioning deviation at a target position: the target's axis
+  coordinate in the ``target [<length unit>]`` column (the table's position, the nut's centre along
+  x in the machine frame, as ``positioning_error.csv`` has it), empty on every other row.
 - ``unit``: the value's unit, per row. A sensor reads a temperature in any unit pint reads
   (``degC``, ``K``, ``degF``; ``C`` means degree Celsius, as in the finals format, never
   coulomb); ``D`` reads a length (``um``, ``mm``, ``m``).
@@ -34,9 +40,16 @@ from ..constants import ELONGATION_PROBE, KELVIN_OFFSET
 from ..errors import DescriptionError
 from .quantities import TEMPERATURE_LIMIT, pint, registry  # pint as system.quantities imports it
 
-COLUMNS = ["condition", "time [<unit>]", "quantity", "value", "unit"]
+COLUMNS = ["test", "time [<unit>]", "quantity", "value", "unit"]
 OPTIONAL = "uncertainty"
-SERIES_HEADER = ",".join(COLUMNS) + f"[,{OPTIONAL}]"
+TARGET = "target"
+SERIES_HEADER = ",".join(COLUMNS) + f"[,{OPTIONAL}][,{TARGET} [<unit>]]"
+#: The first column's accepted names: a condition is the simplest test.
+RUN_COLUMNS = ("test", "condition")
+#: The positioning deviation at a target among the measured quantities.
+POSITIONING_QUANTITY = "E"
+#: Two targets closer than this are one [m] (a rounding of the written coordinate).
+TARGET_TOLERANCE = 1e-6
 #: The screw elongation among the measured quantities, as the finals name it [µm].
 ELONGATION_QUANTITY, ELONGATION_UNIT = "D_um", "um"
 TEMPERATURE_UNIT = "C"
@@ -74,10 +87,16 @@ class Series:
 class SeriesRow:
     """What one measured series becomes among the finals: its last sample stands for the final value."""
 
-    condition: str
-    quantity: str  # a sensor name, or "D_um" for the elongation (the finals' name)
+    condition: str  # the run: a test or a condition
+    quantity: str  # a sensor name, "D_um" for the elongation (the finals' name), or E's :func:`target_key`
     unit: str  # "C" or "um"
     series: Series
+    target: float | None = None  # E's target position [m]
+
+
+def target_key(target: float) -> str:
+    """The name of the positioning deviation at ``target`` [m] among the quantities: ``E@150mm``."""
+    return f"{POSITIONING_QUANTITY}@{round(target * 1e3, 6):g}mm"
 
 
 def is_series_header(header: list[str]) -> bool:
@@ -87,7 +106,9 @@ def is_series_header(header: list[str]) -> bool:
 
 def parse_series(rows: list[tuple[int, list[str]]], source: str, *, sensors: Collection[str] | None = None,
                  conditions: Collection[str] | None = None,
-                 run_end: Mapping[str, float] | None = None) -> list[SeriesRow]:
+                 run_end: Mapping[str, float] | None = None, air: str | None = None,
+                 travel: tuple[float, float] | None = None,
+                 visits: Mapping[str, Collection[float]] | None = None) -> list[SeriesRow]:
     """Parse the long format: ``rows`` are (line number, cells), the header first.
 
     Parameters
@@ -97,9 +118,16 @@ def parse_series(rows: list[tuple[int, list[str]]], source: str, *, sensors: Col
     source : str
         The file's name in error messages.
     sensors, conditions : collection of str, optional
-        The description's sensors and conditions; a row naming another is an error.
+        The description's sensors and runs (its tests and conditions); a row naming another is an error.
     run_end : mapping of str to float, optional
-        Condition → the end of its simulated run [s]; a later sample cannot be compared.
+        Run → the end of its simulated run [s]; a later sample cannot be compared.
+    air : str, optional
+        The room's air among the quantities (``room.ambient_sensor``); None: no air series.
+    travel : (float, float), optional
+        The table positions the stroke reaches [m]; a target outside them is an error.
+    visits : mapping of str to collection of float, optional
+        Run → the target positions [m] its measuring stops hold the table at; a deviation at a
+        target the run never visits is an error (a run left out visits none).
 
     Raises
     ------
@@ -107,73 +135,126 @@ def parse_series(rows: list[tuple[int, list[str]]], source: str, *, sensors: Col
         One line naming the file, the line and the reason.
     """
     number, header = rows[0][0], [c.strip() for c in rows[0][1]]
-    time_unit = _time_unit(header, source, number)
+    time_unit, extra = _header(header, source, number)
     width = len(header)
     samples: dict[tuple[str, str], list[tuple[int, float, float, float | None]]] = {}
     units: dict[tuple[str, str], str] = {}
+    targets: dict[tuple[str, str], float] = {}
     for number, row in rows[1:]:
         where = f"{source}: line {number}"
         if len(row) != width:
             raise DescriptionError(f"{where}: expected {width} values, got {len(row)}")
         condition, time_text, quantity, value_text, unit = (c.strip() for c in row[:5])
         if conditions is not None and condition not in conditions:
-            raise DescriptionError(f"{where}: unknown condition {condition!r}; expected one of {', '.join(conditions)}")
-        kind = _kind(quantity, sensors, where)
+            raise DescriptionError(f"{where}: unknown test {condition!r}; expected one of {', '.join(conditions)}")
+        kind = _kind(quantity, sensors, air, where)
         time = _number(time_text, "time", where) * time_unit
         if time < 0:
             raise DescriptionError(f"{where}: time {time_text} lies before the start of the run (0)")
         end = run_end.get(condition) if run_end is not None else None
         if end is not None and time > end * (1 + 1e-9):
-            raise DescriptionError(f"{where}: time {time:g} s lies after the end of condition {condition}'s run "
+            raise DescriptionError(f"{where}: time {time:g} s lies after the end of {condition}'s run "
                                    f"({end:g} s), so no simulated value can be compared with it")
-        scale, offset = _conversion(unit, kind, where)
+        scale, offset = _conversion(unit, "temperature" if kind == "temperature" else "length", where)
         value = _number(value_text, "value", where) * scale + offset
         if kind == "temperature" and TEMPERATURE_LIMIT.violated_by(value + KELVIN_OFFSET):
             raise DescriptionError(f"{where}: {value_text} {unit} lies outside the accepted range, "
                                    f"{TEMPERATURE_LIMIT.describe()}")
         uncertainty = None
-        if width > 5 and row[5].strip():
-            uncertainty = _number(row[5].strip(), "uncertainty", where) * scale
+        if OPTIONAL in extra and row[extra[OPTIONAL][0]].strip():
+            uncertainty = _number(row[extra[OPTIONAL][0]].strip(), "uncertainty", where) * scale
             if uncertainty < 0:
-                raise DescriptionError(f"{where}: the uncertainty must not be negative, got {row[5].strip()}")
-        key = (condition, ELONGATION_QUANTITY if kind == "length" else quantity)
-        _check_order(samples.get(key), number, time, condition, quantity, where)
+                raise DescriptionError(f"{where}: the uncertainty must not be negative, got {row[extra[OPTIONAL][0]].strip()}")
+        target = _target(row, extra, kind, quantity, where)
+        if target is not None:
+            _check_target(target, condition, travel, visits, where)
+            key = (condition, target_key(target))
+            targets[key] = target
+        else:
+            key = (condition, ELONGATION_QUANTITY if kind == "length" else quantity)
+        _check_order(samples.get(key), number, time, condition, key[1], where)
         samples.setdefault(key, []).append((number, time, value, uncertainty))
-        units[key] = ELONGATION_UNIT if kind == "length" else TEMPERATURE_UNIT
+        units[key] = ELONGATION_UNIT if kind != "temperature" else TEMPERATURE_UNIT
     if not samples:
         raise DescriptionError(f"{source}: no rows after the header")
-    return [SeriesRow(c, q, units[(c, q)], _series(points, source, c, q)) for (c, q), points in samples.items()]
+    return [SeriesRow(c, q, units[(c, q)], _series(points, source, c, q), targets.get((c, q)))
+            for (c, q), points in samples.items()]
 
 
-def _time_unit(header: list[str], source: str, number: int) -> float:
-    """Seconds per unit of the header's ``time [<unit>]``; the rest of the header checked."""
-    names = [header[0], "time", *header[2:]]
-    if names not in (["condition", "time", "quantity", "value", "unit"],
-                     ["condition", "time", "quantity", "value", "unit", OPTIONAL]):
-        raise DescriptionError(f"{source}: line {number}: header must be {SERIES_HEADER}, got {','.join(header)}")
-    text = header[1][len("time"):].strip()
+def _target(row: list[str], extra: dict, kind: str, quantity: str, where: str) -> float | None:
+    """E's target [m] from the ``target`` column; every other quantity leaves the cell empty."""
+    text = row[extra[TARGET][0]].strip() if TARGET in extra else ""
+    if kind != "positioning":
+        if text:
+            raise DescriptionError(f"{where}: only {POSITIONING_QUANTITY} is measured at a target; leave the target "
+                                   f"empty for {quantity}")
+        return None
+    if TARGET not in extra:
+        raise DescriptionError(f"{where}: {POSITIONING_QUANTITY} is the deviation at a target position: add a column "
+                               f"'{TARGET} [mm]' with the target's axis coordinate")
+    if not text:
+        raise DescriptionError(f"{where}: the target is missing (an empty cell); {POSITIONING_QUANTITY} is measured at "
+                               "a target position")
+    return _number(text, "target", where) * extra[TARGET][1]
+
+
+def _check_target(target: float, condition: str, travel, visits, where: str) -> None:
+    if travel is not None and not travel[0] - TARGET_TOLERANCE <= target <= travel[1] + TARGET_TOLERANCE:
+        raise DescriptionError(f"{where}: target {target * 1e3:g} mm lies outside the table's travel, "
+                               f"{travel[0] * 1e3:g}..{travel[1] * 1e3:g} mm")
+    if visits is not None:
+        held = visits.get(condition, ())
+        if not any(abs(target - x) <= TARGET_TOLERANCE for x in held):
+            where_held = (f"its measuring stops hold the table at {', '.join(f'{x * 1e3:g}' for x in held)} mm"
+                          if held else "it has no measuring stops")
+            raise DescriptionError(f"{where}: {condition} never visits target {target * 1e3:g} mm ({where_held})")
+
+
+def _header(header: list[str], source: str, number: int) -> tuple[float, dict[str, tuple[int, float]]]:
+    """Seconds per unit of the header's ``time [<unit>]``, and the optional columns: name → (index,
+    metres per unit of the target column, 1 for the uncertainty); the rest of the header checked."""
+    wrong = DescriptionError(f"{source}: line {number}: header must be {SERIES_HEADER}, got {','.join(header)}")
+    if len(header) < 5 or header[0] not in RUN_COLUMNS or header[2:5] != ["quantity", "value", "unit"]:
+        raise wrong
+    seconds = _unit_in(header[1], "time", "s", "a unit of time", source, number)
+    extra: dict[str, tuple[int, float]] = {}
+    for index, name in enumerate(header[5:], start=5):
+        if name == OPTIONAL and OPTIONAL not in extra:
+            extra[OPTIONAL] = (index, 1.0)
+        elif name.lower().startswith(TARGET) and TARGET not in extra:
+            extra[TARGET] = (index, _unit_in(name, TARGET, "m", "a length unit", source, number))
+        else:
+            raise wrong
+    return seconds, extra
+
+
+def _unit_in(name: str, column: str, si: str, what: str, source: str, number: int) -> float:
+    """SI units per unit of a header cell ``<column> [<unit>]``."""
+    text = name[len(column):].strip()
     if not (text.startswith("[") and text.endswith("]") and text[1:-1].strip()):
-        raise DescriptionError(f"{source}: line {number}: the time column names its unit, e.g. 'time [min]', "
-                               f"got {header[1]!r}")
+        raise DescriptionError(f"{source}: line {number}: the {column} column names its unit, e.g. "
+                               f"'{column} [{'min' if si == 's' else 'mm'}]', got {name!r}")
     unit = text[1:-1].strip()
     try:
-        seconds = float(registry().Quantity(1.0, unit).to("s").magnitude)
+        return float(registry().Quantity(1.0, unit).to(si).magnitude)
     except pint.errors.DimensionalityError:
-        raise DescriptionError(f"{source}: line {number}: {unit!r} is not a unit of time") from None
+        raise DescriptionError(f"{source}: line {number}: {unit!r} is not {what}") from None
     except (pint.errors.PintError, AttributeError, TypeError, SyntaxError, ValueError):
-        raise DescriptionError(f"{source}: line {number}: unknown time unit {unit!r}") from None
-    return seconds
+        raise DescriptionError(f"{source}: line {number}: unknown {column} unit {unit!r}") from None
 
 
-def _kind(quantity: str, sensors: Collection[str] | None, where: str) -> str:
+def _kind(quantity: str, sensors: Collection[str] | None, air: str | None, where: str) -> str:
+    """"temperature", "length" (D) or "positioning" (E)."""
     if quantity == ELONGATION_PROBE:
         return "length"
+    if quantity == POSITIONING_QUANTITY:
+        return "positioning"
     if quantity == ELONGATION_QUANTITY:
         raise DescriptionError(f"{where}: the long format names the elongation {ELONGATION_PROBE} with a length "
                                f"unit (e.g. {ELONGATION_PROBE},12.5,um), not {ELONGATION_QUANTITY}")
-    if sensors is not None and quantity not in sensors:
-        raise DescriptionError(f"{where}: unknown quantity {quantity!r}; expected one of "
-                               f"{', '.join([*sensors, ELONGATION_PROBE])}")
+    if sensors is not None and quantity not in sensors and quantity != air:
+        known = [*sensors, *([air] if air else []), ELONGATION_PROBE, POSITIONING_QUANTITY]
+        raise DescriptionError(f"{where}: unknown quantity {quantity!r}; expected one of {', '.join(known)}")
     return "temperature"
 
 

@@ -29,14 +29,21 @@ from __future__ import annotations
 
 import csv
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Collection, Mapping
 
 from ..benches import MEASUREMENTS, ORIGIN_PREFIX, bench, bench_name_of
 from ..errors import DescriptionError
 from .files import MAX_DATA_BYTES, read_text_file
-from .measurement_series import ELONGATION_QUANTITY, SERIES_HEADER, Series, is_series_header, parse_series
+from .measurement_series import (
+    ELONGATION_QUANTITY,
+    RUN_COLUMNS,
+    SERIES_HEADER,
+    Series,
+    is_series_header,
+    parse_series,
+)
 
 HEADER = ["condition", "quantity", "unit", "measured"]
 OPTIONAL = "reference_simulated"
@@ -46,19 +53,38 @@ UNITS = {ELONGATION_QUANTITY: "um"}  # every other quantity is a temperature in 
 
 @dataclass(frozen=True)
 class Measurement:
-    condition: str
+    condition: str  # the run: a test or a condition
     quantity: str
     unit: str
     measured: float  # a series' last sample
     reference_simulated: float | None = None
     series: Series | None = None  # all samples, where the file is a time series
+    target: float | None = None  # the positioning deviation's target position [m]
 
 
 @dataclass(frozen=True)
 class MeasurementSet:
+    """A measurement file's contents.
+
+    ``rows``: the sensors' temperatures and D, finals or series, what every reader of finals
+    takes; ``positioning``: the positioning deviations E at target positions (series, in µm, each
+    ``target`` set); ``air``: the room's measured air temperature [°C] per run (series).
+    """
+
     rows: list[Measurement]
     source: str
     equilibrium_min: dict[str, float]  # condition -> stated equilibrium time, where known
+    positioning: list[Measurement] = field(default_factory=list)
+    air: dict[str, Series] = field(default_factory=dict)
+
+    def runs(self) -> list[str]:
+        """Every run the file measures anything of, in the file's order."""
+        return list(dict.fromkeys([*(r.condition for r in self.rows), *(r.condition for r in self.positioning),
+                                   *self.air]))
+
+    def positioning_of(self, run: str) -> list[Measurement]:
+        """The positioning deviations measured in ``run``, by target."""
+        return sorted((r for r in self.positioning if r.condition == run), key=lambda r: r.target)
 
     def conditions(self) -> list[str]:
         return list(dict.fromkeys(r.condition for r in self.rows))
@@ -97,13 +123,16 @@ def _from_bench(name: str) -> tuple[str, str, str | None]:
 
 def read_measurements(spec: str, relative_to: str | None = None, sensors: list[str] | None = None, *,
                       conditions: Collection[str] | None = None,
-                      run_end: Mapping[str, float] | None = None) -> MeasurementSet:
+                      run_end: Mapping[str, float] | None = None, air: str | None = None,
+                      travel: tuple[float, float] | None = None,
+                      visits: Mapping[str, Collection[float]] | None = None) -> MeasurementSet:
     """Read a measurement file (path or ``bundled:<bench>``); one-line errors naming the line.
 
     ``relative_to`` is the origin of the description that names ``spec``: a relative path is
     read beside that file, or in that bench's folder. ``sensors`` and ``conditions`` are the
-    description's: a row naming another is an error. ``run_end`` (condition → the end of its
-    simulated run [s]) rejects samples of a series after it.
+    description's (its runs: tests and conditions): a row naming another is an error. ``run_end``
+    (run → the end of its simulated run [s]) rejects samples of a series after it; ``air``,
+    ``travel`` and ``visits`` are those of :func:`~.measurement_series.parse_series`.
     """
     if spec.startswith(ORIGIN_PREFIX):
         text, source, eq_text = _from_bench(spec[len(ORIGIN_PREFIX):])
@@ -118,12 +147,20 @@ def read_measurements(spec: str, relative_to: str | None = None, sensors: list[s
     lines = _lines(text)
     if not lines:
         raise DescriptionError(f"{source}: the file is empty; expected the header {','.join(HEADER)}")
-    if is_series_header([c.strip() for c in lines[0][1]]):
-        rows = [Measurement(s.condition, s.quantity, s.unit, float(s.series.values[-1]), None, s.series)
-                for s in parse_series(lines, source, sensors=sensors, conditions=conditions, run_end=run_end)]
-    else:
-        rows = _parse(lines, source, sensors, conditions)
-    return MeasurementSet(rows, source, _parse_equilibrium(eq_text) if eq_text else {})
+    equilibrium = _parse_equilibrium(eq_text) if eq_text else {}
+    if not is_series_header([c.strip() for c in lines[0][1]]):
+        return MeasurementSet(_parse(lines, source, sensors, conditions), source, equilibrium)
+    rows, positioning, air_series = [], [], {}
+    for s in parse_series(lines, source, sensors=sensors, conditions=conditions, run_end=run_end, air=air,
+                          travel=travel, visits=visits):
+        row = Measurement(s.condition, s.quantity, s.unit, float(s.series.values[-1]), None, s.series, s.target)
+        if s.target is not None:
+            positioning.append(row)
+        elif air is not None and s.quantity == air:
+            air_series[s.condition] = s.series
+        else:
+            rows.append(row)
+    return MeasurementSet(rows, source, equilibrium, positioning, air_series)
 
 
 def _lines(text: str) -> list[tuple[int, list[str]]]:
@@ -136,6 +173,8 @@ def _lines(text: str) -> list[tuple[int, list[str]]]:
 def _parse(lines: list[tuple[int, list[str]]], source: str, sensors: list[str] | None,
            conditions: Collection[str] | None) -> list[Measurement]:
     header = [c.strip() for c in lines[0][1]]
+    if header[:1] and header[0] in RUN_COLUMNS:
+        header = ["condition", *header[1:]]
     if header not in (HEADER, [*HEADER, OPTIONAL]):
         raise DescriptionError(f"{source}: line {lines[0][0]}: header must be {','.join(HEADER)}[,{OPTIONAL}] "
                                f"(final values) or {SERIES_HEADER} (time series), got {','.join(header)}")
@@ -145,7 +184,7 @@ def _parse(lines: list[tuple[int, list[str]]], source: str, sensors: list[str] |
             raise DescriptionError(f"{source}: line {number}: expected {len(header)} values, got {len(row)}")
         condition, quantity, unit = (c.strip() for c in row[:3])
         if conditions is not None and condition not in conditions:
-            raise DescriptionError(f"{source}: line {number}: unknown condition {condition!r}; expected one of "
+            raise DescriptionError(f"{source}: line {number}: unknown test {condition!r}; expected one of "
                                    f"{', '.join(conditions)}")
         expected_unit = UNITS.get(quantity, "C")
         if sensors is not None and quantity not in sensors and quantity not in UNITS:
@@ -169,3 +208,16 @@ def _parse(lines: list[tuple[int, list[str]]], source: str, sensors: list[str] |
 
 def _parse_equilibrium(text: str) -> dict[str, float]:
     return {row["condition"]: float(row["equilibrium_min"]) for row in csv.DictReader(text.splitlines())}
+
+
+def read_description_measurements(system, spec: str, relative_to: str | None) -> MeasurementSet:
+    """Read ``spec`` against the description ``system`` (a FeedSystem): its sensors, the room's air, its
+    runs (tests and conditions) and their durations, the table's travel and each test's targets."""
+    from .geometry import table_travel
+    from .runs import run_durations, visited_targets
+
+    durations = run_durations(system)
+    return read_measurements(spec, relative_to=relative_to, sensors=list(system.sensors), conditions=list(durations),
+                             run_end=durations, air=system.room.ambient_sensor,
+                             travel=None if system.kinematics is None else table_travel(system),
+                             visits={name: visited_targets(system, name) for name in durations})

@@ -69,6 +69,38 @@ def check_references(system: "FeedSystem") -> None:
             _check_single_drive(system)
         _check_speeds_given(system)
     _check_mechanics(system)
+    _check_tests(system)
+
+
+def _check_tests(system: "FeedSystem") -> None:
+    """A test names a declared condition or duty cycle, and a soaked start one that does not lead back to it."""
+    from .thermal_tests import Soak  # the schema imports this module's caller
+
+    for name, cycle in system.duty_cycles.items():
+        if cycle.ambient is None:
+            for i, segment in enumerate(cycle.segments):
+                if segment.ambient is None:
+                    raise ValueError(f"duty_cycles.{name}.segments[{i}].ambient: give the air's temperature here or "
+                                     f"for the whole cycle (duty_cycles.{name}.ambient)")
+    runs = {**system.conditions, **system.duty_cycles, **system.tests}
+    for name, test in system.tests.items():
+        path = f"tests.{name}"
+        if name in system.conditions or name in system.duty_cycles:
+            raise ValueError(f"{path}: the name is taken by a {'condition' if name in system.conditions else 'duty cycle'}; "
+                             "commands take a test or a condition by its name, so each name must be one run's")
+        if test.condition is not None:
+            _require("condition", test.condition, system.conditions, f"{path}.condition")
+        else:
+            _require("duty cycle", test.cycle, system.duty_cycles, f"{path}.cycle")
+        if isinstance(test.start, Soak):
+            _require("test, condition or duty cycle", test.start.soaked, runs, f"{path}.start.soaked")
+            chain, current = [name], test.start
+            while isinstance(current, Soak) and current.soaked in system.tests:
+                if current.soaked in chain:
+                    raise ValueError(f"{path}.start.soaked: the soaks lead back to themselves "
+                                     f"({' -> '.join([*chain, current.soaked])})")
+                chain.append(current.soaked)
+                current = system.tests[current.soaked].start
 
 
 def _check_mechanics(system: "FeedSystem") -> None:

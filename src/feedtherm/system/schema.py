@@ -54,6 +54,7 @@ from .surfaces import (
 )
 from .uncertainties import Uncertainty
 from .sensing import Compensation
+from .thermal_tests import ThermalTest
 
 _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*\Z")  # \Z: "$" would let a trailing newline through
 #: Length of a run when nothing else says [s]: the paper's 10,800 s (§4.3).
@@ -244,20 +245,88 @@ class Condition(Strict):
 
 
 class DutySegment(Strict):
-    """From ``start`` until the next segment's start, constant motor speeds and ambient."""
+    """From ``start`` until the next segment's start, constant motor speeds and ambient.
+
+    ``ambient`` left out is the cycle's (:attr:`DutyCycle.ambient`), or the room's of a test that runs
+    the cycle (:class:`~feedtherm.system.thermal_tests.ThermalTest`).  ``table_at``: a standstill with
+    the table held at this axis coordinate (the nut's centre along x in the machine frame, as
+    ``positioning_error.csv``'s table positions): where a measuring stop holds it.
+    """
 
     start: NonNegDuration
     screw_speed: AngularSpeed = 0.0  # signed; 0 = standstill
     nut_speed: AngularSpeed = 0.0
-    ambient: Temperature
+    ambient: Temperature | None = None
+    table_at: Length | None = None
+
+    @model_validator(mode="after")
+    def _held_table_stands_still(self) -> "DutySegment":
+        if self.table_at is not None and (self.screw_speed != 0.0 or self.nut_speed != 0.0):
+            raise ValueError("table_at: the table is held at a position only at a standstill; give both speeds as "
+                             "0 rpm, or leave table_at out")
+        return self
+
+    @model_serializer(mode="wrap")
+    def _omit_unset(self, handler):
+        # Left out when not given, so that descriptions written before they existed keep their
+        # serialised form and hash (the benches' frozen provenance).
+        data = handler(self)
+        if isinstance(data, dict):
+            for key in ("ambient", "table_at"):
+                if data.get(key, 0.0) is None:
+                    del data[key]
+        return data
+
+
+class MeasuringStops(Strict):
+    """The measuring stops of an ISO 230-3 drift test: the table moved to each target in turn and
+    held there ``hold`` while the interferometer reads its position (a standstill)."""
+
+    targets: list[Length] = Field(min_length=1)
+    hold: PosDuration
+
+    @field_validator("targets")
+    @classmethod
+    def _distinct(cls, value: list[float]) -> list[float]:
+        if len(set(value)) != len(value):
+            raise ValueError("a target is listed twice")
+        return value
+
+    @property
+    def duration(self) -> float:
+        """One stop: every target held in turn [s]."""
+        return len(self.targets) * self.hold
 
 
 class DutyCycle(Strict):
-    """A piecewise-constant operating profile; the table reciprocates whenever it moves."""
+    """A piecewise-constant operating profile; the table reciprocates whenever it moves.
+
+    ``repeat``: the segments run this many times in a row (``duration`` is one block's).
+    ``measuring``: each block starts with a measuring stop (:class:`MeasuringStops`), the segments'
+    starts counted from the stop's end, and one more stop ends the cycle, so that the first and
+    last measurements bracket the duty (ISO 230-3's drift test).  :meth:`timeline` is the whole
+    profile.
+    """
 
     segments: list[DutySegment]
     duration: PosDuration
+    repeat: int = Field(default=1, ge=1, le=10_000)
+    ambient: Temperature | None = None  # of every segment that states none
+    measuring: MeasuringStops | None = None
     description: str = ""
+
+    @model_serializer(mode="wrap")
+    def _omit_defaults(self, handler):
+        # Left out at their defaults, so that descriptions written before they existed keep their
+        # serialised form and hash (the benches' frozen provenance).
+        data = handler(self)
+        if isinstance(data, dict):
+            if data.get("repeat") == 1:
+                del data["repeat"]
+            for key in ("ambient", "measuring"):
+                if data.get(key, 0.0) is None:
+                    del data[key]
+        return data
 
     @model_validator(mode="after")
     def _segments_in_order(self) -> "DutyCycle":
@@ -272,6 +341,36 @@ class DutyCycle(Strict):
         if starts[-1] >= self.duration:
             raise ValueError(f"the last segment starts at {starts[-1]:g} s, at or after the end ({self.duration:g} s)")
         return self
+
+    @property
+    def total_duration(self) -> float:
+        """The whole profile [s]: every block, with its measuring stop, and the closing stop."""
+        stop = self.measuring.duration if self.measuring is not None else 0.0
+        return self.repeat * (stop + self.duration) + stop
+
+    def timeline(self) -> list[DutySegment]:
+        """Every segment of the whole profile in order, starts from the profile's start (the blocks
+        repeated, the measuring stops put in as standstills with the table held at each target)."""
+        out: list[DutySegment] = []
+        t = 0.0
+        stop = self.measuring
+
+        def stops(at: float, ambient: float | None) -> float:
+            for target in stop.targets:
+                out.append(DutySegment.model_construct(start=at, screw_speed=0.0, nut_speed=0.0, ambient=ambient,
+                                                       table_at=target))
+                at += stop.hold
+            return at
+
+        for _ in range(self.repeat):
+            if stop is not None:
+                t = stops(t, self.segments[0].ambient)
+            for seg in self.segments:
+                out.append(seg.model_copy(update={"start": t + seg.start}))
+            t += self.duration
+        if stop is not None:
+            stops(t, self.segments[-1].ambient)
+        return out
 
 
 # --------------------------------------------------------------------------- calibration
@@ -354,6 +453,9 @@ class FeedSystem(Strict):
     room: Room = Room()
     conditions: dict[str, Condition]
     duty_cycles: dict[str, DutyCycle] = {}
+    #: What a machine's owner runs and logs (system/thermal_tests.py): a condition or duty cycle, the
+    #: state it starts from and the room it runs in, with the measurements taken.
+    tests: dict[str, ThermalTest] = {}
     calibration: Calibration | None = None
     uncertainty: Uncertainty | None = None
     #: How a compensation study's sensors read (system/sensing.py): the kinds that may be
@@ -373,6 +475,8 @@ class FeedSystem(Strict):
             data.pop("uncertainty", None)  # likewise: descriptions without declared uncertainties
         if isinstance(data, dict) and self.compensation is None:
             data.pop("compensation", None)  # likewise: descriptions without sensor-noise settings
+        if isinstance(data, dict) and not self.tests:
+            data.pop("tests", None)  # likewise: descriptions without declared tests
         if isinstance(data, dict) and self.kinematics is None:
             data.pop("kinematics", None)  # TOML has no null: a system without a feed drive leaves it out
         if isinstance(data, dict) and isinstance(data.get("sources"), dict):
@@ -382,6 +486,14 @@ class FeedSystem(Strict):
                 if isinstance(source, dict) and "through" in source and source["through"] is None:
                     del source["through"]  # likewise a source whose heat enters its own parts
         return data
+
+    @field_validator("tests")
+    @classmethod
+    def _names_are_identifiers_if_any(cls, value: dict) -> dict:
+        for name in value:
+            if not _NAME.match(name):
+                raise ValueError(f"{name!r} is not a valid name (letters, digits, underscores)")
+        return value
 
     @field_validator("materials", "parts", "sources", "surfaces", "sensors", "conditions")
     @classmethod

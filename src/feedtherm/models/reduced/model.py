@@ -213,6 +213,10 @@ class ProjectedModel(ThermalModel):
     def _probe_rows(self, k: int) -> tuple[np.ndarray, np.ndarray]:
         return self._probes[0][k], self._probes[1][k]
 
+    def probe_rows(self, k: int = 0) -> tuple[np.ndarray, np.ndarray]:
+        """The full model's probe rows projected on the basis (this model's state)."""
+        return self._probe_rows(k)
+
     def probe(self, state: np.ndarray, k: int = 0) -> np.ndarray:
         rows, offset = self._probe_rows(k)
         return rows @ state + offset
