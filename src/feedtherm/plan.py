@@ -22,7 +22,8 @@ from .models.integrator import Segment
 from .models.options import ModelOptions
 from .models.registry import ModelEntry, model_entry
 from .boundary.room import RoomAir
-from .constants import KELVIN_OFFSET
+from .constants import ELONGATION_PROBE, KELVIN_OFFSET
+from .system.measurement_series import ELONGATION_QUANTITY
 from .system.duty_cycle import read_duty_cycle_csv
 from .system.load import LoadedSystem
 from .system.measurements import MeasurementSet, measurement_spec, read_description_measurements
@@ -54,8 +55,8 @@ class Soaked:
 
 @dataclass(frozen=True)
 class FromReadings:
-    """A start that matches measured temperatures [K] at t = 0 (sensor → reading), the air at ``air`` [K]:
-    the steady field a heat at each sensor would hold (:func:`feedtherm.simulate.matched_state`)."""
+    """A start that matches the readings at t = 0 (sensor → temperature [K], and ``D`` [m] where read),
+    the air at ``air`` [K] (:func:`feedtherm.simulate.matched_state`)."""
 
     readings: dict[str, float]
     air: float
@@ -367,9 +368,13 @@ def _start_of(system: FeedSystem, name: str, test: ThermalTest, duty: list[DutyS
     if start == "ambient":
         return Uniform(air0)
     if start == "measured":
+        at_zero = [row for row in data.rows if row.condition == name and row.series is not None
+                   and row.series.times[0] == 0.0]
         readings = {row.quantity: float(row.series.values[0]) + KELVIN_OFFSET
-                    for row in data.rows if row.condition == name and row.quantity in system.sensors
-                    and row.series is not None and row.series.times[0] == 0.0}
+                    for row in at_zero if row.quantity in system.sensors}
+        # the elongation, where read at 0 s, is a reading of the field too (its mean along the loop)
+        readings |= {ELONGATION_PROBE: float(row.series.values[0]) * 1e-6
+                     for row in at_zero if row.quantity == ELONGATION_QUANTITY}
         if not readings:
             raise FeedthermError(f"tests.{name}.start: 'measured', but {data.source} has no sensor's reading at "
                                  f"0 s for {name}")

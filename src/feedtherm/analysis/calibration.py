@@ -64,7 +64,8 @@ from .consistency import ConsistencyReport
 from .execution import Execution, TaskFailure, kept_open, run_ordered
 from ..system.measurement_series import Series
 from ..system.measurements import MeasurementSet
-from .transient_scores import TransientComparison, simulated_series
+from ..system.runs import run_duration, run_names
+from .transient_scores import TransientComparison, drift, simulated_series
 from .validation_types import ELONGATION_QUANTITY
 
 #: The equilibrium time among the predicted quantities: time to 95 % of the steady rise [min].
@@ -448,6 +449,7 @@ class _Datum:
     measured: float
     flag: str = ""
     series: Series | None = None
+    since: float | None = None  # a drift's origin [s]: the series is the change since then (E at a target)
 
 
 def _data(data: MeasurementSet, conditions: list[str], consistency: ConsistencyReport | None,
@@ -457,6 +459,9 @@ def _data(data: MeasurementSet, conditions: list[str], consistency: ConsistencyR
         for r in data.for_condition(c):
             flag = consistency.flag_for(c, r.quantity) if consistency else None
             out.append(_Datum(c, r.quantity, r.unit, r.measured, flag.reason if flag else "", r.series))
+        for r in data.positioning_of(c):  # E at each target, as its drift since its first measurement
+            d = drift(r)
+            out.append(_Datum(c, d.quantity, d.unit, d.measured, "", d.series, d.since))
         if equilibrium and c in data.equilibrium_min:
             out.append(_Datum(c, EQUILIBRIUM_QUANTITY, "min", data.equilibrium_min[c]))
     return out
@@ -467,14 +472,17 @@ def _simulated(values: dict, r: _Datum):
     (as ``validate`` scores a series), or its final value."""
     if r.series is None:
         return values[r.quantity]
-    return np.interp(r.series.times, values[SERIES_TIMES], values[series_key(r.quantity)])
+    simulated = np.interp(r.series.times, values[SERIES_TIMES], values[series_key(r.quantity)])
+    if r.since is not None:  # a drift: the run's change since the same instant
+        simulated = simulated - np.interp(r.since, values[SERIES_TIMES], values[series_key(r.quantity)])
+    return simulated
 
 
 def _point(values: dict, r: _Datum) -> float:
     """The run's counterpart of ``r``'s final value: at a series' last sample time, or the run's final value."""
     if r.series is None:
         return values[r.quantity]
-    return float(np.interp(r.series.times[-1], values[SERIES_TIMES], values[series_key(r.quantity)]))
+    return float(_simulated(values, r)[-1])
 
 
 def _weights(loaded: LoadedSystem, r: _Datum) -> np.ndarray:
@@ -508,10 +516,10 @@ def _check_series(loaded: LoadedSystem, rows: list[_Datum], source: str) -> None
     for r in rows:
         if r.series is None:
             continue
-        duration = loaded.system.conditions[r.condition].duration
+        duration = run_duration(loaded.system, r.condition)
         if r.series.times[-1] > duration * (1 + 1e-9):
-            raise FeedthermError(f"{source}: condition {r.condition} {r.quantity}: the series ends at "
-                                 f"{r.series.times[-1]:g} s, after the condition's run ({duration:g} s)")
+            raise FeedthermError(f"{source}: {r.condition} {r.quantity}: the series ends at "
+                                 f"{r.series.times[-1]:g} s, after the run ({duration:g} s)")
         at = r.series.zero_uncertainty_at()
         if at is not None:
             raise FeedthermError(f"{source}: condition {r.condition} {r.quantity}: the uncertainty at {at:g} s is 0, "
@@ -570,17 +578,18 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
     started = time.perf_counter()
     model_entry(model)  # an unknown model fails before any run
     prepare(loaded.system, model, mesh)
-    measured = data.conditions()
+    measured = data.runs()
     missing = [c for c in fit if c not in measured]
     if missing:
         raise FeedthermError(f"--fit: no measurements for {', '.join(missing)} in {data.source} (measured: {', '.join(measured)})")
-    unknown = [c for c in fit if c not in loaded.system.conditions]
+    runs = run_names(loaded.system)
+    unknown = [c for c in fit if c not in runs]
     if unknown:
-        raise FeedthermError(f"--fit: no condition {', '.join(unknown)} in {loaded.origin}")
+        raise FeedthermError(f"--fit: no condition or test {', '.join(unknown)} in {loaded.origin}")
     parameters = resolve_parameters(loaded, names)
     fitted_data = _data(data, fit, consistency, equilibrium)
     rows = [r for r in fitted_data if not r.flag]
-    held_out = [c for c in measured if c not in fit and c in loaded.system.conditions]
+    held_out = [c for c in measured if c not in fit and c in runs]
     every = _data(data, list(fit) + held_out, consistency, equilibrium)
     _check_series(loaded, every, data.source)
     # one residual per final value, and one per sample of a series
@@ -839,7 +848,8 @@ def cross_validate(loaded: LoadedSystem, data: MeasurementSet, names: list[str],
     cache = cache if cache is not None else RunCache()
     if execution is None:
         execution = Execution(workers=workers) if workers > 1 else Execution()
-    conditions = [c for c in data.conditions() if c in loaded.system.conditions]
+    runs = run_names(loaded.system)
+    conditions = [c for c in data.runs() if c in runs]
     out = []
     with kept_open(execution) as running:  # one cluster for every fold
         for i, left_out in enumerate(conditions):

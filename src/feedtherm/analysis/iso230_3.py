@@ -18,7 +18,8 @@ Thermal expansion of the axis
     target's drift less the first's.  The table visits the targets one after another at each
     stop, so the two are never measured at the same instant; the first target's drift is
     interpolated linearly in time to the last target's measurement times, within the first
-    target's measured span only (no extrapolation).  Divided by the distance between the
+    target's measured span, and held at its first and last value for up to half its shortest
+    interval beyond it: the other targets of the same stop.  Divided by the distance between the
     targets it is an apparent expansion per length [m/m], comparable to α ΔT of the screw.
 
 Environmental temperature variation error (ETVE)
@@ -165,11 +166,13 @@ def target_drift(target: float, times, deviation) -> TargetDrift:
     return TargetDrift(float(target), t, d, drift, largest, when)
 
 
-def expansion_drift(first: TargetDrift, last: TargetDrift) -> ExpansionDrift:
+def expansion_drift(first: TargetDrift, last: TargetDrift, reach: float | None = None) -> ExpansionDrift:
     """The drift of the distance from ``first`` to ``last``: ``last.drift - first.drift``.
 
-    Evaluated at ``last.times`` within ``[first.times[0], first.times[-1]]``, the first target's
-    drift interpolated linearly in time there.
+    Evaluated at ``last.times`` within ``[first.times[0] - reach, first.times[-1] + reach]``, the
+    first target's drift interpolated linearly in time there and held beyond its ends.  ``reach``
+    [s] defaults to half the first target's shortest interval between measurements (0 with one
+    measurement): the last stop's other targets, never the next stop's.
 
     Raises
     ------
@@ -180,7 +183,9 @@ def expansion_drift(first: TargetDrift, last: TargetDrift) -> ExpansionDrift:
     if not first.target < last.target:
         raise ValueError(f"the expansion needs two distinct targets in order, got first "
                          f"{first.target * 1e3:g} mm and last {last.target * 1e3:g} mm")
-    start, end = first.times[0], first.times[-1]
+    if reach is None:
+        reach = 0.5 * float(np.min(np.diff(first.times))) if len(first.times) > 1 else 0.0
+    start, end = first.times[0] - reach, first.times[-1] + reach
     inside = (last.times >= start) & (last.times <= end)
     if not np.any(inside):
         raise ValueError(f"no measurement of the target at {last.target * 1e3:g} mm lies within "

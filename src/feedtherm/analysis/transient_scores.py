@@ -8,13 +8,13 @@ mean (the bias) and, where the file gives uncertainties, the share of samples wi
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..errors import FeedthermError
 from ..solution import Solution
-from ..system.measurement_series import ELONGATION_QUANTITY
+from ..system.measurement_series import ELONGATION_QUANTITY, Series, target_of
 from ..system.measurements import Measurement
 
 #: Slack on the run's time span [s]: a sample at the run's end is not rounded out of it.
@@ -84,13 +84,42 @@ class TransientComparison:
 
 
 def simulated_series(solution: Solution, quantity: str) -> np.ndarray:
-    """The run's series of a measured quantity: a sensor [°C], or ``D_um`` [µm]."""
+    """The run's series of a measured quantity: a sensor [°C], ``D_um`` [µm], or the positioning error E
+    at a target (``E@150mm``, :func:`~feedtherm.system.measurement_series.target_key`) [µm]."""
     if quantity == ELONGATION_QUANTITY:
         return solution.elongation_um
+    target = target_of(quantity)
+    if target is not None:
+        return positioning_at(solution, target)
     celsius = solution.sensors_celsius()
     if quantity not in celsius:
         raise FeedthermError(f"the run has no sensor {quantity!r} to compare with its measured series")
     return celsius[quantity]
+
+
+def positioning_at(solution: Solution, target: float) -> np.ndarray:
+    """The thermal positioning error E [µm] at the table position ``target`` [m] over the run's times,
+    linear between the run's table positions."""
+    if solution.table_x.size == 0:
+        raise FeedthermError("the run has no table (no feed drive), so no positioning error at a target")
+    return np.array([np.interp(target, solution.table_x, row) for row in solution.positioning_error]) * 1e6
+
+
+def drift(row: Measurement) -> Measurement:
+    """A positioning deviation's series as its drift since its first sample (ISO 230-3): the values less
+    the first, the first sample left out (0 by construction), each uncertainty combined with the first's.
+
+    An interferometer's deviation holds the axis's geometric error, which the model does not: its
+    change is what the heat does (:mod:`feedtherm.analysis.iso230_3`).
+    """
+    series = row.series
+    if series is None or len(series.times) < 2:
+        raise FeedthermError(f"{row.condition} {row.quantity}: a drift needs two measurements at the target or more")
+    u = series.uncertainties
+    values = series.values[1:] - series.values[0]
+    combined = None if u is None else np.sqrt(u[1:] ** 2 + u[0] ** 2)
+    return replace(row, measured=float(values[-1]), series=Series(series.times[1:], values, combined),
+                   since=float(series.times[0]))
 
 
 def compare_series(condition: str, solution: Solution, rows: list[Measurement]) -> list[TransientComparison]:
@@ -111,6 +140,8 @@ def compare_series(condition: str, solution: Solution, rows: list[Measurement]) 
             raise FeedthermError(f"condition {condition}: the measured {row.quantity} spans {series.times[0]:g}–"
                                  f"{series.times[-1]:g} s, the run only {start:g}–{end:g} s")
         simulated = np.interp(series.times, solution.times, simulated_series(solution, row.quantity))
+        if row.since is not None:  # a drift: the run's change since the same instant
+            simulated = simulated - np.interp(row.since, solution.times, simulated_series(solution, row.quantity))
         out.append(TransientComparison(condition, row.quantity, row.unit, series.times, series.values, simulated,
                                        series.uncertainties))
     return out

@@ -19,10 +19,12 @@ from ..system.load import LoadedSystem
 from ..system.overlay import available_overlay
 from .consistency import check_description_measurements
 from .inverse import Noise, infer_conditions
-from ..system.measurements import MeasurementSet, measurement_spec, read_description_measurements
+from ..system.measurements import MeasurementSet, declared_measurements, read_description_measurements
 from .sensitivity import sensitivities
 from .sweep import sensor_labels
-from .transient_scores import compare_series
+from ..system.runs import as_test, is_idle
+from .drift_tests import drift_test
+from .transient_scores import compare_series, drift
 from .validation_types import ELONGATION_QUANTITY, Comparison, OperatingPointRow, Validation
 
 #: Ratio beyond which a printed value and the physics are reported as inconsistent.
@@ -31,10 +33,11 @@ INCONSISTENCY_RATIO = 2.0
 
 def measurements_of(loaded: LoadedSystem, measured: str | None) -> MeasurementSet:
     """The measurement file given, else the description's ``meta.measurements``, else its bench's own."""
-    spec = measurement_spec(measured, loaded.system.meta.measurements, loaded.origin)
     # a file given on the command line is where the user says; one the description names is beside it.
     # A series may not outlast its run: validate simulates each test's duration.
-    return read_description_measurements(loaded.system, spec, None if measured else loaded.origin)
+    if measured:
+        return read_description_measurements(loaded.system, measured, None)
+    return declared_measurements(loaded.system, loaded.origin)
 
 
 def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = None, motion: str | None = None,
@@ -57,9 +60,9 @@ def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = No
     started = time.perf_counter()
     system = loaded.system
     data = measurements_of(loaded, measured)
-    conditions = data.conditions()
+    conditions = data.runs()  # the tests and conditions measured
     dual = system.kinematics is not None and system.kinematics.drive == "dual"
-    steps = len(conditions) * (2 if dual else 1) + 2
+    steps = sum(2 if dual and c in system.conditions else 1 for c in conditions) + 2
     done = 0
 
     def tick():
@@ -68,19 +71,27 @@ def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = No
         if progress is not None:
             progress(done / steps)
 
-    solutions, single, budget, comparisons, transients = {}, {}, {}, [], []
+    solutions, single, budget, comparisons, transients, drifts = {}, {}, {}, [], [], []
     # one description's runs: a reduced model built for them is trained at its own numbers (models/reduced/store.py)
     options = ModelOptions(reduced_training="description")
     for condition in conditions:
-        run = simulate(loaded, condition=condition, model=model, mesh=mesh, motion=motion, options=options)
+        run = simulate(loaded, condition=condition, model=model, mesh=mesh, motion=motion, options=options,
+                       measured=data)
         solutions[condition] = run
         transients += compare_series(condition, run, data.for_condition(condition))
+        transients += compare_series(condition, run, [drift(r) for r in data.positioning_of(condition)])
+        evaluated = drift_test(condition, run, data, idle=is_idle(system, condition))
+        if evaluated is not None:
+            drifts.append(evaluated)
         tick()
-        if dual:
+        if dual and condition in system.conditions:
             single[condition] = simulate(loaded, condition=condition, model=model, mesh=mesh, motion=motion,
                                          single_drive=True, options=options)
             tick()
-        budget[condition] = {name: h.power for name, h in boundary_conditions(system, condition, loaded.overlay).heats.items()}
+        test = as_test(system, condition)
+        if test.condition is not None:
+            point = boundary_conditions(system, test.condition, loaded.overlay)
+            budget[condition] = {name: h.power for name, h in point.heats.items()}
         final = run.summary_values("final")
         for row in data.for_condition(condition):
             comparisons.append(Comparison(condition, row.quantity, row.unit, float(final[row.quantity]), row.measured,
@@ -120,6 +131,7 @@ def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = No
         sensor_locations=sensor_locations(loaded),
         notes=report_notes(loaded),
         transients=transients,
+        drift_tests=drifts,
     )
 
 

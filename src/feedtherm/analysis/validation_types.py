@@ -9,6 +9,7 @@ from ..solution import Solution
 from .consistency import ConsistencyReport
 from .inverse import Inference
 from ..system.measurements import ELONGATION_QUANTITY  # noqa: F401 (re-exported for the report and CLI)
+from .drift_tests import DriftTest
 from .transient_scores import TransientComparison
 
 
@@ -84,6 +85,7 @@ class Validation:
     uncertainty: dict | None = None
     # every measured time series against its run (empty when the measurements are finals only)
     transients: list[TransientComparison] = field(default_factory=list)
+    drift_tests: list[DriftTest] = field(default_factory=list)  # each test's ISO 230-3 figures, measured and simulated
     # the bench's own content: its conditions, where its sensors are, what the report says of it
     operating_points: dict[str, OperatingPointRow] = field(default_factory=dict)
     sensor_locations: dict[str, str] = field(default_factory=dict)  # sensor -> where it is

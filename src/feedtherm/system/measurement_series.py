@@ -99,6 +99,17 @@ def target_key(target: float) -> str:
     return f"{POSITIONING_QUANTITY}@{round(target * 1e3, 6):g}mm"
 
 
+def target_of(quantity: str) -> float | None:
+    """The target [m] of a positioning deviation's name (:func:`target_key`), None for another quantity."""
+    head = f"{POSITIONING_QUANTITY}@"
+    if not (quantity.startswith(head) and quantity.endswith("mm")):
+        return None
+    try:
+        return float(quantity[len(head):-2]) * 1e-3
+    except ValueError:
+        return None
+
+
 def is_series_header(header: list[str]) -> bool:
     """True for the long format's header: its second column is the time."""
     return len(header) > 1 and header[1].lower().startswith("time")

@@ -60,6 +60,7 @@ class Measurement:
     reference_simulated: float | None = None
     series: Series | None = None  # all samples, where the file is a time series
     target: float | None = None  # the positioning deviation's target position [m]
+    since: float | None = None  # a drift's origin [s]: the series is the change since then (ISO 230-3)
 
 
 @dataclass(frozen=True)
@@ -221,3 +222,36 @@ def read_description_measurements(system, spec: str, relative_to: str | None) ->
                              run_end=durations, air=system.room.ambient_sensor,
                              travel=None if system.kinematics is None else table_travel(system),
                              visits={name: visited_targets(system, name) for name in durations})
+
+
+def declared_measurements(system, origin: str) -> MeasurementSet:
+    """Everything a description's measurements hold: its own file (``meta.measurements``, else its
+    bench's, where either exists) and each test's own file (``tests.<name>.measurements``), one set.
+
+    A run measured in two of them is an error: which to believe would be a guess.
+    """
+    specs: list[str] = []
+    try:
+        specs.append(measurement_spec(None, system.meta.measurements, origin))
+    except DescriptionError:
+        if not any(test.measurements for test in system.tests.values()):
+            raise
+    specs += [test.measurements for test in system.tests.values() if test.measurements]
+    sets = [read_description_measurements(system, spec, origin) for spec in dict.fromkeys(specs)]
+    return merged(sets)
+
+
+def merged(sets: list[MeasurementSet]) -> MeasurementSet:
+    """One set of several files' measurements; a run that two of them measure is an error."""
+    if len(sets) == 1:
+        return sets[0]
+    seen: dict[str, str] = {}
+    for data in sets:
+        for run in data.runs():
+            if run in seen:
+                raise DescriptionError(f"{data.source}: {run} is measured here and in {seen[run]}; give each run's "
+                                       "measurements in one file")
+            seen[run] = data.source
+    return MeasurementSet([r for d in sets for r in d.rows], " + ".join(d.source for d in sets),
+                          {k: v for d in sets for k, v in d.equilibrium_min.items()},
+                          [r for d in sets for r in d.positioning], {k: v for d in sets for k, v in d.air.items()})

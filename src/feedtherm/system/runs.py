@@ -61,3 +61,14 @@ def is_constant(system: FeedSystem, name: str) -> bool:
     test of one in a declared or constant room (it has a steady state to approach)."""
     test = as_test(system, name)
     return test is not None and test.condition is not None and test.room != "measured"
+
+
+def is_idle(system: FeedSystem, name: str) -> bool:
+    """Whether no motor turns in the run ``name`` (its measuring stops aside): ISO 230-3's ETVE test."""
+    test = as_test(system, name)
+    if test is None:
+        return False
+    if test.condition is not None:
+        c = system.conditions[test.condition]
+        return c.screw_speed == 0.0 and c.nut_speed == 0.0
+    return all(s.screw_speed == 0.0 and s.nut_speed == 0.0 for s in system.duty_cycles[test.cycle].segments)

@@ -68,32 +68,40 @@ def test_expansion_between_the_outer_targets_by_hand():
     e = expansion_drift(t50, t350)
     assert isinstance(e, ExpansionDrift)
     assert (e.first_target, e.last_target) == (pytest.approx(0.050), pytest.approx(0.350))
-    # 350 mm is measured at 4, 604 and 1204 s; 50 mm spans 0-1200 s, so 1204 s is left out.
-    np.testing.assert_allclose(e.times, [4.0, 604.0])
-    # 50 mm's drift interpolated in time (0 s: 0, 600 s: 2 µm, 1200 s: 1 µm):
-    #   at   4 s: 0 + (2 - 0) * 4 / 600           = 1/75  µm = 0.013333 µm
-    #   at 604 s: 2 + (1 - 2) * 4 / 600 = 2 - 1/150   µm = 1.993333 µm
+    # 350 mm is measured at 4, 604 and 1204 s; 50 mm spans 0-1200 s, held for half its shortest
+    # interval (300 s) beyond: 1204 s, the last stop's, is in.
+    np.testing.assert_allclose(e.times, [4.0, 604.0, 1204.0])
+    # 50 mm's drift interpolated in time (0 s: 0, 600 s: 2 µm, 1200 s: 1 µm), held after 1200 s:
+    #   at    4 s: 0 + (2 - 0) * 4 / 600           = 1/75  µm = 0.013333 µm
+    #   at  604 s: 2 + (1 - 2) * 4 / 600 = 2 - 1/150   µm = 1.993333 µm
+    #   at 1204 s: 1 µm (held)
     # expansion drift = drift(350 mm) - drift(50 mm):
-    #   at   4 s: 0 - 1/75          = -0.013333 µm
-    #   at 604 s: 6 - (2 - 1/150)   = 4 + 1/150 = 4.006667 µm
-    np.testing.assert_allclose(e.drift, np.array([-1.0 / 75.0, 4.0 + 1.0 / 150.0]) * UM, rtol=1e-12)
+    #   at    4 s: 0 - 1/75          = -0.013333 µm
+    #   at  604 s: 6 - (2 - 1/150)   = 4 + 1/150 = 4.006667 µm
+    #   at 1204 s: 9 - 1             = 8 µm
+    np.testing.assert_allclose(e.drift, np.array([-1.0 / 75.0, 4.0 + 1.0 / 150.0, 8.0]) * UM, rtol=1e-12)
+    assert e.largest == pytest.approx(8.0 * UM)
+    assert e.time_of_largest == 1204.0
+    # per length: 8 µm / (350 - 50) mm = 8e-6 / 0.3 = 26.667e-6 m/m
+    assert e.per_length == pytest.approx(8.0 * UM / 0.3)
+    assert e.per_length == pytest.approx(26.6667e-6, rel=1e-5)
+    # without the reach, the last stop is left out
+    e = expansion_drift(t50, t350, reach=0.0)
+    np.testing.assert_allclose(e.times, [4.0, 604.0])
     assert e.largest == pytest.approx((4.0 + 1.0 / 150.0) * UM)
-    assert e.time_of_largest == 604.0
-    # per length: 4.006667 µm / (350 - 50) mm = 4.006667e-6 / 0.3 = 13.3556e-6 m/m
-    assert e.per_length == pytest.approx((4.0 + 1.0 / 150.0) * UM / 0.3)
-    assert e.per_length == pytest.approx(13.3556e-6, rel=1e-5)
 
 
 def test_expansion_when_the_last_target_is_measured_first():
     # the table runs backwards: 350 mm at 0, 600, 1200 s; 50 mm at 4, 604, 1204 s.  The first
-    # (50 mm) target spans 4-1204 s, so 0 s is left out and 600, 1200 s remain.
+    # (50 mm) target spans 4-1204 s, held 300 s before: 0 s takes its first drift, 0.
     first = target_drift(0.050, STOPS + 4.0, np.array([0.0, 3.0, 6.0]) * UM)  # drift 0, 3, 6 µm
     last = target_drift(0.350, STOPS, np.array([1.0, 9.0, 11.0]) * UM)  # drift 0, 8, 10 µm
     e = expansion_drift(first, last)
-    np.testing.assert_allclose(e.times, [600.0, 1200.0])
-    # first's drift at 600 s: 0 + 3 * (600 - 4) / 600 = 2.98 µm; at 1200 s: 3 + 3 * 596 / 600 = 5.98 µm
-    # expansion: 8 - 2.98 = 5.02 µm; 10 - 5.98 = 4.02 µm -> largest 5.02 µm at 600 s
-    np.testing.assert_allclose(e.drift, np.array([5.02, 4.02]) * UM, rtol=1e-12)
+    np.testing.assert_allclose(e.times, [0.0, 600.0, 1200.0])
+    # first's drift at 0 s: 0 (held); at 600 s: 0 + 3 * (600 - 4) / 600 = 2.98 µm; at 1200 s:
+    # 3 + 3 * 596 / 600 = 5.98 µm.  Expansion: 0 - 0 = 0; 8 - 2.98 = 5.02 µm; 10 - 5.98 = 4.02 µm
+    # -> largest 5.02 µm at 600 s
+    np.testing.assert_allclose(e.drift, np.array([0.0, 5.02, 4.02]) * UM, rtol=1e-12, atol=1e-18)
     assert e.largest == pytest.approx(5.02e-6)
     assert e.time_of_largest == 600.0
     assert e.per_length == pytest.approx(5.02e-6 / 0.3)
@@ -165,8 +173,8 @@ def test_expansion_rejects_targets_not_distinct_or_ordered():
 
 def test_expansion_rejects_when_no_time_is_left():
     first = target_drift(0.05, [0.0, 600.0], [0.0, 1.0e-6])
-    last = target_drift(0.35, [700.0, 1300.0], [0.0, 2.0e-6])  # measured after the first's span
-    with pytest.raises(ValueError, match="lies within 0–600 s"):
+    last = target_drift(0.35, [1000.0, 1300.0], [0.0, 2.0e-6])  # after the first's span and its reach
+    with pytest.raises(ValueError, match="lies within -300–900 s"):
         expansion_drift(first, last)
 
 
