@@ -9,6 +9,7 @@ import csv
 from pathlib import Path
 
 from ..analysis.transient_scores import TransientComparison
+from ..system.measurement_series import target_of
 
 TRANSIENTS_CSV = "transients.csv"
 SAMPLES_CSV = "transient_samples.csv"
@@ -59,12 +60,14 @@ def transient_lines(comparisons: list[TransientComparison]) -> list[str]:
     for condition in dict.fromkeys(c.condition for c in comparisons):
         own = [c for c in comparisons if c.condition == condition]
         parts = []
+        positioning = [c for c in own if target_of(c.quantity) is not None]
         for label, rows in (("temperature", [c for c in own if c.unit == "C"]),
-                            ("elongation", [c for c in own if c.unit != "C"])):
+                            ("elongation", [c for c in own if c.unit != "C" and c not in positioning]),
+                            ("drift at a target", positioning)):
             if rows:
                 worst = max(rows, key=lambda c: c.rms)
                 unit = "K" if label == "temperature" else "µm"
-                name = worst.quantity if label == "temperature" else "D"
+                name = "D" if label == "elongation" else worst.quantity
                 parts.append(f"{label} RMS {worst.rms:.1f} {unit} ({name}), "
                              f"max |Δ| {worst.max_abs:.1f} {unit} at {worst.time_of_max / 60.0:.0f} min")
         lines.append(f"measured series, condition {condition}: " + "; ".join(parts))

@@ -12,6 +12,7 @@ from rich.table import Table
 
 from ..analysis.validation_types import Validation
 from .files import staged_directory, write_json
+from .drift_test_files import drift_test_summary, write_drift_test_files
 from .transient_files import SAMPLES_CSV, TRANSIENTS_CSV, transient_lines, transient_summary, write_transient_files
 
 VALIDATION_HEADER = ["condition", "quantity", "unit", "simulated", "measured", "paper_simulated", "deviation"]
@@ -26,6 +27,7 @@ def write_validation(validation: Validation, out_dir: Path) -> list[Path]:
         write_json(stage / "validation.json", validation_summary(validation))
         write_report(validation, stage / "report.html")
         write_transient_files(validation.transients, stage)  # only with measured time series
+        write_drift_test_files(validation.drift_tests, stage)  # only with tests measured at targets
         names = sorted(p.name for p in stage.iterdir())
     return [Path(out_dir) / name for name in names]
 
@@ -70,7 +72,8 @@ def validation_summary(validation: Validation) -> dict:
             "cross_validation": validation.calibration.get("cross_validation")},
         "wall_time_s": validation.wall_time_s,
         "provenance": validation.provenance,
-    } | ({"transients": transient_summary(validation.transients)} if validation.transients else {})
+    } | ({"transients": transient_summary(validation.transients)} if validation.transients else {}) \
+      | ({"iso230_3": drift_test_summary(validation.drift_tests)} if validation.drift_tests else {})
 
 
 def print_validation(validation: Validation, out_dir: Path, console: Console | None = None) -> None:

@@ -8,7 +8,8 @@ no JavaScript.  It reads only the Validation, which carries what the report says
 1. title and summary · 2. headline: predictive accuracy (physics mode, held out, leave-one-out,
 the reference model's in-sample) · 3. deviation tables · 4. the thermal error as a displacement (the
 measuring loop, the gain, the error along the stroke) · 5. sensor curves, and measured
-time series against the runs where the measurements have them · 6. screw
+time series against the runs where the measurements have them, and the ISO 230-3 drift at
+target positions where a test measured them · 6. screw
 field · 7. equilibrium time · 8. final values against speed and ambient · 9. dual
 against single drive · 10. heat budget · 11. inferred heat per source · 12. measurement
 consistency · 13. sensitivity ranking · 14. inconsistencies in the data · 15. calibrated values ·
@@ -36,6 +37,7 @@ from .context import assumptions_section, calibrated_section, inconsistencies_se
 from .displacement import displacement_section
 from .fidelity import consistency_section, headline_section, inferred_heat_section
 from .html import page
+from .drift_tests import drift_tests_section
 from .measured_series import measured_series_section
 from .operating import dual_single_section, heat_budget_section, trends_section
 from .transients import equilibrium_section, screw_field_section, sensor_curves_section
@@ -49,6 +51,7 @@ _SECTIONS = (
     displacement_section,
     sensor_curves_section,
     measured_series_section,  # only with measured time series
+    drift_tests_section,  # only with tests measured at targets
     screw_field_section,
     equilibrium_section,
     trends_section,

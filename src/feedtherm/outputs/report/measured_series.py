@@ -6,6 +6,7 @@ Empty (no section at all) when the measurements are final values only.
 from __future__ import annotations
 
 from ...analysis.validation_types import Validation
+from ...system.measurement_series import target_of
 from ..transient_files import deviation_unit
 from . import series_figures
 from .html import number, paragraph, png_image, section, table
@@ -25,7 +26,7 @@ def measured_series_section(validation: Validation) -> str:
     comparisons = validation.transients
     if not comparisons:
         return ""
-    rows = [[c.condition, "D" if c.unit != "C" else c.quantity, len(c.times), number(c.rms, 2),
+    rows = [[c.condition, "D" if c.quantity == "D_um" else c.quantity, len(c.times), number(c.rms, 2),
              number(c.max_abs, 2), number(c.time_of_max / 60.0, 0), number(c.mean, 2, signed=True),
              deviation_unit(c),
              "—" if c.inside_two_sigma is None else f"{100 * c.inside_two_sigma:.0f} %"] for c in comparisons]
@@ -34,7 +35,9 @@ def measured_series_section(validation: Validation) -> str:
                    "mean deviation", "unit", "within 2 u"], rows)]
     for condition in dict.fromkeys(c.condition for c in comparisons):
         solution = validation.solutions[condition]
-        own = [c for c in comparisons if c.condition == condition]
+        own = [c for c in comparisons if c.condition == condition and target_of(c.quantity) is None]
+        if not own:  # E at targets alone: the ISO 230-3 section draws it
+            continue
         png = series_figures.measured_series(solution, condition, own)
         with_bars = any(c.uncertainty is not None for c in own)
         caption = (f"Condition {condition}: {len(own)} measured series"

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from ...analysis.transient_scores import TransientComparison, simulated_series
 from ...solution import Solution
+from ...system.measurement_series import target_of
 from .figures import _figure, _png
 
 _HOURS = 3600.0
@@ -22,7 +23,8 @@ def measured_series(solution: Solution, condition: str, comparisons: list[Transi
     Temperatures [°C] above the elongation D [µm]; the lower panel only where D was measured.
     """
     temperatures = [c for c in comparisons if c.unit == "C"]
-    elongation = [c for c in comparisons if c.unit != "C"]
+    # E at targets has its own figure, as drifts (report/drift_tests.py)
+    elongation = [c for c in comparisons if c.unit != "C" and target_of(c.quantity) is None]
     panels = [p for p in (temperatures, elongation) if p]
     figure = _figure(2.2 + 2.4 * len(panels))
     axes = figure.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
