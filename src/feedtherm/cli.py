@@ -533,6 +533,9 @@ def cmd_compensate(args: argparse.Namespace) -> int:
         data = measurements_of(loaded, None)
     except FeedthermError:
         data = None
+    from .analysis.compensation.data import study_cost
+
+    print(f"compensate: {study_cost(loaded, settings).describe(execution.workers or 1)}", flush=True)
     with _LazyProgress(enabled=sys.stdout.isatty()) as progress:
         result = run_study(loaded, settings, request, progress, execution)
     measured = {} if data is None else {kind: predict_measured(r.law, loaded, data)
@@ -863,8 +866,9 @@ def build_parser() -> argparse.ArgumentParser:
     compensate = sub.add_parser("compensate", help="fit thermal-error compensation laws on random simulated cycles, "
                                                    "choose sensor positions, judge them on other machines of the design")
     _system_argument(compensate)
-    compensate.add_argument("--sensors", default="3", metavar="K|NAME,...",
-                            help="K sensors chosen greedily, or candidate names separated by commas (default 3)")
+    compensate.add_argument("--sensors", default="3", metavar="K|declared|NAME,...",
+                            help="K sensors chosen greedily among the candidates a machine can carry, 'declared' (the "
+                                 "description's own sensors), or candidate names separated by commas (default 3)")
     compensate.add_argument("--cycles", type=_positive_int, default=8, metavar="N",
                             help="cycles in each of the training, validation and test sets (default 8)")
     compensate.add_argument("--seed", type=_integer, default=0, metavar="S", help="seed of every random draw (default 0)")

@@ -88,7 +88,7 @@ def test_inference_finds_the_heats_of_the_truth_within_their_intervals(loaded, d
     of the 20 heats within their 95 % intervals, the guideways' at v5 4 standard errors off: its
     intervals are too narrow for this test to hold (docs/inverse.md)."""
     truth = MAKER.truth().system
-    conditions = list(loaded.system.conditions)
+    conditions = list(MAKER.CONDITIONS)
     finals = MeasurementSet([replace(row, series=None) for row in data.rows], data.source, data.equilibrium_min)
     inferred = infer_conditions(loaded, finals, conditions, noise=Noise(0.3, 1e-6))
     found = 0

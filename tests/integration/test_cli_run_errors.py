@@ -41,7 +41,7 @@ def assert_one_line_error_and_nothing_written(result, tmp_path, *fragments, inpu
         (["--condition", "I", "--sample-interval", "0"], ["--sample-interval", "positive", "'0'"]),
         (["--condition", "I", "--sample-interval", "ten"], ["--sample-interval", "'ten'"]),
         (["--condition", "I", "--cycle", "I_then_standstill"], ["--cycle", "not allowed with", "--condition"]),
-        ([], ["one of the arguments --condition --cycle is required"]),
+        ([], ["one of the arguments --condition --test --cycle is required"]),
         (["--condition", "IX"], ["no condition or test 'IX'", "I, II, III, IV, V"]),
         (["--cycle", "I_then_standstil"], ["'I_then_standstil'", "I_then_standstill"]),
         (["--cycle", "missing.csv"], ["'missing.csv'", "nor an existing CSV file"]),

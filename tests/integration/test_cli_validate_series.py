@@ -64,7 +64,7 @@ def assert_fails_in_one_line(capsys, system, bad: Path, out: Path, *fragments):
         ("v10,5,T1,20.0,degC,0.2\nv10,2,T1,21.0,degC,0.2\n", ["line 3", "out of order"]),
         (GOOD + "v10,2,T1,,degC,0.2\n", ["line 3", "the value is missing"]),
         (GOOD + "v10,2,T1,21.0,degC,-0.2\n", ["line 3", "must not be negative"]),
-        (GOOD + "v10,500,T1,21.0,degC,0.2\n", ["line 3", "after the end of condition v10's run (28800 s)"]),
+        (GOOD + "v10,500,T1,21.0,degC,0.2\n", ["line 3", "after the end of v10's run (28800 s)"]),
     ],
 )
 def test_a_bad_series_file_fails_before_any_run(tmp_path, capsys, body, fragments):
@@ -96,7 +96,7 @@ def test_a_series_longer_than_the_shortened_run_is_refused(tmp_path, capsys):
     bad = tmp_path / "long.csv"
     bad.write_text(rows)
     assert_fails_in_one_line(capsys, short_description(tmp_path), bad, tmp_path / "out",
-                             "after the end of condition v10's run (1200 s)")
+                             "after the end of v10's run (1200 s)")
 
 
 def test_a_synthetic_series_is_scored_over_the_whole_transient(tmp_path, capsys, monkeypatch):

@@ -20,6 +20,12 @@ here from the geometry alone, by one rule:
   the ambient is a contact sensor in the air.  A generated point whose kind the description does
   not allow (``[compensation] kinds``, :mod:`feedtherm.system.sensing`) is no candidate.
 
+- a candidate a machine cannot carry is kept with the reason (:func:`mount_problem`, issue 56),
+  and a study chooses among the others only (:func:`carriable`): a contact sensor on a part that
+  turns (its wires cannot follow), a pyrometer on a part that moves (its spot would travel with
+  the table), and any spot that a part moving past it covers at some position of the stroke (the
+  screw under the nut's travel, a rail's side under the carriages).
+
 Names are ``<part>[_b<box>|_c<cylinder>]_<face>[_x<mm>]``, e.g. ``front_housing_b0_top``,
 ``screw_top_x200``, ``screw_top_xm50`` (at x = −50 mm).
 The candidates enter a run as extra sensors of the description (:func:`with_candidates`), so
@@ -55,13 +61,60 @@ class Candidate:
     position: tuple[float, float, float]
     where: str  # "top", "side_neg_y", ..., "declared" (a sensor of the description), "ambient"
     kind: str = "contact"  # "contact" | "infrared" (:func:`sensor_kind`)
+    problem: str = ""  # why a machine cannot carry it (:func:`mount_problem`); empty: it can
+
+
+#: Positions of the moving group at which a spot is looked at for a part passing over it.
+SWEEP_POSITIONS = 41
+#: A spot within this distance of a part moving past it is covered [m]: a wiper, a carriage's
+#: flank or a nut's bore runs over it.
+COVER_DISTANCE = 3e-3
+
+
+def mount_problem(system: FeedSystem, part: str, point, kind: str) -> str:
+    """Why a sensor of ``kind`` at ``point`` [m] (moving parts: mid-stroke) on ``part`` cannot be carried
+    by a machine, or an empty string where it can (module notes)."""
+    if not part:
+        return ""  # the air
+    moving = system.parts[part].moving
+    if kind == "contact" and part in turning_parts(system):
+        return f"a contact sensor on {part}, which turns: its wires could not follow"
+    if kind == "infrared" and moving:
+        return f"a pyrometer on the frame aimed at {part}, which moves: its spot would travel with the table"
+    cover = covering_part(system, part, point)
+    if cover is not None:
+        return f"in the path of {cover}, which passes over the spot as the table travels"
+    return ""
+
+
+def covering_part(system: FeedSystem, part: str, point) -> str | None:
+    """The first part that moves relative to ``part`` and comes within :data:`COVER_DISTANCE` of ``point``
+    at some position of the stroke, or None."""
+    if system.kinematics is None:
+        return None
+    stroke = system.kinematics.stroke
+    offsets = [stroke * (i / (SWEEP_POSITIONS - 1) - 0.5) for i in range(SWEEP_POSITIONS)]
+    moving = system.parts[part].moving
+    x, y, z = point
+    for name, other in system.parts.items():
+        if name == part or other.moving == moving:
+            continue
+        sign = 1.0 if moving else -1.0  # the other part's frame: the point moves with the table, or the part does
+        if any(contains(other, (x + sign * d, y, z), tol=COVER_DISTANCE) for d in offsets):
+            return name
+    return None
+
+
+def carriable(candidates: dict[str, Candidate]) -> list[str]:
+    """The candidates a machine can carry (no :attr:`Candidate.problem`), in order."""
+    return [name for name, c in candidates.items() if not c.problem]
 
 
 def sensor_kind(system: FeedSystem, part: str) -> str:
-    """``infrared`` on a part that moves or turns (its wires could not follow it), else ``contact``."""
-    moving = system.parts[part].moving if part in system.parts else False
+    """``infrared`` on a part that turns (its wires could not follow it), else ``contact`` (a part that
+    moves with the table carries its sensor's cable in the drag chain)."""
     screw = system.kinematics.screw if system.kinematics is not None else None
-    return "infrared" if moving or part == screw or part in turning_parts(system) else "contact"
+    return "infrared" if part == screw or part in turning_parts(system) else "contact"
 
 
 def allowed_kinds(system: FeedSystem) -> tuple[str, ...]:
@@ -75,7 +128,8 @@ def candidate_sensors(system: FeedSystem) -> dict[str, Candidate]:
     out: dict[str, Candidate] = {}
     for name, sensor in system.sensors.items():
         if name != system.room.ambient_sensor:
-            out[name] = Candidate(name, sensor.part, tuple(sensor.position), "declared", sensor.method)
+            out[name] = Candidate(name, sensor.part, tuple(sensor.position), "declared", sensor.method,
+                                  mount_problem(system, sensor.part, sensor.position, sensor.method))
     # the air: every run reports it (Solution.sensors), at no point of a part
     ambient = system.room.ambient_sensor
     out[ambient] = Candidate(ambient, "", (float("nan"),) * 3, "ambient", "contact")
@@ -151,7 +205,8 @@ def _keep(out: dict[str, Candidate], system: FeedSystem, part_name: str, name: s
             return
     kind = sensor_kind(system, part_name)
     if kind in allowed_kinds(system):
-        out[name] = Candidate(name, part_name, tuple(float(v) for v in point), face, kind)
+        position = tuple(float(v) for v in point)
+        out[name] = Candidate(name, part_name, position, face, kind, mount_problem(system, part_name, position, kind))
 
 
 def _outward(point, face: str, distance: float) -> tuple[float, float, float]:

@@ -30,6 +30,7 @@ from pathlib import Path
 
 from ..analysis.compensation.adapt import AdaptedLaw
 from ..analysis.compensation.adaptation import ADAPTED_FILES, adaptation_block
+from ..analysis.compensation.envelope import training_envelope
 from ..analysis.compensation.law import adapted_law_document, law_document, stroke_law_document
 from ..analysis.compensation.leave_one_out import LeaveOneOut
 from ..system.measurements import MeasurementSet
@@ -155,16 +156,24 @@ def write_compensation(result: StudyResult, loaded: LoadedSystem, out_dir: Path,
                "sensor_map.png": plots.sensor_map(loaded.system, result, best.kind),
                "test_cycle.png": plots.compensated_cycle(result, [result.chosen["regression_lags"],
                                                                    result.chosen["kalman"]])}
+    reference = float(loaded.system.temperatures.reference)
+    train = result.sets["train"]
+
+    def envelope(sensors) -> dict:  # the training cycles' readings of the law's inputs, as read (noisy)
+        columns = [train.names.index(s) for s in sensors]
+        return training_envelope(((c.times, c.sensors[:, columns]) for c in train.cycles), sensors)
+
     with staged_directory(out_dir, replaces=COMPENSATION_FILES) as stage:
-        write_json(stage / "law.json", law_document(result.chosen["regression_lags"].law, result.candidates,
-                                                    {**provenance, "test": result.chosen["regression_lags"].test.as_dict()}))
-        write_json(stage / "law_static.json", law_document(result.chosen["regression"].law, result.candidates,
-                                                           {**provenance, "test": result.chosen["regression"].test.as_dict()}))
+        for name, kind in (("law.json", "regression_lags"), ("law_static.json", "regression")):
+            law = result.chosen[kind].law
+            write_json(stage / name, law_document(law, result.candidates, {**provenance, "test": result.chosen[kind].test.as_dict()},
+                                                  reference, envelope(law.sensors)))
         for kind, stroke in result.stroke.items():
             if stroke.choice is not None:
                 write_json(stage / STROKE_FILES[kind], stroke_law_document(
                     stroke.choice.law, result.candidates, {**provenance, "test": stroke.test.as_dict()},
-                    stroke.choice.as_dict(), stroke_conditioning(stroke.choice.law)))
+                    stroke.choice.as_dict(), stroke_conditioning(stroke.choice.law), reference,
+                    envelope(stroke.choice.law.sensors)))
         kalman = result.chosen["kalman"].law.document({**provenance, "test": result.chosen["kalman"].test.as_dict()})
         kalman["conditioning"] = result.chosen["kalman"].conditioning
         write_json(stage / "law_kalman.json", kalman)

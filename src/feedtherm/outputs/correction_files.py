@@ -3,8 +3,10 @@
 ``correction.csv``: one row per log (condition), sample time and table position: ``condition``,
 ``time_s``, then ``D_um`` (a law of D) or ``x_mm`` and ``E_um`` (a stroke law); ``sd_um`` for an
 adapted law (its predictive standard deviation); ``measured_D_um`` and ``residual_um`` (measured −
-predicted) where the log holds D at that time.  ``correction.json``: the law and the log it came
-from, and per condition the samples and, where D was logged, the RMS and largest residual.
+predicted) where the log holds D at that time; ``outside_envelope`` where the law carries its training
+envelope: why a sample lies outside it, empty within.  ``correction.json``: the law and the log it
+came from, and per condition the samples, the samples outside the envelope and, where D was logged,
+the RMS and largest residual.
 The axis is corrected by minus the predicted value.
 """
 
@@ -32,7 +34,9 @@ def write_correction(corrections: list[Correction], out_dir: Path, context: dict
     """Write ``correction.csv`` and ``correction.json`` into ``out_dir`` (replaced as a set)."""
     header, table = rows(corrections)
     summary = {**context, "conditions": {c.condition: {"samples": len(c.times), "x_mm": [x * 1e3 for x in c.x],
-                                                       "residual": _residuals(c)} for c in corrections},
+                                                       "residual": _residuals(c),
+                                                       "outside_envelope": None if c.flags is None else c.flagged}
+                                         for c in corrections},
                "sign": "the axis is corrected by minus the predicted value"}
     with staged_directory(Path(out_dir), replaces=("correction.csv", "correction.json")) as stage:
         with open(stage / "correction.csv", "w", newline="", encoding="utf-8") as handle:
@@ -50,4 +54,8 @@ def print_correction(corrections: list[Correction], out_dir: Path) -> None:
         r = _residuals(c)
         if r is not None:
             line += f"; measured D - predicted: RMS {r['rms_um']:.2f} um, max {r['max_um']:.2f} um"
+        if c.flags is not None:
+            first = next((f"{t:g} s: {f}" for t, f in zip(c.times, c.flags) if f), None)
+            line += (f"; {c.flagged} of {len(c.times)} samples outside the law's training envelope (first at {first})"
+                     if first else "; every sample within the law's training envelope")
         print(line)

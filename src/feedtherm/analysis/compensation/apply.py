@@ -10,7 +10,9 @@ sample by sample:
   turn); final values are one reading, with the lags settled at it;
 - a law of D gives D [m] at each time (and its predictive standard deviation for an adapted law);
   a stroke law gives E(x) [m] at each table position asked for;
-- where the log holds D, a law of D is compared with it: the residual measured − predicted.
+- where the log holds D, a law of D is compared with it: the residual measured − predicted;
+- where the law carries its training envelope (:mod:`.envelope`), every sample whose reading or
+  rate lies outside it is flagged with the input and by how much (``outside_envelope``).
 
 Every problem with the law, the file or a position is one :class:`~feedtherm.errors.FeedthermError`
 line naming the file or ``--x`` and the reason, raised before anything is written.
@@ -27,6 +29,7 @@ import numpy as np
 from ...constants import KELVIN_OFFSET
 from ...errors import FeedthermError
 from ...system.measurements import ELONGATION_QUANTITY, read_measurements
+from .envelope import check_envelope, envelope_flags
 from .evaluator import CompensationLaw
 from .pairs import union_times, values_at
 
@@ -43,6 +46,12 @@ class Correction:
     predicted: np.ndarray
     sd: np.ndarray | None = None
     measured: np.ndarray | None = None
+    flags: list[str] | None = None  # per sample, why it lies outside the law's training envelope ("" inside)
+
+    @property
+    def flagged(self) -> int:
+        """Samples outside the law's training envelope."""
+        return sum(1 for f in self.flags or () if f)
 
 
 def read_law(path: str | Path) -> CompensationLaw:
@@ -58,9 +67,16 @@ def read_law(path: str | Path) -> CompensationLaw:
         raise FeedthermError(f"{path}: a Kalman estimator needs the motor speeds and the ambient as well as the "
                              "readings; evaluate it with feedtherm.analysis.compensation.kalman.KalmanEstimator")
     try:
-        return CompensationLaw(document)
+        law = CompensationLaw(document)
     except (ValueError, KeyError, TypeError, AttributeError) as exc:
         raise FeedthermError(f"{path}: not a law feedtherm can evaluate: {_reason(exc)}") from None
+    envelope = document.get("envelope")
+    if envelope is not None:
+        problem = check_envelope(envelope, list(law.inputs))
+        if problem:
+            raise FeedthermError(f"{path}: {problem}")
+    law.envelope = envelope
+    return law
 
 
 def _reason(exc: Exception) -> str:
@@ -111,8 +127,10 @@ def correct(law: CompensationLaw, readings: str, positions: tuple[float, ...] = 
             else:
                 predicted.append([law.update(float(t), values)])
         measured = None if d_row is None else _at_own_samples(d_row, times) * 1e-6
+        envelope = getattr(law, "envelope", None)
+        flags = None if envelope is None else envelope_flags(envelope, times, columns)
         out.append(Correction(condition, times, tuple(positions), np.asarray(predicted, float),
-                              np.asarray(sd, float) if sd else None, measured))
+                              np.asarray(sd, float) if sd else None, measured, flags))
     return out
 
 
@@ -135,6 +153,8 @@ def rows(corrections: list[Correction]) -> tuple[list[str], list[list]]:
     header = ["condition", "time_s"] + (["x_mm", "E_um"] if stroke else ["D_um"])
     header += ["sd_um"] if has_sd else []
     header += ["measured_D_um", "residual_um"] if has_measured else []
+    has_flags = any(c.flags is not None for c in corrections)
+    header += ["outside_envelope"] if has_flags else []
     out = []
     for c in corrections:
         for j, t in enumerate(c.times):
@@ -145,5 +165,7 @@ def rows(corrections: list[Correction]) -> tuple[list[str], list[list]]:
                 if has_measured:
                     m = None if c.measured is None else c.measured[j]
                     row += ["", ""] if m is None or np.isnan(m) else [m * 1e6, (m - c.predicted[j, i]) * 1e6]
+                if has_flags:
+                    row.append(c.flags[j] if c.flags is not None else "")
                 out.append(row)
     return header, out

@@ -154,6 +154,10 @@ class CycleSet:
     name: str
     names: list[str]
     cycles: list[CycleRecord]
+    #: The description's reference temperature [K], where every displacement is zero: a law fitted on
+    #: the set passes through it (its regressors taken from it, no free intercept; :mod:`.regression`).
+    #: None: a free intercept.
+    reference: float | None = None
 
     def stacked(self) -> tuple[np.ndarray, np.ndarray]:
         """All samples of all cycles: sensors ``(n, candidates)`` [K] and D ``(n,)`` [m]."""
@@ -240,8 +244,9 @@ def simulate_sets(loaded: LoadedSystem, candidates: dict[str, Candidate], settin
     runs = [run for plan in plans.values() for run in plan[0]]
     prepare(base.system, settings.model, settings.mesh)
     solutions = iter(run_batch(runs, progress, execution))
+    reference = float(loaded.system.temperatures.reference)
     return {name: CycleSet(name, list(candidates), [_record(next(solutions), cycle, variant, label, list(candidates))
-                                                    for _, cycle, variant, label in zip(*plan)])
+                                                    for _, cycle, variant, label in zip(*plan)], reference)
             for name, plan in plans.items()}
 
 
@@ -285,3 +290,61 @@ def _record(solution, cycle: DutyCycle, variant, label: str, names: list[str]) -
         screw, nut, None if variant is None else variant.as_dict(), cycle,
         positions=positions if positions.size else None,
         stroke_error=stroke_error_at(solution, positions) if positions.size else None)
+
+
+#: A study's run probes every candidate at every sample: its step costs this many times a plain run's
+#: (ballscrew_example, 103 candidates, 8 cycles a set: 52.9 s of runs for 92,160 steps serial, where
+#: the plain fast model steps at 2.8e-4 s on the same machine; 2026-11-29, benchmarks/README.md).
+STUDY_STEP_FACTOR = 2.0
+#: The selection, fits, filters and judgements per run of the study, on the same machine [s] (12.5 s for 32 runs).
+FIT_SECONDS_PER_RUN = 0.4
+
+
+@dataclass(frozen=True)
+class StudyCost:
+    """What a study's cycles will cost, planned before any run: runs per set, time steps, wall time [s]."""
+
+    runs: dict[str, int]  # set name -> cycles
+    steps: int
+    seconds: float
+
+    def describe(self, workers: int = 1) -> str:
+        sets = ", ".join(f"{n} {name.replace('_', '-')}" for name, n in self.runs.items())
+        total = sum(self.runs.values())
+        minutes = self.seconds / max(workers, 1) / 60.0
+        fits = FIT_SECONDS_PER_RUN * total / 60.0
+        return (f"{total} runs ({sets}), {self.steps:,} time steps: about {minutes + fits:.1f} min on "
+                f"{max(workers, 1)} worker{'s' if workers > 1 else ''} (runs {minutes:.1f} min, fits {fits:.1f} min; "
+                "estimated as check does, for a 2-core x86-64 machine)")
+
+
+def study_cost(loaded: LoadedSystem, settings: StudySettings) -> StudyCost:
+    """The runs a study will make and their time steps (the integrator's rule on each cycle,
+    :func:`feedtherm.plan.estimated_steps`), with the wall time the model takes per step on the
+    project's machine (:data:`feedtherm.plan.SECONDS_PER_STEP`)."""
+    from ...plan import SECONDS_PER_STEP, estimated_steps
+    from ...models.integrator import Segment
+
+    options = ModelOptions(motion=settings.motion)
+    stroke = loaded.system.kinematics.stroke
+    runs, steps = {}, 0
+    for name in STREAMS:
+        planned = _planned(loaded, settings, name)
+        runs[name] = len(planned)
+        for _, cycle, _, _ in planned:
+            ends = [s.start for s in cycle.segments[1:]] + [cycle.duration]
+            segments = [Segment(s.start, end, _Moving(s, loaded.system)) for s, end in zip(cycle.segments, ends)]
+            steps += estimated_steps(stroke, segments, options)
+    key = (settings.model, settings.mesh if settings.model != "fast" else None)
+    per_step = SECONDS_PER_STEP.get(key, SECONDS_PER_STEP.get((settings.model, None), SECONDS_PER_STEP[("fast", None)]))
+    return StudyCost(runs, steps, steps * per_step * STUDY_STEP_FACTOR)
+
+
+class _Moving:
+    """The little of boundary conditions :func:`~feedtherm.plan.estimated_steps` reads: the table speed."""
+
+    def __init__(self, segment, system):
+        from ...boundary.operating import OperatingPoint
+
+        self.point = OperatingPoint(segment.screw_speed * RPM_PER_RAD_S, segment.nut_speed * RPM_PER_RAD_S,
+                                    segment.ambient or 293.15, system.kinematics.lead)

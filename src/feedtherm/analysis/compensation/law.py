@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..candidates import Candidate
 from .adapt import AdaptedLaw
 from .conditioning import regression_conditioning
@@ -25,12 +27,28 @@ def _inputs(law, candidates: dict[str, Candidate]) -> list[dict]:
     return inputs
 
 
-def law_document(law: RegressionLaw, candidates: dict[str, Candidate], provenance: dict | None = None) -> dict:
+def reference_block(law, reference: float | None) -> dict:
+    """What the law gives for a machine at the reference temperature (every input and lag there)."""
+    if reference is None:
+        return {}
+    k = len(law.sensors) * (1 + len(law.lags))
+    value = np.asarray(law.bias, float) + reference * np.asarray(law.weights, float).reshape(k, -1).sum(axis=0)
+    return {"reference": {"temperature_K": float(reference),
+                          "output_m": float(value[0]) if value.size == 1 else [float(v) for v in value],
+                          "constraint": "through the reference state: the regressors are taken from temperature_K "
+                                        "with no free intercept (bias_m = -temperature_K x the sum of the weights), "
+                                        "so a machine with every input at temperature_K reads 0"}}
+
+
+def law_document(law: RegressionLaw, candidates: dict[str, Candidate], provenance: dict | None = None,
+                 reference: float | None = None, envelope: dict | None = None) -> dict:
     """The JSON-able document of ``law``: inputs with their part and position, weights, lags, bias.
 
     Units are SI: inputs in kelvin, D in metres, weights in m/K, time constants in seconds; the
     ``conditioning`` block (:mod:`.conditioning`) in µm/K and µm, for people.  A law of D stays a
-    document of version 1, which every evaluator reads.
+    document of version 1, which every evaluator reads.  ``reference``: the temperature [K] the law
+    passes through (its ``reference`` block states what it gives there); ``envelope``: its training
+    envelope (:mod:`.envelope`), which ``feedtherm correct`` checks every sample against.
     """
     inputs = _inputs(law, candidates)
     return {
@@ -45,6 +63,8 @@ def law_document(law: RegressionLaw, candidates: dict[str, Candidate], provenanc
         "lag_start": "settled at the first reading",
         "ridge_K": float(law.ridge) ** 0.5,
         "conditioning": regression_conditioning(law),
+        **reference_block(law, reference),
+        **({"envelope": envelope} if envelope else {}),
         "provenance": provenance or {},
     }
 
@@ -73,7 +93,8 @@ def adapted_law_document(adapted: AdaptedLaw, candidates: dict[str, Candidate], 
 
 
 def stroke_law_document(law: StrokeLaw, candidates: dict[str, Candidate], provenance: dict | None = None,
-                        choice: dict | None = None, conditioning: dict | None = None) -> dict:
+                        choice: dict | None = None, conditioning: dict | None = None,
+                        reference: float | None = None, envelope: dict | None = None) -> dict:
     """The JSON-able document of a stroke law (:mod:`.stroke`, format version 2): E(x, t) [m] at a
     table position x [m] from the inputs [K], their lags and a Legendre basis in the normalised x.
 
@@ -104,5 +125,7 @@ def stroke_law_document(law: StrokeLaw, candidates: dict[str, Candidate], proven
         "controller_cost": {"multiply_adds_per_sample": law.cost["total"], **law.cost},
         **({"choice": choice} if choice else {}),
         **({"conditioning": conditioning} if conditioning else {}),
+        **reference_block(law, reference),
+        **({"envelope": envelope} if envelope else {}),
         "provenance": provenance or {},
     }

@@ -63,9 +63,10 @@ def measured_inputs(loaded: LoadedSystem, data: MeasurementSet, condition: str) 
 
 def predict_measured(law: RegressionLaw | KalmanLaw, loaded: LoadedSystem,
                      data: MeasurementSet) -> list[MeasuredPrediction]:
-    """The law's D at every measured condition whose measurements hold all its inputs and D."""
+    """The law's D at every measured condition whose measurements hold all its inputs and D (its final
+    values: a test's series are judged over time, :mod:`.drift_judge`)."""
     out = []
-    for condition in data.conditions():
+    for condition in [c for c in data.conditions() if c in loaded.system.conditions]:
         inputs = measured_inputs(loaded, data, condition)
         elongation = [r for r in data.for_condition(condition) if r.quantity == ELONGATION_QUANTITY]
         if not elongation or any(name not in inputs for name in law.sensors):

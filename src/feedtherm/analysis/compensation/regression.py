@@ -7,8 +7,7 @@ with a bias ``b`` [m], weights [m/K] and, optionally, first-order lags ``L_τ`` 
 heats within minutes of a speed change while a housing sensor follows over an hour, so the
 present readings alone cannot tell a warming machine from a cooling one at the same
 temperatures [1]_ [2]_.  The weights are the least-squares fit over every sample of the training
-cycles (columns centred, so the fit does not depend on the temperatures' origin), with a ridge
-penalty (Tikhonov regularisation [3]_ [4]_):
+cycles, with a ridge penalty (Tikhonov regularisation [3]_ [4]_):
 
 .. math:: \\min_w \\frac{1}{n} \\lVert y - X w \\rVert^2 + \\alpha \\lVert w \\rVert^2,
           \\qquad w = (X^T X + n \\alpha I)^{-1} X^T y .
@@ -20,6 +19,14 @@ without it takes weights of hundreds of µm/K of opposite sign (their difference
 signal), which turns a 0.1 K offset into tens of µm; the ridge trades that for a small bias.
 ``α`` is chosen on the validation cycles from :data:`RIDGE_GRID_K` (:mod:`.selection`), never on
 the test cycles.
+
+**Through the reference state.** Every displacement is zero with every part at the description's
+reference temperature ``T_ref`` (``temperatures.reference``): so is the law's, by construction.
+Its regressors are taken from ``T_ref`` (``T_s − T_ref`` and their lags) with no free intercept, and
+the bias it exports is ``b = −T_ref Σ w``: a machine uniformly at ``T_ref`` (every reading and every
+lag there) reads ``D̂ = 0`` exactly.  A free intercept (the columns centred, ``reference`` None) fits
+the training cycles' mean and predicted +23 to +39 µm for a cold machine at the reference (issue 56),
+more error than no compensation for the first minutes.
 
 A lag is the discrete first-order filter a controller runs on each new reading:
 ``L_n = a L_{n-1} + (1 - a) T_n`` with ``a = exp(-Δt/τ)`` and ``L_0 = T_0`` (the machine starts
@@ -126,7 +133,7 @@ class RegressionLaw:
 
 
 def fit_regression(cycles: list[tuple[np.ndarray, np.ndarray, np.ndarray]], sensors: tuple[str, ...],
-                   lags: tuple[float, ...] = (), ridge: float = 0.0) -> RegressionLaw:
+                   lags: tuple[float, ...] = (), ridge: float = 0.0, reference: float | None = None) -> RegressionLaw:
     """Least-squares weights over every sample of ``cycles``, with the ridge penalty ``ridge``.
 
     Parameters
@@ -139,6 +146,8 @@ def fit_regression(cycles: list[tuple[np.ndarray, np.ndarray, np.ndarray]], sens
         Time constants [s] of the lagged regressors; empty for the static law.
     ridge : float
         The penalty ``α`` [K²] (module notes); 0: ordinary least squares.
+    reference : float, optional
+        The reference temperature [K] the law passes through (module notes); None: a free intercept.
     """
     if not cycles:
         raise FeedthermError("a regression needs at least one cycle")
@@ -146,10 +155,15 @@ def fit_regression(cycles: list[tuple[np.ndarray, np.ndarray, np.ndarray]], sens
     y = np.concatenate([np.asarray(d, dtype=float) for _, _, d in cycles])
     if X.shape[1] != len(sensors) * (1 + len(lags)):
         raise FeedthermError(f"{X.shape[1]} regressors for {len(sensors)} sensors and {len(lags)} lags")
-    mean_x, mean_y = X.mean(axis=0), y.mean()
-    if ridge > 0:
-        weights = ridge_weights(X - mean_x, y - mean_y, [ridge])[0]
-    else:
-        weights, *_ = np.linalg.lstsq(X - mean_x, y - mean_y, rcond=None)
+    weights, bias = solve_weights(X, y, [ridge], reference)[0]
     return RegressionLaw(tuple(sensors), tuple(float(t) for t in lags), weights.reshape(len(sensors), 1 + len(lags)),
-                         float(mean_y - mean_x @ weights), float(ridge))
+                         bias, float(ridge))
+
+
+def solve_weights(X: np.ndarray, y: np.ndarray, alphas, reference: float | None) -> list[tuple[np.ndarray, float]]:
+    """``[(weights, bias), ...]`` per ridge ``α`` of ``alphas`` [K²] for regressors ``X`` [K] and ``y``:
+    through ``reference`` [K] (``bias = −reference Σ w``), or with a free intercept (columns centred)."""
+    if reference is not None:
+        return [(w, float(-reference * w.sum())) for w in ridge_weights(X - reference, y, alphas)]
+    mean_x, mean_y = X.mean(axis=0), y.mean()
+    return [(w, float(mean_y - mean_x @ w)) for w in ridge_weights(X - mean_x, y - mean_y, alphas)]

@@ -33,7 +33,7 @@ import numpy as np
 
 from ...errors import FeedthermError
 from .data import CycleSet
-from .regression import RIDGE_GRID_K, RegressionLaw, features, fit_regression, ridge_weights
+from .regression import RIDGE_GRID_K, RegressionLaw, features, fit_regression, solve_weights
 
 
 @dataclass(frozen=True)
@@ -51,19 +51,17 @@ def _feature_cube(cycles: CycleSet, lags: tuple[float, ...]) -> list[np.ndarray]
     return [features(c.times, c.sensors, lags).reshape(len(c.times), len(cycles.names), m) for c in cycles.cycles]
 
 
-def _fit(cube: list[np.ndarray], targets: list[np.ndarray], chosen: list[int], alphas):
-    """``[(weights, bias), ...]``, one per ridge ``α`` [K²] of ``alphas``."""
+def _fit(cube: list[np.ndarray], targets: list[np.ndarray], chosen: list[int], alphas, reference: float | None):
+    """``[(weights, bias), ...]``, one per ridge ``α`` [K²] of ``alphas`` (through ``reference`` [K], :mod:`.regression`)."""
     X = np.vstack([f[:, chosen, :].reshape(len(f), -1) for f in cube])
-    y = np.concatenate(targets)
-    mx, my = X.mean(axis=0), y.mean()
-    return [(w, float(my - mx @ w)) for w in ridge_weights(X - mx, y - my, alphas)]
+    return solve_weights(X, np.concatenate(targets), alphas, reference)
 
 
-def _best_ridge(train_cube, train_y, val_cube, val_all, trial, alphas) -> tuple[float, float]:
+def _best_ridge(train_cube, train_y, val_cube, val_all, trial, alphas, reference=None) -> tuple[float, float]:
     """(validation RMS [m], α [K²]) of the ridge strength of ``alphas`` with the smallest validation RMS."""
     best = None
     regressors = [f[:, trial, :].reshape(len(f), -1) for f in val_cube]  # the trial's, once for every α
-    for alpha, (w, b) in zip(alphas, _fit(train_cube, train_y, trial, alphas)):
+    for alpha, (w, b) in zip(alphas, _fit(train_cube, train_y, trial, alphas, reference)):
         pred = np.concatenate([X @ w + b for X in regressors])
         rms = float(np.sqrt(np.mean((val_all - pred) ** 2)))
         if best is None or rms < best[0]:
@@ -110,7 +108,7 @@ def greedy_selection(train: CycleSet, validation: CycleSet, max_sensors: int, la
             j = names.index(name)
             if j in chosen:
                 continue
-            rms, alpha = _best_ridge(train_cube, train_y, val_cube, val_all, [*chosen, j], alphas)
+            rms, alpha = _best_ridge(train_cube, train_y, val_cube, val_all, [*chosen, j], alphas, train.reference)
             if best is None or rms < best[0]:
                 best = (rms, j, alpha)
         chosen.append(best[1])
@@ -126,7 +124,7 @@ def fit_on(train: CycleSet, sensors: tuple[str, ...], lags: tuple[float, ...] = 
         raise FeedthermError(f"--sensors: no candidate {unknown[0]!r}")
     columns = [train.names.index(s) for s in sensors]
     return fit_regression([(c.times, c.sensors[:, columns], c.elongation) for c in train.cycles], tuple(sensors), lags,
-                          ridge)
+                          ridge, train.reference)
 
 
 def fit_validated(train: CycleSet, validation: CycleSet, sensors: tuple[str, ...], lags: tuple[float, ...] = (),
@@ -139,7 +137,7 @@ def fit_validated(train: CycleSet, validation: CycleSet, sensors: tuple[str, ...
     alphas = [float(g) ** 2 for g in ridge_grid]
     _, alpha = _best_ridge(_feature_cube(train, lags), [c.elongation for c in train.cycles],
                            _feature_cube(validation, lags), np.concatenate([c.elongation for c in validation.cycles]),
-                           trial, alphas)
+                           trial, alphas, train.reference)
     return fit_on(train, sensors, lags, alpha)
 
 

@@ -147,11 +147,13 @@ def stroke_range(cycles: CycleSet) -> tuple[float, float]:
 
 def _design(cycles: CycleSet, sensors: tuple[str, ...], lags, order: int, x_min: float, x_max: float):
     """``(X, Z, y)``: the weights' columns ``kron(features, P)``, the biases' ``kron(1, P)``, E [m];
-    one row per sample and position."""
+    one row per sample and position.  With the set's reference temperature the features are taken
+    from it (``T − T_ref``; :func:`_fit` then leaves the biases out)."""
     columns = [cycles.names.index(s) for s in sensors]
+    origin = 0.0 if cycles.reference is None else cycles.reference
     X, Z, y = [], [], []
     for record in cycles.cycles:
-        F = features(record.times, record.sensors[:, columns], lags)
+        F = features(record.times, record.sensors[:, columns], lags) - origin
         B = basis(normalised(record.positions, x_min, x_max), order)
         X.append(np.kron(F, B))
         Z.append(np.kron(np.ones((len(F), 1)), B))
@@ -159,9 +161,14 @@ def _design(cycles: CycleSet, sensors: tuple[str, ...], lags, order: int, x_min:
     return np.vstack(X), np.vstack(Z), np.concatenate(y)
 
 
-def _fit(X: np.ndarray, Z: np.ndarray, y: np.ndarray, alphas) -> list[tuple[np.ndarray, np.ndarray]]:
-    """``[(w, b), ...]`` per ``α``: ridge on the weights with the biases' columns projected out, then
-    the biases by least squares on what the weights leave."""
+def _fit(X: np.ndarray, Z: np.ndarray, y: np.ndarray, alphas, reference: float | None = None,
+         order: int = 0) -> list[tuple[np.ndarray, np.ndarray]]:
+    """``[(w, b), ...]`` per ``α``: through ``reference`` [K] (``X`` from it, no free biases: each
+    ``b_m = −reference Σ_f w_fm``, so that a machine at the reference reads E = 0 at every x); else
+    ridge on the weights with the biases' columns projected out, then the biases by least squares on
+    what the weights leave."""
+    if reference is not None:
+        return [(w, -reference * w.reshape(-1, order + 1).sum(axis=0)) for w in ridge_weights(X, y, alphas)]
     Zp = np.linalg.pinv(Z)
     Xc, yc = X - Z @ (Zp @ X), y - Z @ (Zp @ y)
     return [(w, Zp @ (y - X @ w)) for w in ridge_weights(Xc, yc, alphas)]
@@ -193,7 +200,7 @@ def fit_stroke(train: CycleSet, sensors: tuple[str, ...], lags: tuple[float, ...
         raise FeedthermError(f"--sensors: no candidate {unknown[0]!r}")
     x_min, x_max = stroke or stroke_range(train)
     X, Z, y = _design(train, tuple(sensors), lags, order, x_min, x_max)
-    w, b = _fit(X, Z, y, [ridge])[0]
+    w, b = _fit(X, Z, y, [ridge], train.reference, order)[0]
     return StrokeLaw(tuple(sensors), tuple(float(t) for t in lags), int(order),
                      w.reshape(len(sensors) * (1 + len(lags)), order + 1), np.asarray(b, dtype=float),
                      float(x_min), float(x_max), float(ridge))
@@ -248,7 +255,7 @@ def fit_stroke_validated(train: CycleSet, validation: CycleSet, sensors: tuple[s
     tried, best = [], {}
     for order in orders:
         X, Z, y = _design(train, tuple(sensors), lags, order, x_min, x_max)
-        for alpha, (w, b) in zip(alphas, _fit(X, Z, y, alphas)):
+        for alpha, (w, b) in zip(alphas, _fit(X, Z, y, alphas, train.reference, order)):
             law = StrokeLaw(tuple(sensors), tuple(lags), order, w.reshape(-1, order + 1), b, x_min, x_max, alpha)
             pred = np.concatenate([law.predict_record(r, validation.names).ravel() for r in validation.cycles])
             rms = float(np.sqrt(np.mean((truth - pred) ** 2)))

@@ -24,7 +24,7 @@ from ...boundary.operating import OperatingPoint
 from ...constants import ELONGATION_PROBE, KELVIN_OFFSET
 from ...errors import FeedthermError
 from ...system.load import LoadedSystem
-from ..candidates import Candidate, candidate_sensors, with_candidates
+from ..candidates import Candidate, candidate_sensors, carriable, with_candidates
 from ..execution import Execution
 from ..random_cycles import SpeedEnvelope
 from .conditioning import kalman_conditioning, regression_conditioning
@@ -99,22 +99,34 @@ class StudyResult:
         return min(pool, key=lambda r: r.validation.rms)
 
 
+#: ``--sensors declared``: the description's own sensors, the ones the machine has.
+DECLARED = "declared"
+
+
 def parse_sensors(text: str, candidates: dict[str, Candidate]) -> int | tuple[str, ...]:
-    """``--sensors``: a count K (1 … the number of candidates) or comma-separated candidate names.
+    """``--sensors``: a count K (1 … the candidates a machine can carry), ``declared`` (the
+    description's own sensors) or comma-separated candidate names.
 
     Raises
     ------
     FeedthermError
-        One line: K not a positive whole number or larger than the candidates, an unknown name
-        (with the closest ones), a name listed twice.
+        One line: K not a positive whole number or larger than the carriable candidates, an unknown
+        name (with the closest ones), a name listed twice, ``declared`` without declared sensors.
     """
     text = text.strip()
+    if text == DECLARED:
+        own = tuple(name for name, c in candidates.items() if c.where == "declared")
+        if not own:
+            raise FeedthermError("--sensors declared: the description declares no sensor ([sensors])")
+        return own
     if re.fullmatch(r"[+-]?\d+", text):
         k = int(text)
+        pool = carriable(candidates)
         if k < 1:
             raise FeedthermError(f"--sensors: K must be at least 1, got {k}")
-        if k > len(candidates):
-            raise FeedthermError(f"--sensors: K = {k} but there are {len(candidates)} candidate positions")
+        if k > len(pool):
+            raise FeedthermError(f"--sensors: K = {k} but there are {len(pool)} candidate positions a machine can "
+                                 f"carry (of {len(candidates)}; docs/compensation.md, *Candidates*)")
         return k
     names = tuple(item.strip() for item in text.split(","))
     for name in names:
@@ -139,19 +151,20 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
     """Simulate the cycles, choose sensors, fit and judge the laws (see the module's notes); the
     cycles run where ``execution`` says (:mod:`~feedtherm.analysis.execution`: the same results)."""
     candidates = candidate_sensors(loaded.system)
-    if isinstance(request, int) and request > len(candidates):
-        raise FeedthermError(f"--sensors: K = {request} but there are {len(candidates)} candidate positions")
+    pool = carriable(candidates)  # what the greedy choice chooses among (named sensors may be any candidate)
+    if isinstance(request, int) and request > len(pool):
+        raise FeedthermError(f"--sensors: K = {request} but there are {len(pool)} candidate positions a machine can carry")
     kinds = {name: c.kind for name, c in candidates.items()}
     noise = SensorNoise.of(loaded.system, kinds) if settings.noise else SensorNoise.none(kinds)
     clean = simulate_sets(loaded, candidates, settings, tuple(STREAMS), progress, execution)
     sets = {name: noisy_set(cycles, noise, settings.seed, STREAMS[name], one_machine=name == "train")
             for name, cycles in clean.items()}
     n_curve = max(CURVE_SENSORS, request if isinstance(request, int) else 0)
-    n_curve = min(n_curve, len(candidates))
+    n_curve = min(n_curve, len(pool))
     curves, chosen, declared = {}, {}, {}
     own = tuple(n for n in loaded.system.sensors if n != loaded.system.room.ambient_sensor)
     for kind, lags in LAWS.items():
-        steps = greedy_selection(sets["train"], sets["validation"], n_curve, lags)
+        steps = greedy_selection(sets["train"], sets["validation"], n_curve, lags, allowed=pool)
         curves[kind] = [_judge(kind, step.law, sets) for step in steps]
         if isinstance(request, int):
             chosen[kind] = curves[kind][request - 1]
