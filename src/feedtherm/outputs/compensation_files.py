@@ -97,7 +97,8 @@ def summary(result: StudyResult, loaded: LoadedSystem, measured: dict[str, list[
         "settings": settings,
         "request": result.request if isinstance(result.request, int) else list(result.request),
         "noise": None if result.noise is None else result.noise.as_dict(),
-        "candidates": {name: {"part": c.part, "where": c.where, "kind": c.kind, "position_m": list(c.position)}
+        "candidates": {name: {"part": c.part, "where": c.where, "kind": c.kind, "position_m": list(c.position),
+                              **({"not_carriable": c.problem} if c.problem else {})}
                        for name, c in result.candidates.items()},
         "sets": {"test": {"uncompensated_rms_um": test.uncompensated_rms * 1e6,
                           "uncompensated_max_um": test.uncompensated_max * 1e6,
@@ -115,6 +116,7 @@ def summary(result: StudyResult, loaded: LoadedSystem, measured: dict[str, list[
                       "the test cycles; d_only: the law of D applied at every x (correction -D everywhere)",
             "laws": {kind: _stroke_entry(s) for kind, s in result.stroke.items()}},
         "out_of_range": _out_of_range_entry(result),
+        "drift_tests": [j.as_dict() for j in result.drift_tests],
         **({} if adaptation is None else {"adaptation": adaptation}),
     }
 
@@ -180,7 +182,8 @@ def write_compensation(result: StudyResult, loaded: LoadedSystem, out_dir: Path,
         for kind, law in (adapted or {}).items():
             write_json(stage / ADAPTED_FILES[kind], adapted_law_document(law, result.candidates, {
                 **provenance, "fitted_on": "nominal model, training cycles; updated on measurements",
-                "measurements": adapt_data.source, "adaptation": adaptation["laws"][kind]}))
+                "measurements": adapt_data.source, "adaptation": adaptation["laws"][kind]}, reference,
+                envelope(law.law.sensors)))
         write_json(stage / "compensation.json", document)
         with open(stage / "compensation.csv", "w", newline="") as handle:
             writer = csv.writer(handle, lineterminator="\n")
@@ -212,8 +215,15 @@ def summary_line(out_dir: Path, result: StudyResult, wall_time_s: float) -> str:
     beyond = "" if worst is None else (f"; out of range, worst {worst}: RMS {outside[worst].rms * 1e6:.2f} µm, "
                                        f"max {outside[worst].max * 1e6:.2f} µm")
     return (f"{out_dir}: law on {', '.join(chosen.sensors)}: held-out RMS {chosen.test.rms * 1e6:.2f} µm, "
-            f"max {chosen.test.max * 1e6:.2f} µm ({change} uncompensated){along}{beyond}; "
+            f"max {chosen.test.max * 1e6:.2f} µm ({change} uncompensated){along}{beyond}{_drift(result)}; "
             f"written in {wall_time_s:.1f} s")
+
+
+def _drift(result: StudyResult) -> str:
+    """The law asked for on the description's drift tests: its largest residual drift over the targets."""
+    parts = [f"{j.test} {j.worst('regression_lags') * 1e6:.1f} µm (uncompensated {j.worst() * 1e6:.1f})"
+             for j in result.drift_tests if "regression_lags" in j.residual]
+    return f"; on the drift tests, largest at a target: {', '.join(parts)}" if parts else ""
 
 
 FIGURES = ("error_vs_k.png", "sensor_map.png", "test_cycle.png")

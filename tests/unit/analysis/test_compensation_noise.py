@@ -139,14 +139,15 @@ def _with_section(tmp_path, text):
     return path
 
 
-def test_kinds_contact_on_still_parts_infrared_on_moving_or_turning_ones(paper):
+def test_kinds_infrared_on_turning_parts_contact_elsewhere(paper):
+    # a part that moves with the table without turning carries its sensor's cable in the drag chain
     system = paper.system
     candidates = candidate_sensors(system)
     for name, c in candidates.items():
         if c.where in ("declared", "ambient"):
             continue
-        moving = system.parts[c.part].moving or c.part in ("screw", "nut", "belt")
-        assert c.kind == ("infrared" if moving else "contact"), name
+        turning = c.part in ("screw", "nut", "belt")  # the paper's dual drive turns its nut and its belt
+        assert c.kind == ("infrared" if turning else "contact"), name
     assert candidates["T4"].kind == "infrared" and candidates["T1"].kind == "contact"
     assert candidates["T3"].kind == "contact"  # declared: keeps the paper's PT100 on the nut housing
 

@@ -223,7 +223,7 @@ def evidence_width(phi: np.ndarray, y: np.ndarray, sigma: np.ndarray, prior_mean
 
 
 def adapt_law(law: RegressionLaw, pairs: Pairs, scale: np.ndarray | None = None, *, width: float | None = None,
-              centre: np.ndarray | None = None) -> AdaptedLaw:
+              centre: np.ndarray | None = None, reference: float | None = None) -> AdaptedLaw:
     """The posterior of ``law`` after ``pairs`` (see the module's notes).
 
     Parameters
@@ -239,6 +239,10 @@ def adapt_law(law: RegressionLaw, pairs: Pairs, scale: np.ndarray | None = None,
         The prior width τ [m]; default: maximum evidence on ``pairs`` (:func:`evidence_width`).
     centre : ndarray, shape (p,), optional
         The features' centre m [K]; default: the mean of ``pairs.features``.
+    reference : float, optional
+        The reference temperature [K] the law keeps passing through (:mod:`.regression`): no free
+        level, ``c = (m − reference)·w``, so the adapted law reads 0 for a machine at the reference
+        too.  None: the level ``c`` is a coefficient of its own.
     """
     x = np.atleast_2d(np.asarray(pairs.features, float))
     if len(x) == 0:
@@ -248,16 +252,24 @@ def adapt_law(law: RegressionLaw, pairs: Pairs, scale: np.ndarray | None = None,
     m = x.mean(axis=0) if centre is None else np.asarray(centre, float)
     s = np.full(p, UNIT_SCALE) if scale is None else np.asarray(scale, float)
     s = np.where(s > 0, s, UNIT_SCALE)
-    phi = np.column_stack([np.ones(len(x)), (x - m) / s])
-    theta0 = np.concatenate([[law.bias + m @ w0], w0 * s])
+    if reference is not None:  # D = Σ θ_j (f_j − T_ref)/s_j: the weights alone, the level follows them
+        phi = (x - reference) / s
+        theta0 = w0 * s
+    else:
+        phi = np.column_stack([np.ones(len(x)), (x - m) / s])
+        theta0 = np.concatenate([[law.bias + m @ w0], w0 * s])
     at_bound = False
     if width is None:
         width, at_bound = evidence_width(phi, pairs.elongation, pairs.sigma, theta0)
-    prior = width ** 2 * np.eye(p + 1)
+    prior = width ** 2 * np.eye(len(theta0))
     theta, cov_theta = gaussian_posterior(phi, pairs.elongation, pairs.sigma, theta0, prior)
-    to_law = np.concatenate([[1.0], 1.0 / s])  # [c, θ] -> [c, w]
-    coefficients = theta * to_law
-    covariance = cov_theta * np.outer(to_law, to_law)
+    if reference is not None:  # [θ] -> [c, w] with c = (m − T_ref)·w, the law's D at the centre
+        to_law = np.vstack([(m - reference) / s, np.diag(1.0 / s)])
+        coefficients, covariance = to_law @ theta, to_law @ cov_theta @ to_law.T
+    else:
+        to_law = np.concatenate([[1.0], 1.0 / s])  # [c, θ] -> [c, w]
+        coefficients = theta * to_law
+        covariance = cov_theta * np.outer(to_law, to_law)
     weights = coefficients[1:]
     mean = RegressionLaw(law.sensors, law.lags, weights.reshape(law.weights.shape), float(coefficients[0] - m @ weights))
     return AdaptedLaw(mean, law, m, covariance, float(np.median(pairs.sigma)), float(width),

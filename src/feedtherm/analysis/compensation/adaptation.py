@@ -56,7 +56,8 @@ def adapt_study(result, loaded: LoadedSystem, data: MeasurementSet) -> dict[str,
     out = {}
     for kind in ADAPTED_FILES:
         law = result.chosen[kind].law
-        out[kind] = adapt_law(law, pairs_of(law, loaded, data), feature_scale(law, train.cycles, train.names))
+        out[kind] = adapt_law(law, pairs_of(law, loaded, data), feature_scale(law, train.cycles, train.names),
+                              reference=train.reference)
     return out
 
 
@@ -67,13 +68,14 @@ def loco_study(result, loaded: LoadedSystem, data: MeasurementSet | None) -> Lea
     if data is None or declared is None:
         return None
     law = declared.law
-    usable = [c for c in data.conditions() if _complete(law, loaded, data, c)]
+    # equilibrium pairs: the conditions' final values (a test's end is no equilibrium)
+    usable = [c for c in data.conditions() if c in loaded.system.conditions and _complete(law, loaded, data, c)]
     if len(usable) < 3:  # two conditions leave one to adapt on: a line through one point says nothing
         return None
     subset = MeasurementSet([r for r in data.rows if r.condition in usable], data.source, data.equilibrium_min)
     train = result.sets["train"]
     return leave_one_condition_out(law, pairs_of(law, loaded, subset, series=False), subset,
-                                   feature_scale(law, train.cycles, train.names))
+                                   feature_scale(law, train.cycles, train.names), reference=train.reference)
 
 
 def _complete(law: RegressionLaw, loaded: LoadedSystem, data: MeasurementSet, condition: str) -> bool:

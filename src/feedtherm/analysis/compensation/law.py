@@ -69,12 +69,13 @@ def law_document(law: RegressionLaw, candidates: dict[str, Candidate], provenanc
     }
 
 
-def adapted_law_document(adapted: AdaptedLaw, candidates: dict[str, Candidate], provenance: dict | None = None) -> dict:
+def adapted_law_document(adapted: AdaptedLaw, candidates: dict[str, Candidate], provenance: dict | None = None,
+                         reference: float | None = None, envelope: dict | None = None) -> dict:
     """The document of an adapted law (:mod:`.adapt`): the posterior mean as in :func:`law_document`,
     and a ``posterior`` block from which :meth:`.evaluator.CompensationLaw.update_with_sd` gives the
     predictive standard deviation ``sqrt(φᵀ Σ φ + σ²)``, ``φ = [1, features − centre]``.
     """
-    document = law_document(adapted.law, candidates, provenance)
+    document = law_document(adapted.law, candidates, provenance, reference, envelope)
     document["posterior"] = {
         "centre_K": adapted.centre.tolist(),
         "covariance": adapted.covariance.tolist(),

@@ -71,16 +71,17 @@ class LeaveOneOut:
 
 
 def leave_one_condition_out(law: RegressionLaw, pairs: Pairs, data: MeasurementSet,
-                            scale: np.ndarray | None = None) -> LeaveOneOut:
+                            scale: np.ndarray | None = None, reference: float | None = None) -> LeaveOneOut:
     """Every condition of ``pairs`` held out in turn (one pair per condition: equilibrium values).
 
-    ``data``: the measurements the pairs come from, for the ``reference_simulated`` D.
+    ``data``: the measurements the pairs come from, for the ``reference_simulated`` D; ``reference``: the
+    temperature [K] the adapted law keeps passing through (:func:`.adapt.adapt_law`).
     """
     held = []
     for condition in dict.fromkeys(pairs.conditions):
         rest, test = pairs.without(condition), pairs.only(condition)
         x, measured = test.features, float(test.elongation[-1])
-        adapted = adapt_law(law, rest, scale)
+        adapted = adapt_law(law, rest, scale, reference=reference)
         mean, sd = adapted.predict_features(x)
         fit = minimum_norm_fit(law, rest, scale)
         residuals = {

@@ -9,7 +9,8 @@ sensors for comparison, judges each on the test cycles (:mod:`.metrics`) and sta
 conditioning (:mod:`.conditioning`).  Along the stroke (:mod:`.stroke`): for the two regression
 laws asked for, a law of E(x, t) on the same sensors, its basis order and ridge chosen on the
 validation cycles, judged on the test cycles over positions and time beside every law of D applied
-at every x (the Kalman estimator's included: it stays a law of D).  Out of range
+at every x (the Kalman estimator's included: it stays a law of D).  On the description's drift
+tests (:mod:`.drift_judge`): each law asked for, the residual drift at each target.  Out of range
 (:data:`~.data.OUT_OF_RANGE`): each law asked for, and the best with at most 3 sensors, judged on
 each case's cycles apart, as a law of D and along the stroke (:func:`out_of_range`).
 """
@@ -29,6 +30,7 @@ from ..execution import Execution
 from ..random_cycles import SpeedEnvelope
 from .conditioning import kalman_conditioning, regression_conditioning
 from .data import OUT_OF_RANGE, STREAMS, CycleSet, StudySettings, simulate_sets
+from .drift_judge import DriftJudgement, judge_on_drift_tests
 from .kalman import KalmanLaw, KalmanNoise, model_errors, sensor_sigma
 from .metrics import Residuals, residuals
 from .noise import SensorNoise, noisy_set
@@ -92,6 +94,8 @@ class StudyResult:
     stroke: dict[str, StrokeResult] = field(default_factory=dict)  # law kind -> along the stroke (:mod:`.stroke`)
     #: law kind (or "best") -> "d" / "stroke" -> out-of-range case -> residuals (:func:`out_of_range`)
     out_of_range: dict[str, dict[str, dict[str, Residuals]]] = field(default_factory=dict)
+    #: each law asked for on the description's drift tests, as ISO 230-3 would judge it (:mod:`.drift_judge`)
+    drift_tests: list[DriftJudgement] = field(default_factory=list)
 
     def best(self, max_sensors: int = 3) -> LawResult:
         """The law with the smallest validation RMS among the curves' laws of at most ``max_sensors`` sensors."""
@@ -181,7 +185,10 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
     has_stroke = all(c.stroke_error is not None for name in ("test", "out_of_range") for c in sets[name].cycles)
     stroke = along_stroke(chosen, sets) if has_stroke else {}
     result = StudyResult(settings, candidates, sets, curves, chosen, declared, request, noise, stroke)
-    return replace(result, out_of_range=out_of_range(result))
+    result = replace(result, out_of_range=out_of_range(result))
+    predictors = {kind: (r.law, _stroke_predictor(kind, r.law, result)) for kind, r in result.chosen.items()}
+    return replace(result, drift_tests=judge_on_drift_tests(loaded, result, predictors, noise, settings.seed,
+                                                            settings.model, settings.mesh))
 
 
 def out_of_range(result: StudyResult) -> dict[str, dict[str, dict[str, Residuals]]]:

@@ -56,9 +56,29 @@ def compensation_section(summary: dict, figures: dict[str, bytes]) -> str:
                     f"({LAW_LABELS.get(kind, kind)}, trained on simulated cycles only), µm"))
     body += _stroke(summary.get("stroke"))
     body += _out_of_range(summary.get("out_of_range"))
+    body += _drift_tests(summary.get("drift_tests"))
     body += _leave_one_out(summary.get("leave_one_condition_out"))
     body += _adaptation(summary.get("adaptation"))
     return section("compensation", "Thermal-error compensation", "".join(body))
+
+
+def _drift_tests(tests: list | None) -> list[str]:
+    """Each law on each of the description's ISO 230-3 drift tests: the residual drift at each target [µm]."""
+    if not tests:
+        return []
+    out = [paragraph("On the description's ISO 230-3 drift tests, run on the nominal model as declared (duty, start, "
+                     "room) and read through the same noisy sensors: the drift at each target since its first "
+                     "measurement, uncompensated and left by each law (the axis corrected by minus its prediction "
+                     "at the target; a law of D by minus D), its largest magnitude and RMS over the stops, µm.")]
+    for test in tests:
+        targets = list(test["uncompensated"])
+        laws = [("uncompensated", test["uncompensated"])] + [
+            (LAW_LABELS.get(kind, kind), figures) for kind, figures in test["residual"].items()]
+        rows = [[label, *(f"{number(figures[t]['largest_um'], 1, signed=True)} / {number(figures[t]['rms_um'], 1)}"
+                          for t in targets)] for label, figures in laws]
+        out.append(table(["test " + test["test"], *(f"{t} mm: largest / RMS" for t in targets)], rows,
+                         caption=f"drift test {test['test']}: residual drift at each target, µm"))
+    return out
 
 
 #: The leave-one-condition-out predictors (:mod:`feedtherm.analysis.compensation.leave_one_out`) as shown.
