@@ -44,7 +44,7 @@ from ..models.integrator import Integrator
 from ..models.interface import cycle_weights, weighted_sum
 from ..models.options import ModelOptions
 from ..plan import plan_run
-from ..simulate import steady_solve
+from ..simulate import initial_state, steady_solve
 from ..solution.pack import sample_times
 from ..system.load import LoadedSystem
 from ..system.variants import with_values
@@ -215,7 +215,8 @@ def transfer(loaded: LoadedSystem, condition: str, groups: dict[str, tuple[str, 
 
 
 def transient_transfer(loaded: LoadedSystem, condition: str, groups: dict[str, tuple[str, ...]],
-                       times: Mapping[str, np.ndarray], *, model: str = "fast") -> TransientTransfer:
+                       times: Mapping[str, np.ndarray], *, model: str = "fast",
+                       measured: MeasurementSet | None = None) -> TransientTransfer:
     """The response of ``condition``'s measured series to 1 W of each group, at the measured times.
 
     Parameters
@@ -232,6 +233,8 @@ def transient_transfer(loaded: LoadedSystem, condition: str, groups: dict[str, t
         Observation (a sensor, or ``"D"``) → its sample times [s].
     model : str
         The model of the registry to run.
+    measured : MeasurementSet, optional
+        The measurements a test's measured room or start reads (:func:`feedtherm.plan.plan_run`).
 
     Notes
     -----
@@ -239,16 +242,22 @@ def transient_transfer(loaded: LoadedSystem, condition: str, groups: dict[str, t
     that the run is linear in the heats; under ``temperatures.coupling = "nonlinear"`` that is
     the frozen evaluation (the ambient plus ``convection_delta_t``), a linearisation.  The cost
     is one run per group and one at zero heat.
+
+    A test runs as declared: from its start, in its room.  Where its duty changes the operating
+    point (a cycle, its measuring stops) each group's heat keeps the loss models' shape over the
+    segments, and the unknown is its heat at the *reference segment*, the one of most heat (the
+    running duty): a segment where the loss models give a source no heat (a standstill) gives it
+    none whatever the estimate.  For a condition (one segment) this is the heat itself.
     """
     frozen = loaded if loaded.system.temperatures.coupling == "frozen" else \
         with_values(loaded, {"temperatures.coupling": "frozen"}, origin_suffix="frozen coefficients")
     options = ModelOptions(motion="averaged", averaged_step=TRANSIENT_STEP_S, max_step=TRANSIENT_STEP_S, fields=False)
     plan = plan_run(frozen, condition=condition, model=model, motion="averaged", options=options,
-                    sample_interval=TRANSIENT_STEP_S, allow_overload=True)  # heats are what is asked
+                    sample_interval=TRANSIENT_STEP_S, allow_overload=True, measured=measured)  # heats are what is asked
     disc = plan.model.build(frozen.system, plan.options)
     grid = sample_times(plan.end, TRANSIENT_STEP_S)
-    initial = frozen.system.temperatures.initial
-    T0 = disc.uniform_state(plan.segments[0].bc.point.ambient if initial == "ambient" else initial)
+    T0 = initial_state(plan, disc, Integrator(disc, plan.options, None))
+    reference = max(plan.segments, key=lambda seg: seg.bc.total_heat).bc.heats
     names = list(disc.probe_names)
     for name, at in times.items():
         if name not in names:
@@ -257,17 +266,23 @@ def transient_transfer(loaded: LoadedSystem, condition: str, groups: dict[str, t
             raise FeedthermError(f"condition {condition}: the measured {name} ends at {at[-1]:g} s, after the run "
                                  f"({grid[-1]:g} s)")
 
+    def shape(seg, source: str) -> float:
+        """The source's heat in ``seg`` relative to the reference segment's (1 where that has none)."""
+        at_reference = reference[source].power
+        return seg.bc.heats[source].power / at_reference if at_reference > 0 else 1.0
+
     def response(power) -> np.ndarray:
-        """Every observation at every measured sample, each source's heat set to ``power(source)`` [W]."""
-        segments = [replace(seg, bc=replace(seg.bc, heats={s: replace(h, power=float(power(s)))
+        """Every observation at every measured sample, each source's heat at the reference segment set to
+        ``power(source)`` [W], the other segments' in the loss models' proportion."""
+        segments = [replace(seg, bc=replace(seg.bc, heats={s: replace(h, power=float(power(s)) * shape(seg, s))
                                                            for s, h in seg.bc.heats.items()}))
                     for seg in plan.segments]
         # a fresh integrator: its caches are keyed by the boundary conditions' identity
-        probes = np.array(Integrator(disc, plan.options, None).run(segments, T0, grid).sample_probe)
+        probes = np.array(Integrator(disc, plan.options, None).run(segments, T0, grid, air=plan.air).sample_probe)
         return np.concatenate([np.interp(at, grid, probes[:, names.index(name)]) for name, at in times.items()])
 
     baseline = response(lambda source: 0.0)
-    heats = plan.segments[0].bc.heats
+    heats = reference
     columns, prior = [], []
     for members in groups.values():
         powers = np.array([heats[s].power for s in members])
@@ -390,7 +405,7 @@ def infer_conditions(loaded: LoadedSystem, data: MeasurementSet, conditions: lis
     measured = data.conditions()
     for condition in conditions:
         if condition not in measured:
-            raise FeedthermError(f"--conditions: no measurements of condition {condition!r} in {data.source}; "
+            raise FeedthermError(f"--conditions: no measurements of {condition!r} in {data.source}; "
                                  f"measured: {', '.join(measured)}")
     grouping = parse_groups(groups, list(loaded.system.sources))
     ambient = loaded.system.room.ambient_sensor
@@ -399,7 +414,8 @@ def infer_conditions(loaded: LoadedSystem, data: MeasurementSet, conditions: lis
     for c in conditions:
         series = observed[c]
         if series:  # every sample, each with its declared uncertainty (NaN: the uniform noise)
-            response = transient_transfer(loaded, c, grouping, {n: t for n, (t, _, _) in series.items()}, model=model)
+            response = transient_transfer(loaded, c, grouping, {n: t for n, (t, _, _) in series.items()}, model=model,
+                                          measured=data)
             values = np.concatenate([v for _, v, _ in series.values()])
             u = np.concatenate([np.full(len(t), np.nan) if u is None else u for t, _, u in series.values()])
             out.append(infer_transient(response, values, noise, prior_width, u))

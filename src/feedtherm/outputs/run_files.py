@@ -222,6 +222,11 @@ def run_summary(solution: Solution) -> dict:
     steady = _ordered_values(solution, solution.summary_values("steady"))
     start_um = float(solution.elongation_um[0])
     energy = solution.energy
+    if not solution.info.get("constant_operating_point", True):
+        # a cycle, its stops, a logged room: no steady state to approach, no equilibrium to reach
+        return to_json_ready({**_common(solution, final, energy), "steady": None, "equilibrium_time_s": None,
+                              "equilibrium_time_s_by_quantity": None, "profile": profile_summary(solution),
+                              "elongation_change_um": {"final": final["D_um"] - start_um}})
     return to_json_ready({
         "condition": info.get("condition"),
         "model": info.get("model"),
@@ -248,6 +253,41 @@ def run_summary(solution: Solution) -> dict:
         "mesh": info.get("mesh_statistics"),  # FE runs: vertices, tetrahedra, per part, element size
         "provenance": info.get("provenance", {}),
     })
+
+
+def _common(solution: Solution, final: dict, energy) -> dict:
+    """What every summary holds (a run of a varying profile adds its ``profile`` block)."""
+    info = solution.info
+    return {
+        "condition": info.get("condition"), "model": info.get("model"), "mode": info.get("mode"),
+        "single_drive": info.get("single_drive", False), "declared_drive": info.get("declared_drive"),
+        "single_drive_option": info.get("single_drive_option", False), "final": final,
+        "positioning_error": final_positioning_error(solution),
+        "energy_balance_error": energy.relative_error,
+        "energy_J": {"heat_in": energy.heat_in, "heat_lost": energy.heat_lost,
+                     "heat_stored": energy.heat_stored, "residual": energy.residual},
+        "ledger": ledger_summary(solution), "wall_time_s": info.get("wall_time_s"),
+        "time_step_s": info.get("time_step_s"), "steps": info.get("steps"), "solver": info.get("solver"),
+        "unknowns": info.get("unknowns"), "warnings": info.get("warnings", []),
+        "mesh": info.get("mesh_statistics"), "provenance": info.get("provenance", {}),
+    }
+
+
+def profile_summary(solution: Solution) -> dict:
+    """What a run of a varying profile did, per sensor [°C] and D [µm]: its start, its end (the last
+    sample), its range, and its largest and smallest value with when [s]."""
+    series = {name: values for name, values in solution.sensors_celsius().items()}
+    series["D_um"] = solution.elongation_um
+    out = {}
+    for name in [*ordered_sensor_names(solution), "D_um"]:
+        if name not in series:
+            continue
+        values = np.asarray(series[name], dtype=float)
+        hi, lo = int(np.argmax(values)), int(np.argmin(values))
+        out[name] = {"start": float(values[0]), "end": float(values[-1]), "range": float(values[hi] - values[lo]),
+                     "max": float(values[hi]), "max_at_s": float(solution.times[hi]),
+                     "min": float(values[lo]), "min_at_s": float(solution.times[lo])}
+    return out
 
 
 def ledger_summary(solution: Solution) -> dict | None:
@@ -332,7 +372,12 @@ def summary_line(solution: Solution, out_dir: Path) -> str:
 
 def equilibrium_line(solution: Solution) -> str | None:
     """One line: each sensor's and D's own equilibrium time, or that the run ended first (None
-    for a Solution without them)."""
+    for a Solution without them); for a run of a varying profile, the largest value of each and when."""
+    if not solution.info.get("constant_operating_point", True):
+        profile = profile_summary(solution)
+        parts = [f"{name.removesuffix('_um')} {p['max']:.2f} {'µm' if name == 'D_um' else '°C'} at "
+                 f"{p['max_at_s'] / 60.0:.0f} min" for name, p in profile.items() if name != solution.ambient_sensor]
+        return "largest (a varying profile has no steady state): " + ", ".join(parts)
     each = equilibrium_by_quantity(solution)
     if not each:
         return None

@@ -83,7 +83,11 @@ def pack_solution(system: FeedSystem, integrator: Integrator, segments: list[Seg
     else:
         table_x = nut_centre_x(system) + model.positions
         positioning = along_stroke(model.screw_centres, displacement, table_x)
-    info = {**info, "ambient_sensor": ambient, "time_step_s": trace.time_step, "steps": len(step_end), "solver": integrator.solver_name,
+    # one operating point in a room of constant air: a run with a steady state to approach (a cycle, its
+    # stops or a logged room has none: its summary gives what the run did, not a steady state)
+    constant = len({seg.bc.point for seg in segments}) == 1 and trace.air is None
+    info = {**info, "constant_operating_point": constant, "ambient_sensor": ambient, "time_step_s": trace.time_step,
+            "steps": len(step_end), "solver": integrator.solver_name,
             **({"cg_iterations": integrator.cg_iterations} if integrator.cg_iterations else {}),
             "unknowns": model.n_nodes, "cycle_window_s": window}
     mesh = model.field_mesh()

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...system.load import LoadedSystem
+from ...system.runs import run_duration
 from ..calibration import CALIBRATION_OPTIONS, CALIBRATION_STEP_S
 from ..validation_types import ELONGATION_QUANTITY
 
@@ -60,7 +61,7 @@ def run_sample(run: SampleRun) -> SampleResult:
         solution = simulate(run.loaded, condition=condition, model=run.model, mesh=run.mesh, motion="averaged",
                             options=CALIBRATION_OPTIONS, sample_interval=GRID_STEP_S,
                             allow_overload=True)  # a sampled machine is run as declared, overloaded or not
-        times = grid(run.loaded.system.conditions[condition].duration)
+        times = grid(run_duration(run.loaded.system, condition))
         values = {name: np.interp(times, solution.times, s) for name, s in solution.sensors_celsius().items()}
         values[ELONGATION_QUANTITY] = np.interp(times, solution.times, solution.elongation_um)
         series[condition] = values

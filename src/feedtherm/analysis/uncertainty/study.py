@@ -36,6 +36,7 @@ from ...system.overlay import mode_of
 from ..consistency import ConsistencyReport
 from ..execution import Execution, TaskFailure, run_ordered
 from ...system.measurements import MeasurementSet
+from ...system.runs import run_duration, run_names
 from ..validation_types import ELONGATION_QUANTITY
 from .declared import resolve_uncertainties, variant
 from .posterior import Posterior
@@ -80,10 +81,12 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
     conditions = list(loaded.system.conditions) if conditions is None else list(conditions)
     if sobol_condition is None:
         sobol_condition = next(iter(loaded.system.conditions))
+    runs = run_names(loaded.system)  # a test is run as declared: its start, its room
     for c in conditions + ([sobol_condition] if sobol_base is not None else []):
-        if c not in loaded.system.conditions:
-            raise FeedthermError(f"--condition: no condition {c!r} in {loaded.origin}; conditions: "
-                                 f"{', '.join(loaded.system.conditions)}")
+        if c not in runs:
+            raise FeedthermError(f"--condition: no condition or test {c!r} in {loaded.origin}; conditions: "
+                                 f"{', '.join(loaded.system.conditions)}"
+                                 + (f"; tests: {', '.join(loaded.system.tests)}" if loaded.system.tests else ""))
     # (label, the description the values apply to, the nominal run's, the parameters, their sampler)
     states = [("prior", loaded, loaded, prior, lambda u: to_values(prior, u))]
     if posterior is not None:
@@ -125,7 +128,7 @@ def run_uncertainty(loaded: LoadedSystem, *, samples: int = DEFAULT_SAMPLES, sob
         "sobol_scheme": None if sobol_points is None else "Saltelli 2010 (SALib), first-order and total, no second order",
         "model": model, "mesh": mesh, "motion": "averaged", "time_step_s": GRID_STEP_S, "mode": mode_of(loaded),
         "conditions": conditions, "ambient_sensor": loaded.system.room.ambient_sensor,
-        "duration_s": {c: loaded.system.conditions[c].duration for c in conditions},
+        "duration_s": {c: run_duration(loaded.system, c) for c in conditions},
         "band": list(BAND), "execution": execution.describe(),
         "runs": sum(len(item.conditions) for item in items),
         "failures": "a band needs every sampled point: a failed run fails the study",
