@@ -96,6 +96,13 @@ def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = No
         for row in data.for_condition(condition):
             comparisons.append(Comparison(condition, row.quantity, row.unit, float(final[row.quantity]), row.measured,
                                           row.reference_simulated))
+    # tests of a measured condition with no measurements of their own: the condition from another start
+    # (or in another constant room), shown beside it against the same measurements
+    variants = {}
+    for name, test in system.tests.items():
+        if name not in conditions and test.condition in solutions and not test.needs_measurements:
+            variants[name] = (test.condition, simulate(loaded, test=name, model=model, mesh=mesh, motion=motion,
+                                                       options=options))
     printed = available_overlay(loaded)
     reference = printed.reference_condition if printed else conditions[0]
     ranking = sensitivities(loaded, reference)
@@ -132,6 +139,7 @@ def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = No
         notes=report_notes(loaded),
         transients=transients,
         drift_tests=drifts,
+        start_variants=variants,
     )
 
 

@@ -86,6 +86,9 @@ class Validation:
     # every measured time series against its run (empty when the measurements are finals only)
     transients: list[TransientComparison] = field(default_factory=list)
     drift_tests: list[DriftTest] = field(default_factory=list)  # each test's ISO 230-3 figures, measured and simulated
+    #: a test of a measured condition from another start or room, with no measurements of its own:
+    #: test -> (its condition, its run), compared with the condition's measurements
+    start_variants: dict[str, tuple[str, Solution]] = field(default_factory=dict)
     # the bench's own content: its conditions, where its sensors are, what the report says of it
     operating_points: dict[str, OperatingPointRow] = field(default_factory=dict)
     sensor_locations: dict[str, str] = field(default_factory=dict)  # sensor -> where it is

@@ -62,9 +62,15 @@ from feedtherm.system.load import load_system
 # - issue 34: two declared uncertainties, the expansion coefficients of the screw's steel and of the
 #   base's (the measuring loop), so that a compensation law's test machines draw them; no value
 #   changed (VALUES_SHA256 stands).
-FROZEN_SHA256 = "b7e1e8408faa2e5bf9d25cdd33050f3e30ddbb147cffa0abd0402ac5f06f59ca"
+# - issue 56: two tests, IV and V from the lab's usual 20 degC (tests.IV_lab_start, tests.V_lab_start) and
+#   their provenance entry: the start the paper leaves open, declared beside the conditions' own. No value
+#   the models use changed: without the tests and their entry the hashes are those of issue 34 (below).
+FROZEN_SHA256 = "c6d402f7f75ef3911909ec491c9903efdfe0039ca81647f63904453022fef836"
 #: The hash of the bench's values alone, without its declared uncertainties.
-VALUES_SHA256 = "ea521ea35409c243bf3ff8fd00b936aaa184f34fd62a14572409ff172dd9b24f"
+VALUES_SHA256 = "91b2704b49b82bf4edc27b17e7c23ed186aa5bd9da177e4aac6024d79dfd6472"
+#: The hashes before issue 56 declared its tests: the description without them and their provenance entry.
+BEFORE_TESTS_SHA256 = ("b7e1e8408faa2e5bf9d25cdd33050f3e30ddbb147cffa0abd0402ac5f06f59ca",
+                       "ea521ea35409c243bf3ff8fd00b936aaa184f34fd62a14572409ff172dd9b24f")
 
 
 def test_paper_bench_is_frozen():
@@ -77,3 +83,12 @@ def test_declared_uncertainties_change_no_value():
     loaded = load_system("paper")
     assert loaded.system.uncertainty is not None
     assert with_values(loaded, {"uncertainty": None}).sha256 == VALUES_SHA256
+
+
+def test_declaring_tests_changed_no_value():
+    from feedtherm.system.variants import with_values
+
+    loaded = load_system("paper")
+    without = {"tests": {}, "provenance": [p for p in loaded.system.provenance if p.paths != ["tests"]]}
+    assert with_values(loaded, without).sha256 == BEFORE_TESTS_SHA256[0]
+    assert with_values(loaded, {**without, "uncertainty": None}).sha256 == BEFORE_TESTS_SHA256[1]

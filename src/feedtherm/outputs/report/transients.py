@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...analysis.validation_types import Validation
+from ...analysis.validation_types import ELONGATION_QUANTITY, Validation
 from ...constants import KELVIN_OFFSET
 from ...solution import Solution
 from . import data, figures
@@ -117,6 +117,13 @@ def equilibrium_section(validation: Validation) -> str:
         body.append(equilibrium_table(validation, others))
     if not validation.solutions:
         body.append(paragraph("No runs to show."))
+    if validation.start_variants:
+        body.append(heading("Under another start"))
+        body.append(paragraph(
+            "Tests of a measured condition that start elsewhere (the description's [tests]), beside the condition's "
+            "own start and against the same measurements: where the machine was before a test moves its "
+            "equilibrium time and its whole transient, not its steady state."))
+        body.append(start_variants_table(validation))
     body.append(paragraph(EQUILIBRIUM_PHYSICS))
     if any(run.info.get("coupling") == "nonlinear" for run in validation.solutions.values()):
         body.append(paragraph(COUPLED_PHYSICS))
@@ -138,6 +145,29 @@ def equilibrium_table(validation: Validation, conditions: list[str]) -> str:
         ])
     return table(["condition", "screw speed [rpm]", "ambient [°C]", "run length [min]",
                   "model equilibrium [min]", "stated [min]"], rows)
+
+
+def start_variants_table(validation: Validation) -> str:
+    """Each condition with another start: both runs' start, equilibrium time and final deviations."""
+    rows = []
+    conditions = dict.fromkeys(condition for condition, _ in validation.start_variants.values())
+    for condition in conditions:
+        runs = [(condition, validation.solutions[condition])] + [
+            (name, run) for name, (c, run) in validation.start_variants.items() if c == condition]
+        measured = {c.quantity: c.measured for c in validation.comparisons if c.condition == condition}
+        for name, run in runs:
+            final = run.summary_values("final")
+            start = run.sensors_celsius()
+            first = [float(start[q][0]) for q in measured if q in start]
+            temperature = [abs(final[q] - v) for q, v in measured.items() if q in final and q != ELONGATION_QUANTITY]
+            d = measured.get(ELONGATION_QUANTITY)
+            rows.append([condition, name, number(sum(first) / len(first) if first else None, 1),
+                         number(data.equilibrium_minutes(run), 0, missing=NOT_REACHED),
+                         number(validation.measured_equilibrium_min.get(condition), 0),
+                         number(max(temperature) if temperature else None, 1),
+                         number(None if d is None else final[ELONGATION_QUANTITY] - d, 1, signed=True)])
+    return table(["condition", "run", "start: sensors at 0 s [°C]", "model equilibrium [min]", "stated [min]",
+                  "largest |ΔT| final [K]", "ΔD final [µm]"], rows)
 
 
 def equilibrium_text(solution: Solution) -> str:
