@@ -82,37 +82,44 @@ def truth_description(loaded):
 
 def measurements(model: str = "fem", mesh: str = "coarse") -> str:
     """The file's text: comments naming what it is, then the long-format series."""
-    from feedtherm.analysis.calibration import SERIES_OPTIONS, SERIES_STEP_S
-    from feedtherm.analysis.transient_scores import positioning_at
-    from feedtherm.constants import KELVIN_OFFSET
-    from feedtherm.simulate import simulate
     from feedtherm.system.load import load_system
-    from feedtherm.system.measurement_series import Series
-    from feedtherm.system.measurements import MeasurementSet
-    from feedtherm.system.runs import run_duration
 
-    loaded = truth_description(load_system(BENCH))
-    system = loaded.system
-    rng = np.random.default_rng(SEED)
-    out = io.StringIO()
-    out.write("# SYNTHETIC measurements of the ballscrew_example bench's drift tests, not a measured machine: written by\n"
+    header = ("# SYNTHETIC measurements of the ballscrew_example bench's drift tests, not a measured machine: written by\n"
               "# scripts/make_ballscrew_drift_tests.py from the bench's description with "
               + ", ".join(f"{k} = {v:g}" for k, v in TRUTH.items())
               + f", run with the {model} model ({mesh} mesh, cycle-averaged motion),\n# the positioning "
               "deviations with a geometric error per target, plus seeded noise (seed "
               f"{SEED}); the truth's starts in the script's notes.\n")
+    return header + drift_test_log(truth_description(load_system(BENCH)), TESTS, room_air, model, mesh, SEED)
+
+
+def drift_test_log(loaded, tests, air, model: str, mesh: str, seed: int) -> str:
+    """The long-format log of ``tests`` of ``loaded`` (the truth), without comments: every sensor and D
+    every :data:`SENSOR_EVERY_S`, the air every :data:`AIR_EVERY_S` (``air(test, times)`` [°C], the
+    truth's; the log adds noise), E at each target at the end of each hold plus :data:`PITCH_UM`."""
+    from feedtherm.analysis.calibration import SERIES_OPTIONS, SERIES_STEP_S
+    from feedtherm.analysis.transient_scores import positioning_at
+    from feedtherm.constants import KELVIN_OFFSET
+    from feedtherm.simulate import simulate
+    from feedtherm.system.measurement_series import Series
+    from feedtherm.system.measurements import MeasurementSet
+    from feedtherm.system.runs import run_duration
+
+    system = loaded.system
+    rng = np.random.default_rng(seed)
+    out = io.StringIO()
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow(["test", "time [s]", "quantity", "value", "unit", "uncertainty", "target [mm]"])
-    for test in TESTS:
+    for test in tests:
         end = run_duration(system, test)
         air_times = np.arange(0.0, end + 1e-9, AIR_EVERY_S)
         truth_air = MeasurementSet([], "synthetic room", {}, air={
-            name: Series(air_times, room_air(name, air_times)) for name in TESTS})
+            name: Series(air_times, air(name, air_times)) for name in tests})
         run = simulate(loaded, test=test, model=model, mesh=None if model == "fast" else mesh, motion="averaged",
                        options=SERIES_OPTIONS, sample_interval=SERIES_STEP_S, measured=truth_air)
         rows = []
         for t in air_times:
-            value = room_air(test, np.array([t]))[0] + rng.normal(0.0, NOISE["air"])
+            value = air(test, np.array([t]))[0] + rng.normal(0.0, NOISE["air"])
             rows.append((t, system.room.ambient_sensor, value, "degC", NOISE["air"], ""))
         for t in np.arange(0.0, end + 1e-9, SENSOR_EVERY_S):
             for name, sensor in system.sensors.items():
@@ -121,10 +128,11 @@ def measurements(model: str = "fem", mesh: str = "coarse") -> str:
                 rows.append((t, name, value, "degC", sigma, ""))
             value = np.interp(t, run.times, run.elongation_um) + rng.normal(0.0, NOISE["D"])
             rows.append((t, "D", value, "um", NOISE["D"], ""))
-        stops = [seg for seg in system.duty_cycles[system.tests[test].cycle].timeline() if seg.table_at is not None]
-        hold = system.duty_cycles[system.tests[test].cycle].measuring.hold
-        for seg in stops:
-            t = seg.start + hold - 1.0
+        cycle = system.duty_cycles[system.tests[test].cycle]
+        for seg in cycle.timeline():
+            if seg.table_at is None:
+                continue
+            t = seg.start + cycle.measuring.hold - 1.0
             if t > end:
                 break
             target = round(seg.table_at, 6)

@@ -104,7 +104,9 @@ def validate(loaded: LoadedSystem, *, model: str = "fast", mesh: str | None = No
             variants[name] = (test.condition, simulate(loaded, test=name, model=model, mesh=mesh, motion=motion,
                                                        options=options))
     printed = available_overlay(loaded)
-    reference = printed.reference_condition if printed else conditions[0]
+    # the sensitivities are steady states: of the first measured condition (a test has none), else the first declared
+    reference = printed.reference_condition if printed else next(
+        (c for c in conditions if c in system.conditions), next(iter(system.conditions)))
     ranking = sensitivities(loaded, reference)
     tick()
     weights = system.calibration

@@ -21,6 +21,7 @@ from rich.table import Table
 
 from ..analysis.calibration import SERIES_STEP_S, CalibrationResult, Prediction
 from ..analysis.transient_scores import TransientComparison
+from ..benches import bench, bench_name_of
 from ..errors import FeedthermError
 from ..system.load import LoadedSystem, read_text
 from ..system.overlay import overlay_spec
@@ -67,11 +68,24 @@ def calibrated_toml(original: LoadedSystem, result: CalibrationResult) -> str:
     meta["description"] = f"{meta.get('description', '')} Calibrated on conditions {conditions}.".strip()
     if "measurements" in meta and not str(meta["measurements"]).startswith("bundled:") and not original.origin.startswith("bundled:"):
         meta["measurements"] = str(Path(original.origin).parent / str(meta["measurements"]))
+    for name, test in (doc.get("tests") or {}).items():  # a test's own file, where the original finds it
+        if test.get("measurements"):
+            test["measurements"] = _beside_original(str(test["measurements"]), original)
     overlay = overlay_spec(original)  # the calibrated machine can run in the original's modes
     if overlay is not None:
         meta["overlay"] = overlay if overlay.startswith("bundled:") or Path(overlay).is_absolute() \
             else str(Path(original.origin).parent / overlay)
     return tomlkit.dumps(doc)
+
+
+def _beside_original(spec: str, original: LoadedSystem) -> str:
+    """A file the original description names relative to itself (or its bench's folder), as a path the
+    calibrated description, written elsewhere, finds too."""
+    if spec.startswith("bundled:") or Path(spec).is_absolute():
+        return spec
+    name = bench_name_of(original.origin)
+    folder = bench(name).folder if name is not None else Path(original.origin.split(" (")[0]).parent
+    return str((Path(folder) / spec).resolve())
 
 
 def _drop_fitted_uncertainties(doc, original: LoadedSystem, result: CalibrationResult) -> None:
