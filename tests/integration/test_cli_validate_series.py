@@ -136,3 +136,31 @@ def test_a_synthetic_series_is_scored_over_the_whole_transient(tmp_path, capsys,
     assert {entry["quantity"] for entry in summary["transients"]} == set(scores)
     report = (out / "report.html").read_text(encoding="utf-8")
     assert 'id="measured-series"' in report and "Condition v10: 4 measured series" in report
+
+
+TEST_HEADER = "test,time [s],quantity,value,unit,uncertainty,target [mm]\n"
+
+
+@pytest.mark.parametrize(
+    "body, fragments",
+    [
+        # the travel is 94..494 mm (the nut's centre, its flange included, at 294 mm; a 400 mm stroke)
+        ("drift,19,E,8,um,1,90\n", ["line 2", "target 90 mm lies outside the table's travel, 94..494 mm"]),
+        ("drift,19,E,8,um,1,250\n", ["line 2", "drift never visits target 250 mm"]),
+        ("drift,99,E,8,um,1,490\ndrift,19,E,9,um,1,490\n", ["line 3", "drift E@490mm is out of order"]),
+        ("drift,19,E,nan,um,1,110\n", ["line 2", "the value must be a finite number"]),
+        ("drift,20000,T1,21.0,degC,0.1,\n", ["line 2", "after the end of drift's run"]),
+        ("v10,19,E,8,um,1,110\n", ["line 2", "v10 never visits target 110 mm (it has no measuring stops)"]),
+    ],
+)
+def test_a_bad_test_log_fails_before_any_run(tmp_path, capsys, body, fragments):
+    bad = tmp_path / "bad.csv"
+    bad.write_text(TEST_HEADER + body)
+    assert_fails_in_one_line(capsys, "ballscrew_example", bad, tmp_path / "out", *fragments)
+
+
+def test_a_target_column_without_its_unit_is_refused(tmp_path, capsys):
+    bad = tmp_path / "bad.csv"
+    bad.write_text(TEST_HEADER.replace("target [mm]", "target") + "drift,19,E,8,um,1,110\n")
+    assert_fails_in_one_line(capsys, "ballscrew_example", bad, tmp_path / "out", "line 1",
+                             "the target column names its unit")
