@@ -122,7 +122,8 @@ def cmd_check(args: argparse.Namespace) -> int:
             costs.extend(cost_lines(f"{section}.{name}", plan.end - plan.segments[0].t0, run_cost(plan)))
     print(f"{loaded.origin}: valid description '{system.meta.name}' — {len(system.parts)} parts, "
           f"{len(system.joints)} joints, {len(system.sources)} heat sources, {len(system.surfaces)} surfaces, "
-          f"{len(system.sensors)} sensors, {len(system.conditions)} conditions; sha256 {loaded.sha256[:12]}")
+          f"{len(system.sensors)} sensors, {len(system.conditions)} conditions"
+          + (f", {len(system.tests)} tests" if system.tests else "") + f"; sha256 {loaded.sha256[:12]}")
     if not findings:
         print("no inconsistencies found")
     for finding in findings:

@@ -115,7 +115,7 @@ def test_inference_finds_the_heats_of_the_truth_within_their_intervals(loaded, d
       "averaged", "--no-plots"], ["summary.json"]),
     (["sweep", "--screw-rpm", "500,1500", "--nut-rpm", "0", "--ambient", "20", "--duration", "1800"],
      ["sweep.csv"]),
-    (["compensate", "--cycles", "1", "--duration", "3600", "--sensors", "2"], ["compensation.json"]),
+    # compensate: tests/integration/test_compensation_reference.py runs it on this bench (and checks its laws)
     (["uncertainty", "--samples", "4", "--no-sobol"], ["uncertainty.json"]),
 ])
 def test_every_command_runs_on_the_bench(tmp_path, args, made):

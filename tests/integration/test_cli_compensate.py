@@ -260,3 +260,13 @@ def test_a_bad_adaptation_file_is_one_line_exit_2_and_nothing_written(tmp_path, 
     lines = result.stderr.splitlines()
     assert len(lines) == 1 and message in lines[0], result.stderr
     assert [p.name for p in tmp_path.iterdir()] == ([] if text is None else ["measured.csv"])
+
+
+def test_the_paper_benchs_laws_are_on_carriable_sensors_and_read_zero_at_the_reference(study):
+    from test_compensation_reference import check_carriable, check_zero_at_reference
+
+    cwd, result = study
+    assert result.returncode == 0, result.stderr
+    out = cwd / "out" / "paper_compensation_physics"
+    check_carriable(out)
+    check_zero_at_reference("paper", out)

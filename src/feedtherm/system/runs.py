@@ -56,13 +56,6 @@ def visited_targets(system: FeedSystem, name: str) -> list[float]:
     return list(dict.fromkeys(held))
 
 
-def is_constant(system: FeedSystem, name: str) -> bool:
-    """Whether the run ``name`` holds one operating point in a room of constant air: a condition, or a
-    test of one in a declared or constant room (it has a steady state to approach)."""
-    test = as_test(system, name)
-    return test is not None and test.condition is not None and test.room != "measured"
-
-
 def is_idle(system: FeedSystem, name: str) -> bool:
     """Whether no motor turns in the run ``name`` (its measuring stops aside): ISO 230-3's ETVE test."""
     test = as_test(system, name)

@@ -122,7 +122,7 @@ def test_the_command_writes_its_files_and_refuses_bad_input(tmp_path, capsys):
     assert (out / "inference.json").is_file()
     printed = capsys.readouterr().out
     assert "condition I: heat per group [W]" in printed and "inference.csv" in printed
-    for args, message in [(["--conditions", "VI"], "no measurements of condition 'VI'"),
+    for args, message in [(["--conditions", "VI"], "no measurements of 'VI'"),
                           (["--groups", "x=nope"], "no heat source 'nope'"),
                           (["--sigma-temperature", "0"], "must be a positive number")]:
         code = None

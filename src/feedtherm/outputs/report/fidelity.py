@@ -69,6 +69,16 @@ def _calibration_rows(calibration: dict) -> list[list]:
         predicted = ", ".join(dict.fromkeys(r["condition"] for r in held))
         rows.append([f"calibrated on {fit}, predicting {predicted} (held out)"]
                     + [_entry_cell(_worst_entry(held, unit)) for unit in ("C", "um", "min")])
+    series = (calibration.get("series") or {}).get("held_out") or []
+    if series:  # a held-out test's whole transient, its drifts at the targets among it: the RMS of each series
+        predicted = ", ".join(dict.fromkeys(r["condition"] for r in series))
+        cells = [f"calibrated on {fit}, predicting {predicted} over the whole transient (RMS of each series)"]
+        for unit in ("C", "um"):
+            own = [r for r in series if r["unit"] == unit]
+            worst = max(own, key=lambda r: r["rms_deviation"]) if own else None
+            quantity = None if worst is None else ("D" if worst["quantity"] == "D_um" else worst["quantity"])
+            cells.append("—" if worst is None else _cell(worst["rms_deviation"], f"{worst['condition']} {quantity}"))
+        rows.append(cells + ["—"])
     cross = calibration.get("cross_validation")
     if cross:
         cells = ["calibrated, leave-one-condition-out (each condition predicted by a fit to the others)"]
