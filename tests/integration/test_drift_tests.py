@@ -60,7 +60,7 @@ def test_infer_and_correct_take_the_tests(tmp_path):
 
 def test_compensate_adapts_on_the_drift_tests_and_correct_runs_the_law_on_them(tmp_path):
     out = tmp_path / "compensation"
-    assert main(["compensate", NAME, "--sensors", "declared", "--cycles", "1", "--duration", "7200",
+    assert main(["compensate", NAME, "--sensors", "declared", "--cycles", "1", "--duration", "3600",
                  "--adapt", str(DRIFT_CSV), "--out", str(out)]) == 0
     summary = json.loads((out / "compensation.json").read_text())
     assert set(summary["adaptation"]["laws"]["regression_lags"]["conditions"]) == {"drift", "drift_fast", "etve"}
