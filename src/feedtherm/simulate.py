@@ -142,14 +142,13 @@ def initial_state(plan: RunPlan, model: ThermalModel, integrator: Integrator) ->
 
 
 def matched_state(model: ThermalModel, integrator: Integrator, bc, k: int, readings: dict[str, float]) -> np.ndarray:
-    """The state that reads ``readings`` [K] (sensor → temperature) at position ``k``: the steady field of
-    the surfaces at ``bc``'s air with a heat [W] at each read sensor, no other heat, the heats chosen so
-    that every sensor reads its reading.
+    """The state that reads ``readings`` at position ``k`` (sensor → temperature [K], and ``D`` → [m] where
+    read): the steady field of the surfaces at ``bc``'s air under a load along each reading's row (for a
+    sensor, a heat [W] at its point), no other heat, the loads chosen so that every reading is met.
 
     Of the fields that match the readings it is the one conduction and the surfaces would hold if the
-    sensors' points were kept at their readings: smooth, at the air far from every sensor.  With ``R``
-    the sensors' rows and ``A`` the steady operator, ``T = A⁻¹(s + Rᵀλ)`` with ``(R A⁻¹ Rᵀ) λ = y − R A⁻¹ s
-    − offset``.
+    readings were kept: smooth, at the air far from every sensor.  With ``R`` the readings' rows and
+    ``A`` the steady operator, ``T = A⁻¹(s + Rᵀλ)`` with ``(R A⁻¹ Rᵀ) λ = y − R A⁻¹ s − offset``.
     """
     names = [n for n in model.probe_names if n in readings]
     given = model.probe_rows(k)
