@@ -173,7 +173,6 @@ def to_si(value: object, si_unit: str, *, sign: str = "any", limit: Limit | None
     """
     if isinstance(value, bool):
         raise ValueError(f"expected a quantity, got {value!r}")
-    ureg = registry()
     suggestion = hint or _HINT_UNITS.get(si_unit, si_unit)
     if isinstance(value, (int, float)):
         if si_unit:
@@ -191,10 +190,7 @@ def to_si(value: object, si_unit: str, *, sign: str = "any", limit: Limit | None
     if not math.isfinite(number):
         raise ValueError(f"must be a finite number, got {value!r}")
     try:
-        quantity = ureg.Quantity(number, unit or "dimensionless")
-        converted = float(quantity.to(si_unit or "dimensionless").magnitude)
-        if si_unit == "rad/s" and _counts_revolutions(quantity):
-            converted *= 2.0 * math.pi
+        converted = _converted(number, unit, si_unit)
     except pint.errors.UndefinedUnitError:
         raise ValueError(f"unknown unit {unit!r} in {value!r}") from None
     except pint.errors.DimensionalityError:
@@ -214,6 +210,17 @@ def to_si(value: object, si_unit: str, *, sign: str = "any", limit: Limit | None
         raise ValueError(f"must not be negative, got {value!r}")
     if out_of_range:
         raise ValueError(f"{value!r} lies outside the accepted range, {limit.describe()}")
+    return converted
+
+
+@lru_cache(maxsize=8192)
+def _converted(number: float, unit: str, si_unit: str) -> float:
+    """``number`` ``unit`` in ``si_unit``; a description is validated many times over in a study (each
+    machine, each worker), and pint takes about 0.3 ms a conversion, so the conversions are kept."""
+    quantity = registry().Quantity(number, unit or "dimensionless")
+    converted = float(quantity.to(si_unit or "dimensionless").magnitude)
+    if si_unit == "rad/s" and _counts_revolutions(quantity):
+        converted *= 2.0 * math.pi
     return converted
 
 

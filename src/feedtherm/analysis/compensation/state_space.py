@@ -201,6 +201,9 @@ def _stroke_rows(system, model, s: np.ndarray, Q: np.ndarray):
 
 
 def _psd_root(M: np.ndarray) -> np.ndarray:
-    """``L`` with ``L Lᵀ = M`` for a symmetric positive semi-definite ``M``."""
+    """``L`` with ``L Lᵀ = M`` for a symmetric positive semi-definite ``M``, of the columns whose
+    eigenvalue lies above ``eigh``'s rounding (``n ε`` of the largest): a gramian's eigenvalues fall
+    fast, so ``L`` has a few dozen columns rather than one per node, and the SVD of ``Loᵀ Lp`` is small."""
     w, U = np.linalg.eigh((M + M.T) / 2)
-    return U * np.sqrt(np.clip(w, 0.0, None))
+    keep = w > max(w[-1], 0.0) * len(w) * np.finfo(float).eps
+    return U[:, keep] * np.sqrt(w[keep])
