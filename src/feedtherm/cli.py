@@ -819,7 +819,8 @@ def build_parser() -> argparse.ArgumentParser:
     new = sub.add_parser("new", help="write a commented bench folder to adapt to your machine (a single-drive "
                                      "ball-screw axis that checks and runs as written)")
     new.add_argument("name", metavar="NAME", help="the bench's name: the folder's and meta.name")
-    new.add_argument("--out", type=_directory, default=".", metavar="DIR", help="where to write the folder NAME (default: here)")
+    new.add_argument("--out", type=_directory, default=".", metavar="DIR",
+                     help="the existing folder to write the folder NAME in (default: here)")
     new.set_defaults(func=cmd_new)
 
     bench_list = sub.add_parser("benches", help="list the bundled and plugged-in benches SYSTEM may name")
