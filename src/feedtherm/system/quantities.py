@@ -10,7 +10,8 @@ ranges no machine-tool feed drive leaves, stated with their reason, so that a ty
 for ``20 degC``, ``1e30 rpm``) is an error at the description rather than a crash, a hang or
 a nonsense result later.  A rotational speed written per unit time without an angle
 (``1/min``, ``Hz``) counts revolutions, as datasheets mean it (pint alone would read it as
-radians, 2 pi too slow).
+radians, 2 pi too slow); ``rev`` and ``r`` (``rev/min``, ``r/min``, the ISO symbol) are
+revolutions, as pint's ``rpm``.
 """
 
 from __future__ import annotations
@@ -143,6 +144,17 @@ def registry() -> pint.UnitRegistry:
         return pint.UnitRegistry()
 
 
+#: ``rev`` and ``r`` as whole words of a unit: data sheets' revolutions (``rev/min``, ``r/min``), which
+#: pint does not define.  Rewritten in the text rather than defined in the registry: ``r`` there would
+#: also parse ``hr`` and ``yr`` as hecto- and yocto-revolutions.
+_REVOLUTION = re.compile(r"(?<![A-Za-z0-9_])(?:revs?|r)(?![A-Za-z0-9_])")
+
+
+def _pint_unit(unit: str) -> str:
+    """``unit`` as pint reads it: ``rev`` and ``r`` spelt ``revolution``."""
+    return _REVOLUTION.sub("revolution", unit)
+
+
 def _counts_revolutions(quantity) -> bool:
     """True for a speed written per unit time without an angle (``1/min``, ``Hz``)."""
     return "radian" not in quantity.to_root_units()._units
@@ -217,7 +229,7 @@ def to_si(value: object, si_unit: str, *, sign: str = "any", limit: Limit | None
 def _converted(number: float, unit: str, si_unit: str) -> float:
     """``number`` ``unit`` in ``si_unit``; a description is validated many times over in a study (each
     machine, each worker), and pint takes about 0.3 ms a conversion, so the conversions are kept."""
-    quantity = registry().Quantity(number, unit or "dimensionless")
+    quantity = registry().Quantity(number, _pint_unit(unit) or "dimensionless")
     converted = float(quantity.to(si_unit or "dimensionless").magnitude)
     if si_unit == "rad/s" and _counts_revolutions(quantity):
         converted *= 2.0 * math.pi
@@ -308,7 +320,7 @@ def to_base_si(value: object) -> float:
         raise ValueError(f"{value!r} is not a quantity of the form \"<number> <unit>\"")
     number, unit = float(match.group(1)), match.group(2)
     try:
-        quantity = registry().Quantity(number, unit or "dimensionless")
+        quantity = registry().Quantity(number, _pint_unit(unit) or "dimensionless")
         converted = float(quantity.to_base_units().magnitude)
     except (pint.errors.PintError, AttributeError, TypeError, SyntaxError):
         raise ValueError(f"cannot read the unit of {value!r}") from None
@@ -331,7 +343,7 @@ def same_dimension(value: object, si_unit: str) -> bool:
         return False
     ureg = registry()
     try:
-        return ureg.Quantity(1, unit or "dimensionless").dimensionality == \
+        return ureg.Quantity(1, _pint_unit(unit) or "dimensionless").dimensionality == \
             ureg.Quantity(1, si_unit or "dimensionless").dimensionality
     except (pint.errors.PintError, AttributeError, TypeError, SyntaxError):
         return False

@@ -60,10 +60,21 @@ def test_bad_quantities_say_why(value, unit, sign, fragment):
 
 # The same shaft speed in every spelling a datasheet uses: 396 rev/min = 396 * 2 pi / 60 rad/s
 # = 41.4690 rad/s.  "1/min", "min^-1" and "Hz" carry no angle; an engineer means revolutions.
+# "rev" and "r" (the ISO symbol, "r/min") are revolutions too.
 @pytest.mark.parametrize("text", ["396 rpm", "396 1/min", "396 min^-1", "6.6 Hz", "6.6 1/s",
-                                  "6.6 revolution/second", "41.469023027385 rad/s", "2376 deg/s"])
+                                  "6.6 revolution/second", "41.469023027385 rad/s", "2376 deg/s",
+                                  "396 rev/min", "396 r/min", "396 revs/min", "396 rev / min", "6.6 r/s",
+                                  "23760 r/h"])
 def test_every_spelling_of_a_rotational_speed_gives_the_same_shaft_speed(text):
     assert to_si(text, "rad/s") == pytest.approx(396 * 2 * math.pi / 60, rel=1e-9)
+
+
+def test_revolutions_spelt_r_leave_other_units_alone():
+    # "r" is rewritten as a whole word only: hours and years keep their meaning
+    assert to_si("2 hr", "s") == 7200.0
+    assert to_si("1 yr", "s") == pytest.approx(365.25 * 86400)
+    with pytest.raises(ValueError, match="unknown unit"):
+        to_si("396 rr/min", "rad/s")
 
 
 @pytest.mark.parametrize("value", ["1e400 mm", "inf mm", float("inf"), float("nan")])
