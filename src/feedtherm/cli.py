@@ -109,6 +109,11 @@ def cmd_check(args: argparse.Namespace) -> int:
             print(f"feedtherm: error: {origin}: {finding}", file=sys.stderr)
         return 2
     system = loaded.system
+    from .system.overlay import overlay_path, overlay_spec, read_overlay
+
+    # The overlay of printed values `--mode` would lay over the physics, read and checked as `heat` reads it.
+    overlay_file = overlay_path(loaded)
+    overlay = None if overlay_file is None else read_overlay(overlay_file, system)
     # What `heat` and `run` would meet: every condition's and duty cycle's heats and
     # coefficients evaluated, and its step count planned (a model is not built).
     costs = []
@@ -124,6 +129,9 @@ def cmd_check(args: argparse.Namespace) -> int:
           f"{len(system.joints)} joints, {len(system.sources)} heat sources, {len(system.surfaces)} surfaces, "
           f"{len(system.sensors)} sensors, {len(system.conditions)} conditions"
           + (f", {len(system.tests)} tests" if system.tests else "") + f"; sha256 {loaded.sha256[:12]}")
+    if overlay is not None:
+        print(f"overlay '{overlay.name}' ({overlay_spec(loaded)}, --mode {overlay.name}): {len(overlay.heat)} printed "
+              f"heats and {len(overlay.chtc)} CHTCs at condition {overlay.reference_condition}")
     if not findings:
         print("no inconsistencies found")
     for finding in findings:

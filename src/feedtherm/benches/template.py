@@ -80,13 +80,13 @@ def _check_name(name: str) -> None:
 def _check_parent(parent: Path) -> None:
     """``--out`` must be an existing folder this process may create entries in."""
     try:
-        mode = parent.stat().st_mode
+        file_mode = parent.stat().st_mode
     except FileNotFoundError:
         raise FeedthermError(f"--out: {parent} does not exist; create the folder first or choose another") from None
     except OSError as exc:
         raise FeedthermError(f"--out: cannot read {parent} ({exc.strerror or exc})") from None
-    if not stat.S_ISDIR(mode):
-        raise FeedthermError(f"--out: {parent} is {_kind(mode)}, not a folder")
+    if not stat.S_ISDIR(file_mode):
+        raise FeedthermError(f"--out: {parent} is {_kind(file_mode)}, not a folder")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise FeedthermError(f"--out: {parent} is not writable (no permission to create a folder in it, or a "
                              "read-only file system)")
@@ -109,12 +109,12 @@ def _check_lengths(parent: Path, target: Path, staging: Path) -> None:
 
 def _check_target(target: Path) -> None:
     try:
-        mode = target.lstat().st_mode  # a symbolic link is in the way as a file is, wherever it points
+        file_mode = target.lstat().st_mode  # a symbolic link is in the way as a file is, wherever it points
     except FileNotFoundError:
         return
     except OSError as exc:
         raise FeedthermError(f"{target}: cannot read it ({exc.strerror or exc}); choose another NAME or --out") from None
-    if stat.S_ISDIR(mode):
+    if stat.S_ISDIR(file_mode):
         try:
             empty = not any(target.iterdir())
         except OSError as exc:
@@ -123,7 +123,7 @@ def _check_target(target: Path) -> None:
         if empty:
             return
         raise FeedthermError(f"{target}: exists and is a folder that is not empty; choose another NAME or --out")
-    raise FeedthermError(f"{target}: exists and is {_kind(mode)}; choose another NAME or --out")
+    raise FeedthermError(f"{target}: exists and is {_kind(file_mode)}; choose another NAME or --out")
 
 
 def _move_into_place(staging: Path, target: Path) -> None:
@@ -139,17 +139,17 @@ def _move_into_place(staging: Path, target: Path) -> None:
         staging.rename(target)
 
 
-def _kind(mode: int) -> str:
+def _kind(file_mode: int) -> str:
     """What a path that is not a folder is, for a message."""
-    if stat.S_ISREG(mode):
+    if stat.S_ISREG(file_mode):
         return "a file"
-    if stat.S_ISLNK(mode):
+    if stat.S_ISLNK(file_mode):
         return "a symbolic link"
-    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+    if stat.S_ISCHR(file_mode) or stat.S_ISBLK(file_mode):
         return "a device"
-    if stat.S_ISFIFO(mode):
+    if stat.S_ISFIFO(file_mode):
         return "a named pipe"
-    if stat.S_ISSOCK(mode):
+    if stat.S_ISSOCK(file_mode):
         return "a socket"
     return "not a folder"
 

@@ -94,12 +94,19 @@ def _feed_speeds(system: FeedSystem) -> list[Finding]:
         implied = abs(speed_table(n_s, n_n, lead))
         stated = abs(cond.feed_speed)
         if not math.isclose(implied, stated, rel_tol=FEED_SPEED_TOLERANCE):
-            lead_implied = stated / abs((n_s - n_n) / 60.0) if n_s != n_n else math.inf
+            # a standstill on either side implies no lead: no lead moves a table whose motors turn alike,
+            # and none stops one whose motors do not
+            if implied == 0.0:
+                why = "the table stands still at these motor speeds, whatever the lead"
+            elif stated == 0.0:
+                why = "the stated speed is a standstill, which no lead gives at these motor speeds"
+            else:
+                why = f"the stated speed implies a lead of {stated / abs((n_s - n_n) / 60.0) * 1e3:.3g} mm"
             findings.append(Finding(
                 f"conditions.{name}.feed_speed",
                 f"stated {stated * 60:.3g} m/min, but the motor speeds give "
                 f"({n_s:.0f} - {n_n:.0f}) rpm x {lead * 1e3:g} mm = {implied * 60:.3g} m/min "
-                f"(the stated speed implies a lead of {lead_implied * 1e3:.3g} mm); the motor speeds are used",
+                f"({why}); the motor speeds are used",
             ))
     return findings
 

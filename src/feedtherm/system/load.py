@@ -10,6 +10,7 @@ from __future__ import annotations
 import difflib
 import hashlib
 import json
+import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, get_args
@@ -111,11 +112,17 @@ def describe_error(exc: ValidationError) -> str:
     """One line for the first error of a pydantic ValidationError: ``path: reason``."""
     errors = exc.errors(include_url=False)
     # A misspelt key also makes the right key "missing": report the cause, not the symptom.
-    error = next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
+    error = next((e for e in errors if e["type"] == "extra_forbidden"), None)
+    branches = [] if error is not None else _union_branches(errors)
+    if branches:  # a value a union of types refused: the branch meant, not the first tried
+        return _describe_union(branches, errors)
+    error = error or errors[0]
     raw_loc = list(error["loc"])
     loc = [part for part in raw_loc if not _is_union_tag(part)]
     path = _dotted(loc)
     kind, message = error["type"], error["msg"]
+    if kind == "finite_number":
+        return f"{path}: {_message(error)}"
     if kind == "extra_forbidden":
         key = str(loc[-1])
         parent = _dotted(loc[:-1])
@@ -141,6 +148,63 @@ def describe_error(exc: ValidationError) -> str:
     if not path:  # cross-reference errors carry their own path
         return message
     return f"{path}: {message}"
+
+
+#: How pydantic labels the members of a plain union in an error's location: ``literal['ambient']``,
+#: ``function-before[<lambda>(), float]`` (a quantity), ``str``, ``float``.
+_BRANCH_LABEL = re.compile(r"^(literal\[|function-(before|after|wrap|plain)\[|(str|float|int|bool)$)")
+#: A string that is written as a number (a quantity), not as a word.
+_NUMERIC = re.compile(r"^\s*[-+]?(\d|\.\d|inf|nan)", re.IGNORECASE)
+
+
+def _union_branches(errors: list[dict]) -> list[dict]:
+    """The errors of the first error's union members (one per member it tried), or [] where the first
+    error is not one of a plain union (``Literal["ambient"] | Temperature``, ``str | float``)."""
+    loc = errors[0]["loc"]
+    if not loc or not isinstance(loc[-1], str):
+        return []
+    branches = [e for e in errors if len(e["loc"]) == len(loc) and e["loc"][:-1] == loc[:-1]
+                and isinstance(e["loc"][-1], str)]
+    labels = [e["loc"][-1] for e in branches]
+    # a model's branch is labelled by its class name; field names and a description's own names never
+    # come with a literal's, a quantity's or a plain type's label beside them
+    if len(branches) < 2 or not any(_BRANCH_LABEL.match(label) for label in labels):
+        return []
+    return branches
+
+
+def _describe_union(branches: list[dict], errors: list[dict]) -> str:
+    """One line for a value no member of a union took: a word is answered with the words allowed, a
+    number or quantity with what is wrong with it as one (out of range, not finite), a table with what
+    is wrong inside it, and the other allowed values beside."""
+    where = branches[0]["loc"][:-1]
+    path = _dotted([part for part in where if not _is_union_tag(part)])
+    value = branches[0]["input"]
+    words = next((e for e in branches if e["type"] == "literal_error"), None)
+    quantity = any(str(e["loc"][-1]).startswith("function-") for e in branches)
+    inner = next((e for e in errors if len(e["loc"]) > len(where) + 1 and e["loc"][:len(where)] == where), None)
+    if isinstance(value, dict) and inner is not None:  # a table: what its model member found inside it
+        inside = _dotted([where_part for where_part in inner["loc"][len(where) + 1:]])
+        return f"{path}.{inside}: {_message(inner)}"
+    if words is not None and not (isinstance(value, str) and _NUMERIC.match(value)) \
+            and not isinstance(value, (int, float)):
+        more = ", or a quantity with its unit" if quantity else ""
+        return f"{path}: {value!r} is not allowed; allowed values: {words['ctx']['expected']}{more}"
+    # a type mismatch says only that the value is not of another member's type
+    error = next((e for e in branches if e["type"] not in ("literal_error", "model_type", "dict_type")
+                  and not e["type"].endswith("_type")), branches[0])
+    message = _message(error)
+    if words is None:
+        return f"{path}: {message}"
+    instead = f"llowed instead: {words['ctx']['expected']}"
+    return f"{path}: {message} A{instead}" if message.endswith("?") else f"{path}: {message}; a{instead}"
+
+
+def _message(error: dict) -> str:
+    """An error's reason as one of ours reads: the validator's own words, or what pydantic says."""
+    if error["type"] == "finite_number":  # pydantic's "Input should be ..." does not say what was given
+        return f"must be a finite number, got {error['input']!r}"
+    return error["msg"].removeprefix("Value error, ")
 
 
 def _is_union_tag(part) -> bool:

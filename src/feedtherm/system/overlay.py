@@ -27,10 +27,12 @@ conditions is in :mod:`feedtherm.boundary.overlay`.
 
 from __future__ import annotations
 
+import re
 from dataclasses import replace
 from pathlib import Path
+from typing import Annotated
 
-from pydantic import ValidationError
+from pydantic import AfterValidator, ValidationError
 
 from ..benches import ORIGIN_PREFIX, bench, bench_name_of
 from ..errors import DescriptionError
@@ -61,10 +63,20 @@ class PrintedChtc(Strict):
     ref: str
 
 
+def _mode_name(name: str) -> str:
+    """An overlay's name is the ``--mode`` that applies it and part of output folders' names."""
+    if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_-]{0,63}", name):
+        raise ValueError(f"{name!r} is not a mode name: a letter, then up to 63 letters, digits, '_' or '-' (it "
+                         "is the --mode that applies the overlay and part of output folders' names)")
+    if name == PHYSICS:
+        raise ValueError(f"{name!r} is the mode without an overlay; name the overlay after its source")
+    return name
+
+
 class Overlay(Strict):
     """Values a source prints at one condition, mapped onto a description's sources and surfaces."""
 
-    name: str
+    name: Annotated[str, AfterValidator(_mode_name)]
     title: str = ""
     reference_condition: str
     heat: list[PrintedHeat] = []
@@ -91,19 +103,24 @@ def overlay_spec(loaded) -> str | None:
     return None
 
 
-def available_overlay(loaded) -> Overlay | None:
-    """The overlay ``loaded`` may apply, read and checked against its description; None without one."""
+def overlay_path(loaded) -> Path | None:
+    """The file of the overlay of ``loaded`` (:func:`overlay_spec`), None when there is none."""
     spec = overlay_spec(loaded)
     if spec is None:
         return None
     if spec.startswith(ORIGIN_PREFIX):
-        path = bench(spec[len(ORIGIN_PREFIX):]).folder / OVERLAY
-    else:
-        path = Path(spec)
-        if not path.is_absolute():
-            name = bench_name_of(loaded.origin)
-            path = (bench(name).folder if name else Path(loaded.origin).parent) / path
-    return read_overlay(path, loaded.system)
+        return bench(spec[len(ORIGIN_PREFIX):]).folder / OVERLAY
+    path = Path(spec)
+    if not path.is_absolute():
+        name = bench_name_of(loaded.origin)
+        path = (bench(name).folder if name else Path(loaded.origin).parent) / path
+    return path
+
+
+def available_overlay(loaded) -> Overlay | None:
+    """The overlay ``loaded`` may apply, read and checked against its description; None without one."""
+    path = overlay_path(loaded)
+    return None if path is None else read_overlay(path, loaded.system)
 
 
 def read_overlay(path: Path, system: FeedSystem) -> Overlay:
@@ -140,11 +157,19 @@ def _dangling(overlay: Overlay, system: FeedSystem) -> str:
     if overlay.reference_condition not in system.conditions:
         return (f"reference_condition: no condition named {overlay.reference_condition!r}"
                 f"{closest(overlay.reference_condition, system.conditions)}")
+    printed: dict[str, int] = {}
     for i, row in enumerate(overlay.heat):
         if row.source not in system.sources:
             return f"heat[{i}].source: no heat source named {row.source!r}{closest(row.source, system.sources)}"
+        if row.source in printed:  # a second value would silently replace the first
+            return f"heat[{i}].source: {row.source!r} is printed already, in heat[{printed[row.source]}]"
+        printed[row.source] = i
+    covered: dict[str, int] = {}
     for i, row in enumerate(overlay.chtc):
         for target in row.surfaces:
             if target not in system.surfaces:
                 return f"chtc[{i}].surfaces: no surface named {target!r}{closest(target, system.surfaces)}"
+            if target in covered:
+                return f"chtc[{i}].surfaces: {target!r} is covered already, by chtc[{covered[target]}]"
+            covered[target] = i
     return ""

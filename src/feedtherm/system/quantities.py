@@ -193,7 +193,7 @@ def to_si(value: object, si_unit: str, *, sign: str = "any", limit: Limit | None
     elif isinstance(value, str):
         match = _NUMBER_AND_UNIT.match(value)
         if not match:
-            raise ValueError(f"{value!r} is not a quantity of the form \"<number> <unit>\"")
+            raise ValueError(_not_a_quantity(value))
         number, unit = float(match.group(1)), match.group(2)
         if si_unit and not unit:
             raise ValueError(f"{value!r} has no unit; write it with one, e.g. \"{value.strip()} {suggestion}\"")
@@ -223,6 +223,13 @@ def to_si(value: object, si_unit: str, *, sign: str = "any", limit: Limit | None
     if out_of_range:
         raise ValueError(f"{value!r} lies outside the accepted range, {limit.describe()}")
     return converted
+
+
+def _not_a_quantity(text: str) -> str:
+    """Why ``text`` is no ``"<number> <unit>"``: an infinite number (``"inf N"``) is not finite."""
+    if re.match(r"^\s*[-+]?(inf|nan)", text, re.IGNORECASE):
+        return f"must be a finite number, got {text!r}"
+    return f"{text!r} is not a quantity of the form \"<number> <unit>\""
 
 
 @lru_cache(maxsize=8192)
@@ -317,7 +324,7 @@ def to_base_si(value: object) -> float:
         raise ValueError(f"expected a number or a quantity, got {value!r}")
     match = _NUMBER_AND_UNIT.match(value)
     if not match:
-        raise ValueError(f"{value!r} is not a quantity of the form \"<number> <unit>\"")
+        raise ValueError(_not_a_quantity(value))
     number, unit = float(match.group(1)), match.group(2)
     try:
         quantity = registry().Quantity(number, _pint_unit(unit) or "dimensionless")
