@@ -145,6 +145,7 @@ def plan_run(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
     planned = _segments(loaded, profile.segments, profile.end, single_drive)
     _check_duration(loaded, planned, profile.end, opts, duration is not None)
     _check_step_count(loaded, planned, opts)
+    _check_record_memory(loaded, planned, sample_interval, opts)
     if not allow_overload:
         refuse_overloads(planned, what)
     initial = profile.initial
@@ -269,6 +270,103 @@ def _check_step_count(loaded: LoadedSystem, segments: list[Segment], options: Mo
         raise FeedthermError(f"the run would take about {steps:,} time steps, more than the {MAX_STEPS:,} a run may "
                              f"plan (the table moves at up to {fastest:.4g} m/min, {options.steps_per_stroke} steps "
                              "per stroke): shorten --duration, or use --motion averaged")
+
+
+#: The most a run's records may hold [bytes]: its samples (every series the run writes, at each
+#: sample time) and its step records.  1 GB, an eighth of an 8 GB workstation's memory: the rest is
+#: the model's (an FE run's factors take gigabytes) and the system's.
+RECORD_MEMORY_BYTES = 1e9
+#: Bytes of one recorded value (float64).
+BYTES_PER_VALUE = 8
+#: How many times a recorded value is held at a run's peak: the integrator's trace (lists of small
+#: arrays and of the parts' means), the Solution's arrays, the stacked columns of the CSV files
+#: written.  The paper bench at 0.25-1 s samples over 3 h (43,201 and 10,801 samples of 277 values,
+#: tracemalloc, 2026-11-29): 5.7 kB a sample at the peak of simulate and write_tables, 2.6 times
+#: its 2.2 kB of values.
+RECORD_COPIES = 3
+
+
+@dataclass(frozen=True)
+class RecordPlan:
+    """What a run's records will hold: samples and steps, the values of each, and their memory."""
+
+    samples: int
+    values_per_sample: int
+    steps: int
+    values_per_step: int
+
+    @property
+    def bytes(self) -> float:
+        return RECORD_COPIES * BYTES_PER_VALUE * (self.samples * self.values_per_sample
+                                                  + self.steps * self.values_per_step)
+
+    def most_samples(self) -> int:
+        """The most samples the run may record beside its steps, within :data:`RECORD_MEMORY_BYTES`."""
+        spare = RECORD_MEMORY_BYTES / (RECORD_COPIES * BYTES_PER_VALUE) - self.steps * self.values_per_step
+        return max(0, int(spare // self.values_per_sample))
+
+
+def record_plan(loaded: LoadedSystem, segments: list[Segment], sample_interval: float,
+                options: ModelOptions) -> RecordPlan:
+    """The records of a run over ``segments`` sampled every ``sample_interval`` [s] (:class:`RecordPlan`).
+
+    A sample holds the time, every sensor's and the ambient's reading and D, each part's mean, each
+    source's heat and the heat lost since the start, the moving group's offset, the screw's temperature
+    and displacement in each of its cells and the positioning error at each grid position (the grid of
+    the built-in models, :func:`screw_grid`); a step its end, its length and the probes' readings.
+    """
+    system = loaded.system
+    end = segments[-1].t1
+    samples = math.floor(end / sample_interval + 1e-9) + 2  # 0, interval, ... and the end (sample_times)
+    cells, positions = screw_grid(system, options)
+    probes = len(system.sensors) + 2  # the sensors, the ambient and D
+    per_sample = 1 + probes + len(system.parts) + len(system.sources) + 2 + 2 * cells + positions
+    steps = estimated_steps(_stroke(system), segments, options)
+    return RecordPlan(samples, per_sample, steps, 2 + probes)
+
+
+def screw_grid(system: FeedSystem, options: ModelOptions) -> tuple[int, int]:
+    """The screw's axial cells and the moving group's grid positions of the built-in models: at least
+    ``axial_cells`` cells along the screw and ``steps_per_stroke`` positions over the stroke, the cell
+    dividing the stroke (models/fast/layout.py, models/fem/bench.py); (0, 1) without a feed drive."""
+    if system.kinematics is None:
+        return 0, 1
+    from ..system.geometry import bounds
+
+    lo, hi = bounds(system.parts[system.kinematics.screw])
+    length, stroke = hi[0] - lo[0], system.kinematics.stroke
+    count = max(options.steps_per_stroke, math.ceil(stroke / (length / options.axial_cells)))
+    return max(1, round(length / (stroke / count))), count + 1
+
+
+def _check_record_memory(loaded: LoadedSystem, segments: list[Segment], sample_interval: float,
+                         options: ModelOptions) -> None:
+    """Refuse, before anything is allocated, a run whose records would not fit :data:`RECORD_MEMORY_BYTES`."""
+    plan = record_plan(loaded, segments, sample_interval, options)
+    if plan.bytes <= RECORD_MEMORY_BYTES:
+        return
+    end = segments[-1].t1
+    most = plan.most_samples()
+    # the smallest interval whose samples fit, rounded up to two significant digits
+    smallest = _rounded_up(end / max(most - 2, 1))
+    raise FeedthermError(
+        f"--sample-interval: {sample_interval:g} s over the run's {end:g} s gives {plan.samples:,} samples of "
+        f"{plan.values_per_sample:,} values, about {_size(plan.bytes)} held ({RECORD_COPIES} copies of "
+        f"{BYTES_PER_VALUE}-byte values) against the {_size(RECORD_MEMORY_BYTES)} a run's records may hold: "
+        f"{most:,} samples at most; give --sample-interval {smallest:g} or more, or a shorter --duration")
+
+
+def _rounded_up(value: float) -> float:
+    """``value`` rounded up to two significant digits (a number a user types, never below ``value``)."""
+    scale = 10.0 ** (math.floor(math.log10(value)) - 1)
+    return math.ceil(value / scale - 1e-9) * scale
+
+
+def _size(n_bytes: float) -> str:
+    for unit, size in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6)):
+        if n_bytes >= size:
+            return f"{n_bytes / size:.3g} {unit}"
+    return f"{n_bytes / 1e3:.3g} kB"
 
 
 def _check_arguments(model, duration, sample_interval, motion, mesh, solver, start) -> ModelEntry:
