@@ -41,6 +41,9 @@ COVERAGE = 3.0
 SAME_AMBIENT_K = 0.5
 #: Speeds closer than this [rpm] are "the same speed".
 SAME_SPEED_RPM = 1.0
+#: A measured temperature that, read as kelvin, lies this close to its ambient [K] is suspected of
+#: being in kelvin: a feed drive's sensors rise tens of kelvin above the air, never hundreds.
+KELVIN_HINT_RISE_K = 100.0
 
 
 @dataclass(frozen=True)
@@ -176,7 +179,11 @@ def _elongation_law(values, sigma_t, sigma_d, coverage, notes):
 
 
 def _speed_monotone(values, points, sigma_t, sigma_d, coverage):
-    flags = []
+    """Property 2 for every pair of conditions at the same ambient.  A value that breaks it with
+    several conditions, where every pair it breaks involves that one condition, is that condition's
+    (a column of condition I in kelvin is hotter than II and III, which agree with each other):
+    flagged there once.  Otherwise each faster condition that is cooler is flagged, as seen."""
+    found = []  # (slow, fast, quantity, drop, tolerance) in the order of the pairs
     for slow, fast in itertools.permutations(values, 2):
         p, q = points[slow], points[fast]
         if abs(p.ambient_c - q.ambient_c) > SAME_AMBIENT_K:
@@ -189,15 +196,71 @@ def _speed_monotone(values, points, sigma_t, sigma_d, coverage):
             if quantity not in values[slow]:
                 continue
             sigma = sigma_d if quantity == ELONGATION_QUANTITY else sigma_t
-            unit = "µm" if quantity == ELONGATION_QUANTITY else "K"
             drop = values[slow][quantity] - measured
             tolerance = coverage * np.sqrt(2.0) * sigma
             if drop > tolerance:
-                reason = (f"{drop:.1f} {unit} below condition {slow}, although both motors turn at least as fast "
-                          f"({q.screw_rpm:g}/{q.nut_rpm:g} rpm against {p.screw_rpm:g}/{p.nut_rpm:g} rpm) "
-                          f"at the same ambient temperature")
-                flags.append(Flag(fast, quantity, "speed_monotone", reason, float(drop - tolerance)))
+                found.append((slow, fast, quantity, drop, tolerance))
+    flags = []
+    for quantity in dict.fromkeys(v[2] for v in found):
+        pairs = [v for v in found if v[2] == quantity]
+        odd = _odd_one_out(pairs)
+        if odd is not None:
+            flags.append(_odd_flag(odd, quantity, pairs, values, points))
+            continue
+        for slow, fast, _, drop, tolerance in pairs:
+            p, q = points[slow], points[fast]
+            reason = (f"{drop:.1f} {_unit(quantity)} below condition {slow}, although both motors turn at least as "
+                      f"fast ({_speeds(q)} against {_speeds(p)}) at the same ambient temperature")
+            flags.append(Flag(fast, quantity, "speed_monotone", reason, float(drop - tolerance)))
     return flags
+
+
+def _odd_one_out(pairs) -> str | None:
+    """The one condition in every pair of ``pairs`` (slow, fast, ...) where there are two pairs or more:
+    without it the others agree.  None where one pair cannot tell which side is off."""
+    if len(pairs) < 2:
+        return None
+    common = set.intersection(*({slow, fast} for slow, fast, *_ in pairs))
+    return next(iter(common)) if len(common) == 1 else None
+
+
+def _odd_flag(condition, quantity, pairs, values, points) -> Flag:
+    """The flag of ``condition``, off against every condition of ``pairs``: above the faster ones,
+    below the slower ones."""
+    unit = _unit(quantity)
+    hotter = [(fast, drop) for slow, fast, _, drop, _ in pairs if slow == condition]
+    cooler = [(slow, drop) for slow, fast, _, drop, _ in pairs if fast == condition]
+    parts = []
+    if hotter:
+        names = ", ".join(c for c, _ in hotter)
+        parts.append(f"{max(d for _, d in hotter):.1f} {unit} above condition{'s' * (len(hotter) > 1)} {names}, "
+                     f"although {'their' if len(hotter) > 1 else 'its'} motors turn at least as fast "
+                     f"({', '.join(_speeds(points[c]) for c, _ in hotter)} against {_speeds(points[condition])})")
+    if cooler:
+        names = ", ".join(c for c, _ in cooler)
+        parts.append(f"{max(d for _, d in cooler):.1f} {unit} below condition{'s' * (len(cooler) > 1)} {names}, "
+                     f"although both motors turn at least as fast ({_speeds(points[condition])} against "
+                     f"{', '.join(_speeds(points[c]) for c, _ in cooler)})")
+    reason = (f"{' and '.join(parts)} at the same ambient temperature; those conditions agree with one another"
+              f"{_kelvin_hint(values[condition][quantity], quantity, points[condition])}")
+    excess = max(drop - tolerance for *_, drop, tolerance in pairs)
+    return Flag(condition, quantity, "speed_monotone", reason, float(excess))
+
+
+def _kelvin_hint(value: float, quantity: str, point: OperatingPoint) -> str:
+    """Where a temperature read as kelvin would lie near its ambient, as a feed drive's do: say so."""
+    if quantity == ELONGATION_QUANTITY or not abs(value - KELVIN_OFFSET - point.ambient_c) < KELVIN_HINT_RISE_K:
+        return ""
+    return (f"; {value:g} °C is {value - KELVIN_OFFSET:.1f} °C if read as kelvin: is the file's value in K "
+            "where °C are expected?")
+
+
+def _unit(quantity: str) -> str:
+    return "µm" if quantity == ELONGATION_QUANTITY else "K"
+
+
+def _speeds(point: OperatingPoint) -> str:
+    return f"{point.screw_rpm:g}/{point.nut_rpm:g} rpm"
 
 
 def _ambient_shift(values, points, sigma_t, coverage):
