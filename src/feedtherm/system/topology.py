@@ -206,6 +206,12 @@ def overlaps(system: FeedSystem) -> list[Finding]:
     return findings
 
 
+def parts_overlap(system: FeedSystem, a: str, b: str) -> bool:
+    """True when solids of parts ``a`` and ``b`` share interior as drawn (a press fit's parts)."""
+    solids = _solids(system)
+    return any(overlap_volume(s, t) > 0.0 for s in solids if s.part == a for t in solids if t.part == b)
+
+
 def holes(system: FeedSystem) -> list[Finding]:
     """Every hole lies in a box of its part: along its axis within the box, its disc inside the
     box's cross-section."""
