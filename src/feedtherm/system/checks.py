@@ -68,15 +68,17 @@ _MOVED = _Moved()
 def check_errors(system: FeedSystem) -> list[Finding]:
     """The findings no model can run past (see the module's docstring)."""
     stroke = _stroke(system)
+    shape = topology.errors(system, with_overlaps=not stroke)
     errors = [
         # a stroke that takes the nut off its screw also drives the moving group into other parts:
         # its one error, not the overlaps along it
         *stroke,
-        *topology.errors(system, with_overlaps=not stroke),
+        *shape,
         *_geometry(system),
-        *points.misplaced(system),
+        # where points lie and which faces touch read the shape: judged once it has no error
+        *(() if shape else points.misplaced(system)),
         *points.on_moving_parts(system),
-        *(f for f in joint_contacts(system) if f.severity == "error"),
+        *(() if shape else (f for f in joint_contacts(system) if f.severity == "error")),
         *_joints_unique(system),
         *calibration_bounds(system),
         *_ambient_paths(system),
