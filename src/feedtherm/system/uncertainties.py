@@ -147,7 +147,13 @@ def _check(system: "FeedSystem", name: str, spec: UncertaintyParameter) -> None:
             raise _Problem(f"{where}.range", "a lognormal distribution needs a positive range")
     if spec.distribution == "lognormal" and declared <= 0:
         raise _Problem(f"{where}.paths", "a lognormal distribution needs a positive declared value (its median)")
-    _reach_accepted(system, where, spec, dict(zip(paths, values)), declared)
+    if spec.range is not None:
+        ends = (low, high)
+    elif spec.distribution == "lognormal":
+        ends = tuple(declared * math.exp(k * SAMPLED_SIGMAS * sigma) for k in (-1, 1))
+    else:
+        ends = tuple(declared + k * SAMPLED_SIGMAS * sigma for k in (-1, 1))
+    _reach_accepted(system, where, spec, dict(zip(paths, values)), ends)
 
 
 #: How far a normal or lognormal distribution without a range reaches [standard deviations]:
@@ -157,21 +163,13 @@ SAMPLED_SIGMAS = 7.04
 
 
 def _reach_accepted(system: "FeedSystem", where: str, spec: UncertaintyParameter, values: dict[str, float],
-                    declared: float) -> None:
+                    ends: tuple[float, float]) -> None:
     """Every value the distribution reaches is one its paths accept: the same sign, Limit and
     bounds the declared value passed (an expansion coefficient stays positive, a tcr inside its
-    range).  A range reaches its ends (a factor's ends times each path's value); a normal or
-    lognormal without one reaches SAMPLED_SIGMAS standard deviations."""
-    from .quantities import to_base_si
+    range).  ``ends``: how far it reaches, a range's ends or, without a range, SAMPLED_SIGMAS
+    standard deviations (a factor's, times each path's value)."""
     from .variants import refusal_at
 
-    if spec.range is not None:
-        field, ends = "range", [to_base_si(b) for b in spec.range]
-    else:
-        sigma = to_base_si(spec.sigma)
-        field = "sigma"
-        ends = ([declared * math.exp(k * SAMPLED_SIGMAS * sigma) for k in (-1, 1)] if spec.distribution == "lognormal"
-                else [declared + k * SAMPLED_SIGMAS * sigma for k in (-1, 1)])
     for path, value in values.items():
         for end in ends:
             reached = end if spec.kind == "value" else value * end
@@ -181,7 +179,7 @@ def _reach_accepted(system: "FeedSystem", where: str, spec: UncertaintyParameter
             if spec.range is not None:
                 raise _Problem(f"{where}.range", f"reaches {reached:g} (SI) at {path}, which that value does not "
                                                  f"accept: {reason}")
-            raise _Problem(f"{where}.{field}", f"a {spec.distribution} distribution without a range reaches "
+            raise _Problem(f"{where}.sigma", f"a {spec.distribution} distribution without a range reaches "
                                                f"{reached:g} (SI) at {path} ({SAMPLED_SIGMAS:g} standard deviations, "
                                                f"as far as the samples go), which that value does not accept: "
                                                f"{reason}; give range = [low, high] inside what it accepts")
