@@ -13,6 +13,7 @@ import sys
 import threading
 import time
 from contextlib import contextmanager
+from dataclasses import replace
 from pathlib import Path
 
 from . import __version__
@@ -156,6 +157,8 @@ def cmd_run(args: argparse.Namespace) -> int:
     loaded = _load_in_mode(args)
     # one description: a reduced model built for it is trained at its own numbers (models/reduced/store.py)
     options = ModelOptions(reduced_training="description")
+    if args.max_step is not None:
+        options = replace(options, max_step=args.max_step)
     measured = None
     if args.measured:
         from .system.measurements import read_description_measurements
@@ -754,6 +757,10 @@ def build_parser() -> argparse.ArgumentParser:
                           "memory free when the run starts); the positions beyond step by conjugate gradients")
     run.add_argument("--sample-interval", type=_positive_seconds, default=10.0, metavar="S",
                      help="spacing of the written samples [s] (default: 10)")
+    run.add_argument("--max-step", type=_positive_seconds, metavar="S",
+                     help="the longest time step [s] (default: 10 s at a standstill and with the averaged "
+                          "motion, 30 s for a slow table): shorter to resolve the first seconds after a step "
+                          "change, as a held temperature's")
     run.add_argument("--no-plots", action="store_true",
                      help="write the tables (and an FE run's fields) without plots and images: faster, "
                           "for scripts that run many runs")

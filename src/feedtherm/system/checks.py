@@ -2,14 +2,16 @@
 
 Two kinds of finding.  An *error* is a description no model can run as meant: a sensor
 outside the part it names, a face the part's shape does not have, a joint declared twice, a
-displacement sensor's or support's point outside its part, supports and joints that leave a part free to move, a stroke longer than the thread, calibration bounds reversed or
+displacement sensor's or support's point outside its part or in its hole (system/points.py), a
+support or the positioning reference on a moving part, a joint whose parts do not touch
+(system/joint_contacts.py), supports and joints that leave a part free to move, a stroke longer than the thread, calibration bounds reversed or
 of another dimension than their value, a part that no path connects to the ambient, a declared
-uncertainty whose range excludes its value (system/uncertainties.py).
+uncertainty whose range excludes its value or leaves the value's accepted range (system/uncertainties.py).
 :func:`~feedtherm.system.load.load_system` refuses such a description with the first error's
 line, so that no command starts on it.  A *warning* is content worth a look that the models
 can still run: a stated feed speed that the motor speeds contradict, a value no provenance
-entry accounts for, a joint between parts that do not touch, a contact sensor on a part that
-turns.
+entry accounts for, a joint's declared area far above its contact, a contact sensor on a part
+that turns.
 """
 
 from __future__ import annotations
@@ -18,10 +20,11 @@ import math
 import re
 
 from ..physics.mechanics import speed_table
-from . import topology
+from . import points, topology
 from .finding import Finding
-from .geometry import bounds, contains, gap, screw_axis, surface_area, table_travel
+from .geometry import bounds, screw_axis, surface_area, table_travel
 from .holding import free_motions
+from .joint_contacts import joint_contacts
 from .quantities import same_dimension, to_base_si
 from .schema import FeedSystem
 from .surfaces import RotatingConvection
@@ -31,7 +34,7 @@ from .variants import si_unit_at, unresolved
 _RAD_PER_S_TO_RPM = 60.0 / (2.0 * math.pi)
 #: Relative tolerance on a stated feed speed against (n_s - n_n) * lead.
 FEED_SPEED_TOLERANCE = 0.02
-#: Distance [m] below which two parts are taken to touch.
+#: How far [m] the nut's travel may reach beyond the screw's ends (a rounding of the drawing).
 TOUCH_TOLERANCE = 1e-3
 
 
@@ -42,7 +45,7 @@ def check_system(system: FeedSystem) -> list[Finding]:
         *_ambient_sensor(system),
         *_wired_sensors(system),
         *_feed_speeds(system),
-        *_joints_touch(system),
+        *(f for f in joint_contacts(system) if f.severity == "warning"),
         *topology.warnings(system),
         *_elastic_constants(system),
         *_uncertainties(system, "warning"),
@@ -65,12 +68,17 @@ _MOVED = _Moved()
 def check_errors(system: FeedSystem) -> list[Finding]:
     """The findings no model can run past (see the module's docstring)."""
     stroke = _stroke(system)
+    shape = topology.errors(system, with_overlaps=not stroke)
     errors = [
         # a stroke that takes the nut off its screw also drives the moving group into other parts:
         # its one error, not the overlaps along it
         *stroke,
-        *topology.errors(system, with_overlaps=not stroke),
+        *shape,
         *_geometry(system),
+        # where points lie and which faces touch read the shape: judged once it has no error
+        *(() if shape else points.misplaced(system)),
+        *points.on_moving_parts(system),
+        *(() if shape else (f for f in joint_contacts(system) if f.severity == "error")),
         *_joints_unique(system),
         *calibration_bounds(system),
         *_ambient_paths(system),
@@ -114,12 +122,6 @@ def _feed_speeds(system: FeedSystem) -> list[Finding]:
 def _geometry(system: FeedSystem) -> list[Finding]:
     findings = []
     parts = system.parts
-    for name, sensor in system.sensors.items():
-        part = parts[sensor.part]
-        if (part.boxes or part.cylinders) and not contains(part, sensor.position):
-            where = ", ".join(f"{x * 1e3:g}" for x in sensor.position)
-            findings.append(Finding(f"sensors.{name}.position", f"({where}) mm lies outside part {sensor.part!r}, "
-                                    "which it names (a sensor reads its part's surface or inside)", "error"))
     badly_selected = {f.path.split(".")[1] for f in topology.selections(system)}  # reported there
     for name, surface in system.surfaces.items():
         if name in badly_selected:
@@ -131,25 +133,6 @@ def _geometry(system: FeedSystem) -> list[Finding]:
             continue
         if area <= 0.0:
             findings.append(Finding(f"surfaces.{name}", f"has no area ({area:g} m^2)", "error"))
-    findings.extend(_mechanics_points(system))
-    return findings
-
-
-def _mechanics_points(system: FeedSystem) -> list[Finding]:
-    """Every point the mechanics names lies in the part it names."""
-    mech, parts = system.mechanics, system.parts
-    named = [(f"mechanics.supports[{i}].point", s.part, s.point) for i, s in enumerate(mech.supports)]
-    named.append(("mechanics.elongation.target.point", mech.elongation.target.part, mech.elongation.target.point))
-    if not isinstance(mech.elongation.mount, str):
-        named.append(("mechanics.elongation.mount.point", mech.elongation.mount.part, mech.elongation.mount.point))
-    if mech.positioning is not None:
-        named.append(("mechanics.positioning.reference.point", mech.positioning.reference.part,
-                      mech.positioning.reference.point))
-    findings = []
-    for path, part, point in named:
-        if not contains(parts[part], point):
-            where = ", ".join(f"{x * 1e3:g}" for x in point)
-            findings.append(Finding(path, f"({where}) mm lies outside part {part!r}, which it names", "error"))
     return findings
 
 
@@ -205,16 +188,6 @@ def _wired_sensors(system: FeedSystem) -> list[Finding]:
                     "does not turn")
             for name, sensor in system.sensors.items()
             if sensor.method == "contact" and sensor.part in turning]
-
-
-def _joints_touch(system: FeedSystem) -> list[Finding]:
-    findings = []
-    for i, joint in enumerate(system.joints):
-        a, b = joint.between
-        distance = gap(system.parts[a], system.parts[b])
-        if distance > TOUCH_TOLERANCE:
-            findings.append(Finding(f"joints[{i}]", f"{a!r} and {b!r} do not touch ({distance * 1e3:.1f} mm apart)"))
-    return findings
 
 
 def _joints_unique(system: FeedSystem) -> list[Finding]:

@@ -108,26 +108,73 @@ def _cylinder_bounds(cyl: Cylinder):
 
 
 def contains(part: Part, point, tol: float = 1e-3) -> bool:
-    """True when ``point`` lies in (or within ``tol`` of) one of the part's primitives."""
-    for box in part.boxes:
-        hi = [o + s for o, s in zip(box.origin, box.size)]
-        if all(box.origin[k] - tol <= point[k] <= hi[k] + tol for k in range(3)):
-            return True
-    for cyl in part.cylinders:
-        i = _AXES[cyl.axis]
-        radial = math.dist([point[k] for k in range(3) if k != i], [cyl.origin[k] for k in range(3) if k != i])
-        along = point[i] - cyl.origin[i]
-        inside_r = cyl.inner_diameter / 2.0 - tol <= radial <= cyl.outer_diameter / 2.0 + tol
-        if -tol <= along <= cyl.length + tol and inside_r:
-            return True
-    return False
+    """True when ``point`` lies in (or within ``tol`` of) the part's material: in one of its
+    primitives and not in a hole's empty bore (:func:`hole_at`)."""
+    if any(_in_cylinder(cyl, point, tol) for cyl in part.cylinders):
+        return True
+    return any(_in_box(box, point, tol) for box in part.boxes) and hole_at(part, point, tol) is None
 
 
-def gap(a: Part, b: Part) -> float:
-    """Distance [m] between the bounding boxes of two parts (0 when they touch or overlap)."""
-    (alo, ahi), (blo, bhi) = bounds(a), bounds(b)
-    d = [max(blo[k] - ahi[k], alo[k] - bhi[k], 0.0) for k in range(3)]
-    return math.sqrt(sum(x * x for x in d))
+def _in_box(box: Box, point, tol: float) -> bool:
+    return all(box.origin[k] - tol <= point[k] <= box.origin[k] + box.size[k] + tol for k in range(3))
+
+
+def _in_cylinder(cyl: Cylinder, point, tol: float) -> bool:
+    i = _AXES[cyl.axis]
+    radial = math.dist([point[k] for k in range(3) if k != i], [cyl.origin[k] for k in range(3) if k != i])
+    along = point[i] - cyl.origin[i]
+    inside_r = cyl.inner_diameter / 2.0 - tol <= radial <= cyl.outer_diameter / 2.0 + tol
+    return -tol <= along <= cyl.length + tol and inside_r
+
+
+def hole_at(part: Part, point, tol: float = 1e-3) -> int | None:
+    """Index of the hole in whose empty bore ``point`` lies more than ``tol`` from the material
+    around it (None where it lies in none, or in one of the part's cylinders).
+
+    The bore's wall is material within ``tol``, and so is its bottom where the hole ends in a box
+    (a blind hole's floor, where a thermocouple may sit); where the hole opens out of the part,
+    its mouth is empty for ``tol`` beyond the face.
+    """
+    if any(_in_cylinder(cyl, point, tol) for cyl in part.cylinders):
+        return None
+    for j, hole in enumerate(part.holes):
+        k = _AXES[hole.axis]
+        radial = math.dist([point[m] for m in range(3) if m != k], [hole.origin[m] for m in range(3) if m != k])
+        if radial >= hole.outer_diameter / 2.0 - tol:
+            continue
+        start, end = hole.origin[k], hole.origin[k] + hole.length
+        low = start + tol if _floored(part, hole, start, -1.0) else start - tol
+        high = end - tol if _floored(part, hole, end, 1.0) else end + tol
+        if low < point[k] < high:
+            return j
+    return None
+
+
+def _floored(part: Part, hole: Cylinder, level: float, outward: float) -> bool:
+    """True when a box of the part closes the hole's end at ``level`` (its axis meets material
+    just beyond it)."""
+    k = _AXES[hole.axis]
+    probe = list(hole.origin)
+    probe[k] = level + outward * 1e-9
+    return any(_in_box(box, probe, 0.0) for box in part.boxes) and not any(
+        _in_hole(other, probe) for other in part.holes)
+
+
+def _in_hole(hole: Cylinder, point) -> bool:
+    k = _AXES[hole.axis]
+    radial = math.dist([point[m] for m in range(3) if m != k], [hole.origin[m] for m in range(3) if m != k])
+    return radial < hole.outer_diameter / 2.0 and hole.origin[k] <= point[k] <= hole.origin[k] + hole.length
+
+
+def part_surface_area(part: Part) -> float:
+    """An upper bound of the surface [m^2] of a part as drawn: every face of its boxes and
+    cylinders whole and every hole's wall, counted primitive by primitive (the faces where its
+    own primitives meet and the holes' mouths are counted too, a blind hole's floor is not: no
+    larger than a mouth)."""
+    boxes = sum(2.0 * (sx * sy + sy * sz + sx * sz) for sx, sy, sz in (box.size for box in part.boxes))
+    walls = sum(math.pi * h.outer_diameter * h.length for h in part.holes)
+    cylinders = sum(_cylinder_face_area(c, f) for c in part.cylinders for f in ("lateral", "bore", "ends"))
+    return boxes + walls + cylinders
 
 
 def nut_centre_x(system) -> float:

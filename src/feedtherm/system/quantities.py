@@ -122,6 +122,10 @@ ROTATIONAL_DAMPING_LIMIT = Limit(0.0, 100.0, "N*m*s/rad", "N*m*s/rad",
                                  "100 N m of drag at 1 rad/s, beyond any motor's or bearing's viscous drag")
 ANGLE_LIMIT = Limit(0.0, math.pi / 2.0, "rad", "deg",
                     "a flank or a contact normal lies within a quarter turn of the axis' normal plane")
+#: The smallest size [m] a description may state (:data:`PosLength`), with its reason.
+SIZE_MINIMUM = 1e-6
+SIZE_MINIMUM_REASON = ("no part, bore or feature of a feed drive is made smaller and no mesh resolves it; two solids "
+                       "closer than this touch for check (system/topology.py)")
 #: Factors on a model's heat or coefficient (set by calibration and perturbation studies).
 FACTOR_LIMIT = Limit(0.01, 100.0, "", "", "a model off by more than a hundred either way is another model, not a "
                      "correction of it")
@@ -264,8 +268,14 @@ def _quantity(si_unit: str, sign: str = "any", limit: Limit | None = None, hint:
 
 # Annotated float types: SI value after validation.  "Pos" = strictly positive.
 Length = _quantity("m", limit=LENGTH_LIMIT)
-PosLength = _quantity("m", "positive", LENGTH_LIMIT)
-NonNegLength = _quantity("m", "nonnegative", LENGTH_LIMIT)
+#: A size (a box's edge, a cylinder's length or diameter, a hole's, a convection length, a lead, a
+#: bearing's bore): positive, and at least :data:`SIZE_MINIMUM`.
+PosLength = Annotated[float, BeforeValidator(lambda v: _size(v, "positive")), SIUnit("m")]
+#: A size that may be 0 for "none" (a solid cylinder's inner diameter), else at least SIZE_MINIMUM.
+NonNegLength = Annotated[float, BeforeValidator(lambda v: _size(v, "nonnegative")), SIUnit("m")]
+#: A positive length that is no size: a displacement's spread (a displacement sensor resolves far
+#: below SIZE_MINIMUM).
+PosDisplacement = _quantity("m", "positive", LENGTH_LIMIT)
 PosArea = _quantity("m^2", "positive", AREA_LIMIT)
 PosDensity = _quantity("kg/m^3", "positive", DENSITY_LIMIT)
 PosConductivity = _quantity("W/(m*K)", "positive", CONDUCTIVITY_LIMIT)
@@ -299,6 +309,15 @@ PosDimensionless = _quantity("", "positive")
 NonNegAngle = _quantity("rad", "nonnegative", ANGLE_LIMIT)
 #: A factor on a model's heat or coefficient (``heat_factor``, ``chtc_factor``).
 PosFactor = _quantity("", "positive", FACTOR_LIMIT)
+
+
+def _size(value: object, sign: str) -> float:
+    """A size in metres: ``sign`` and :data:`LENGTH_LIMIT` as any length, and not below
+    :data:`SIZE_MINIMUM` (0 stays 0 where ``sign`` is ``"nonnegative"``: none)."""
+    metres = to_si(value, "m", sign=sign, limit=LENGTH_LIMIT)
+    if metres != 0.0 and metres < SIZE_MINIMUM:
+        raise ValueError(f"{value!r} is below the smallest accepted size, 1 µm ({SIZE_MINIMUM_REASON})")
+    return metres
 
 
 def _fraction(value: object) -> float:

@@ -34,6 +34,7 @@ from .quantities import (
     PosConductivity,
     PosContactResistance,
     PosDensity,
+    PosDisplacement,
     PosDuration,
     PosExpansion,
     PosHeatTransferCoefficient,
@@ -264,7 +265,7 @@ class CalibrationParameter(Strict):
 class Calibration(Strict):
     parameters: dict[str, CalibrationParameter]
     temperature_sigma: PosTemperatureDifference = 0.5  # weights of the residuals
-    elongation_sigma: PosLength = 2e-6
+    elongation_sigma: PosDisplacement = 2e-6
     equilibrium_sigma: PosDuration = 600.0  # of a stated equilibrium time [s]
 
     @model_serializer(mode="wrap")

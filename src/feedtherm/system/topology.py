@@ -8,8 +8,8 @@ What no machine can be is an error (``feedtherm check`` lists them, every comman
   drawn); a part is a union of non-overlapping primitives less its holes, so a cylinder in a
   box's hole does not overlap the box.  Parts that a joint declares a press fit (``fit =
   true``) may overlap each other;
-- a hole longer than its box, outside it or reaching out of its side, and a hole on a part
-  without boxes (holes are cut from the boxes);
+- a hole outside its box, longer than it, or reaching out of its end or its side, and a hole on
+  a part without boxes (holes are cut from the boxes);
 - the same face of the same primitive declared twice, in two surfaces or twice in one (it would
   be cooled twice);
 - a surface's ``boxes`` or ``cylinders`` index that the part does not have.
@@ -206,6 +206,12 @@ def overlaps(system: FeedSystem) -> list[Finding]:
     return findings
 
 
+def parts_overlap(system: FeedSystem, a: str, b: str) -> bool:
+    """True when solids of parts ``a`` and ``b`` share interior as drawn (a press fit's parts)."""
+    solids = _solids(system)
+    return any(overlap_volume(s, t) > 0.0 for s in solids if s.part == a for t in solids if t.part == b)
+
+
 def holes(system: FeedSystem) -> list[Finding]:
     """Every hole lies in a box of its part: along its axis within the box, its disc inside the
     box's cross-section."""
@@ -229,8 +235,14 @@ def holes(system: FeedSystem) -> list[Finding]:
             spans = sorted((b.origin[k], b.origin[k] + b.size[k]) for b in hosts)
             if not _covered(start, end, spans):
                 shown = ", ".join(f"{lo * 1e3:g}..{hi * 1e3:g}" for lo, hi in spans)
-                findings.append(Finding(path, f"runs {start * 1e3:g}..{end * 1e3:g} mm along {hole.axis}, beyond its "
-                                        f"box ({shown} mm): a hole is longer than its box", "error"))
+                runs = f"runs {start * 1e3:g}..{end * 1e3:g} mm along {hole.axis}"
+                if all(end <= lo + DEPTH_TOL or start >= hi - DEPTH_TOL for lo, hi in spans):
+                    why = f"{runs}, outside its box ({shown} mm): a hole lies in the box it is cut from"
+                elif hole.length > max(hi for _, hi in spans) - min(lo for lo, _ in spans) + DEPTH_TOL:
+                    why = f"{runs}, beyond its box ({shown} mm): the hole is longer than its box"
+                else:
+                    why = f"{runs}, beyond its box ({shown} mm): the hole reaches out of its box's end (move it in)"
+                findings.append(Finding(path, why, "error"))
                 continue
             if not any(all(b.origin[m] - DEPTH_TOL <= centre[m] - r and centre[m] + r <= b.origin[m] + b.size[m]
                            + DEPTH_TOL for m in (u, v)) for b in hosts):

@@ -16,7 +16,7 @@ A description's optional ``[uncertainty.parameters.<name>]`` tables say how far 
 one's of ln x.  The section changes no value: ``feedtherm uncertainty`` samples it.
 
 The rules that need the rest of the description (paths name values, ranges contain the declared
-value) are :func:`uncertainty_problems`, which ``feedtherm check`` lists and the loader applies
+value and stay inside what it accepts: an expansion coefficient's stays positive) are :func:`uncertainty_problems`, which ``feedtherm check`` lists and the loader applies
 after the description's own checks (so that a bad value is reported as such, not as a prior
 that excludes it).
 """
@@ -91,7 +91,9 @@ def uncertainty_problems(system: "FeedSystem") -> list[tuple[str, str, str]]:
 
     Errors (``feedtherm check`` and the loader refuse the description): a range or sigma of
     another dimension than the value, a range that excludes the declared value (1 for a scale)
-    or is reversed, a sigma that is not positive, the paths of a ``value`` parameter holding
+    or is reversed, a range (or a normal's or lognormal's reach without one) that leaves what the
+    value accepts (its sign and accepted range: an expansion coefficient stays positive), a sigma
+    that is not positive, the paths of a ``value`` parameter holding
     different values, a lognormal on values that are not positive, a path that names no number
     (a typo, or a loss model swapped in the description that left the path behind).
     """
@@ -145,3 +147,39 @@ def _check(system: "FeedSystem", name: str, spec: UncertaintyParameter) -> None:
             raise _Problem(f"{where}.range", "a lognormal distribution needs a positive range")
     if spec.distribution == "lognormal" and declared <= 0:
         raise _Problem(f"{where}.paths", "a lognormal distribution needs a positive declared value (its median)")
+    if spec.range is not None:
+        ends = (low, high)
+    elif spec.distribution == "lognormal":
+        ends = tuple(declared * math.exp(k * SAMPLED_SIGMAS * sigma) for k in (-1, 1))
+    else:
+        ends = tuple(declared + k * SAMPLED_SIGMAS * sigma for k in (-1, 1))
+    _reach_accepted(system, where, spec, dict(zip(paths, values)), ends)
+
+
+#: How far a normal or lognormal distribution without a range reaches [standard deviations]:
+#: the sampler draws quantiles no closer than 1e-12 to 0 and 1 (analysis/uncertainty/sampling.py,
+#: EDGE), 7.03 standard deviations from the centre.
+SAMPLED_SIGMAS = 7.04
+
+
+def _reach_accepted(system: "FeedSystem", where: str, spec: UncertaintyParameter, values: dict[str, float],
+                    ends: tuple[float, float]) -> None:
+    """Every value the distribution reaches is one its paths accept: the same sign, Limit and
+    bounds the declared value passed (an expansion coefficient stays positive, a tcr inside its
+    range).  ``ends``: how far it reaches, a range's ends or, without a range, SAMPLED_SIGMAS
+    standard deviations (a factor's, times each path's value)."""
+    from .variants import refusal_at
+
+    for path, value in values.items():
+        for end in ends:
+            reached = end if spec.kind == "value" else value * end
+            reason = refusal_at(system, path, reached)
+            if reason is None:
+                continue
+            if spec.range is not None:
+                raise _Problem(f"{where}.range", f"reaches {reached:g} (SI) at {path}, which that value does not "
+                                                 f"accept: {reason}")
+            raise _Problem(f"{where}.sigma", f"a {spec.distribution} distribution without a range reaches "
+                                               f"{reached:g} (SI) at {path} ({SAMPLED_SIGMAS:g} standard deviations, "
+                                               f"as far as the samples go), which that value does not accept: "
+                                               f"{reason}; give range = [low, high] inside what it accepts")

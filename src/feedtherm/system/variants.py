@@ -8,14 +8,16 @@ new SHA-256 so its provenance differs from the original's.
 from __future__ import annotations
 
 import difflib
+import functools
 import hashlib
 import json
 import re
+import types
 import typing
 from dataclasses import replace
-from typing import Any
+from typing import Annotated, Any
 
-from pydantic import BaseModel, ValidationError
+from pydantic import BaseModel, TypeAdapter, ValidationError
 
 from ..errors import DescriptionError
 from .areas import with_joint_areas
@@ -103,6 +105,48 @@ def _si_unit_in(items) -> str | None:
         if found is not None:
             return found
     return None
+
+
+def refusal_at(system: FeedSystem, path: str, si_value: float) -> str | None:
+    """Why the field at ``path`` would refuse ``si_value`` (in its SI unit) had the description
+    stated it: the same validation (sign, :class:`~feedtherm.system.quantities.Limit`, bounds) its
+    own value passed.  ``None`` where it accepts it, or where ``path`` names no field of a model
+    (a share in a dict: its rules are the dict's, checked with the whole description).
+    """
+    keys = split_path(path)
+    try:
+        if len(keys) >= 2 and isinstance(keys[-1], int) and isinstance(_walk(system, keys[:-1]), tuple):
+            owner, name, index = _walk(system, keys[:-2]), keys[-2], keys[-1]
+        else:
+            owner, name, index = _walk(system, keys[:-1]), keys[-1], None
+    except (KeyError, IndexError, AttributeError, TypeError):
+        return None
+    if not isinstance(owner, BaseModel) or name not in type(owner).model_fields:
+        return None
+    adapter, unit = _field_adapter(type(owner), name, index)
+    try:
+        adapter.validate_python(f"{si_value!r} {unit}" if unit else si_value)
+    except ValidationError as exc:
+        reason = str(exc.errors()[0]["msg"]).removeprefix("Value error, ")
+        return reason.split("; did you mean")[0]  # a typo's hint: the value is no typed text here
+    return None
+
+
+@functools.lru_cache(maxsize=None)
+def _field_adapter(owner: type[BaseModel], name: str, index: int | None) -> tuple[TypeAdapter, str | None]:
+    """A validator of one field of ``owner`` (of element ``index`` of a tuple field), with the
+    field's constraints, and its SI unit; ``None`` left out of an optional field's type."""
+    field = owner.model_fields[name]
+    if index is not None:
+        annotation = typing.get_args(field.annotation)[index]
+    else:
+        args = typing.get_args(field.annotation)
+        annotation = field.annotation
+        if type(None) in args and typing.get_origin(field.annotation) in (typing.Union, types.UnionType):
+            annotation = typing.Union[tuple(a for a in args if a is not type(None))]
+        if field.metadata:
+            annotation = Annotated[(annotation, *field.metadata)]
+    return TypeAdapter(annotation), _si_unit_in([annotation])
 
 
 def _set(obj: Any, keys: list, value: Any) -> Any:

@@ -106,7 +106,8 @@ def part_cells(name: str, part: Part, conductivity: float, cell_size: float, fir
     breaks = breaks or [None] * (n_box + len(part.cylinders))
     grids = [box_grid(b, part.holes, min(cell_size, max(b.size) / PART_CELLS), breaks[i])
              for i, b in enumerate(part.boxes)]
-    grids += [cylinder_grid(c, min(cell_size, max(c.length, c.outer_diameter) / PART_CELLS), breaks[n_box + i] or ())
+    grids += [cylinder_grid(c, min(cell_size, max(c.length, c.outer_diameter) / PART_CELLS, c.outer_diameter),
+                            breaks[n_box + i] or ())
               for i, c in enumerate(part.cylinders)]
     first, n = [], first_node
     for g in grids:

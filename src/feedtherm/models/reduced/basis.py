@@ -70,6 +70,13 @@ REFERENCE_HTC = 10.0
 #: [s] time constants of the shifted snapshots: a reciprocation step, a cycle, the nut's and
 #: the screw's warm-up, the bed's (besides s = 0, the steady states).
 TIME_CONSTANTS = (2.0, 60.0, 600.0, 6000.0)
+#: [s] time constants at which only the inputs that do not move are answered (a surface's sink, a
+#: fixed source): a held temperature reaches its value at once, and for its first seconds its answer
+#: is a layer √(ατ) thick (3 mm of steel at 0.5 s) that the answers at 2 s cannot hold; without them a
+#: pin fin held at its base read 1.0 K below the air 25 mm away at 3 s while being heated
+#: (tests/verification/test_reduced_fin.py).  A source's heat grows from nothing: its early answer is
+#: smooth, and the moving inputs' answers (most of a basis's cost) are not taken at these shifts.
+EARLY_TIME_CONSTANTS = (0.2, 0.5, 1.0, 5.0, 20.0)
 #: Positions (spread over the stroke, the ends included) at which the answers to the inputs that
 #: do not move are corrected toward the position's own operator.
 CORRECTED_POSITIONS = 5
@@ -80,7 +87,7 @@ SHIFT_TOLERANCE_FACTOR = 0.1
 #: Default relative POD tolerance (singular values below it times the largest are dropped).
 TOLERANCE = 1e-5
 #: Changes whenever the way a basis is built changes, so that older cached bases are not read.
-BASIS_VERSION = 3
+BASIS_VERSION = 4
 
 
 @dataclass(frozen=True)
@@ -223,7 +230,7 @@ def basis_key(model: ThermalModel, tolerance: float, time_constants: tuple[float
     its training ``points`` change, and its settings."""
     h = hashlib.blake2b(digest_size=20)
     settings = (BASIS_VERSION, tuple(reference_coefficients(model).tolist()), CORRECTED_POSITIONS,
-                SHIFT_TOLERANCE_FACTOR, float(tolerance), tuple(map(float, time_constants)),
+                SHIFT_TOLERANCE_FACTOR, float(tolerance), tuple(map(float, time_constants)), EARLY_TIME_CONSTANTS,
                 model.n_nodes, len(model.positions), tuple(tuple(sorted(p.items())) for p in points))
     h.update(repr(settings).encode())
 
@@ -304,7 +311,8 @@ def _build(model: ThermalModel, tolerance: float, time_constants: tuple[float, .
         # only (their shapes at the others are the first point's, moved)
         moving_at = range(n_positions) if index == 0 else corrected_at
         blocks, snapshots = _point_snapshots(TrainingOperators(model, point), C, fixed, moving, corrected_at,
-                                             moving_at, time_constants, tolerance, scale, ones, factors)
+                                             moving_at, time_constants, tolerance, scale, ones, factors,
+                                             EARLY_TIME_CONSTANTS)
         count += snapshots
         if kept is None:
             kept = np.hstack(blocks)
@@ -381,7 +389,8 @@ def orthonormalise(X: np.ndarray, scale: np.ndarray) -> np.ndarray:
 
 
 def _point_snapshots(ops: TrainingOperators, C, fixed, moving, corrected_at, moving_at, time_constants,
-                     tolerance, scale, ones, factors: "_OnePattern") -> tuple[list[np.ndarray], int]:
+                     tolerance, scale, ones, factors: "_OnePattern",
+                     early_time_constants: tuple[float, ...] = ()) -> tuple[list[np.ndarray], int]:
     """One training point's snapshots, compressed per shift: (blocks, snapshots taken)."""
     model = ops.model
     n_positions = len(model.positions)
@@ -390,10 +399,14 @@ def _point_snapshots(ops: TrainingOperators, C, fixed, moving, corrected_at, mov
     G_mean = ops.mean_conductance()
     links = {k: ops.links(k) for k in conductances}
     blocks, count = [], 0
-    for tau in (None, *time_constants):
+    for tau in (None, *time_constants, *(t for t in early_time_constants if t not in time_constants)):
         shift = 0.0 if tau is None else 1.0 / tau
         mean = factors((G_mean + sp.diags(averaged_links + shift * C)).tocsc())
         x_fixed = mean.solve(fixed)
+        if tau is not None and tau not in time_constants:  # an early shift: the fixed inputs alone
+            count += _append_block(blocks, x_fixed, C, ones, scale, tolerance)
+            del mean, x_fixed
+            continue
         # one block step toward each position's own operator (its sliding contact and exposure),
         # x + M̄⁻¹(b − M_k x): the positions' solves as one solve of many right-hand sides
         moved = [k for k in conductances if k in moving_at and moving[k].shape[1]]
@@ -413,16 +426,24 @@ def _point_snapshots(ops: TrainingOperators, C, fixed, moving, corrected_at, mov
         del mean, x_fixed, starts, residuals
         X = np.hstack(snapshots)
         del snapshots
-        # the uniform part is the first basis vector: take it out of the snapshots, then scale
-        # each snapshot to unit capacity norm so that every input counts alike
-        X -= np.outer(ones, ones @ (C[:, None] * X))
-        norms = np.sqrt(np.einsum("ij,ij->j", X, C[:, None] * X))
-        kept = norms > 1e-12 * norms.max()  # an input with no response beyond the uniform one
-        X = X[:, kept] * (scale[:, None] / norms[kept])
-        count += X.shape[1]
-        blocks.append(_compressed(X, SHIFT_TOLERANCE_FACTOR * tolerance)[0])
+        count += _append_block(blocks, X, C, ones, scale, tolerance)
         del X
     return blocks, count
+
+
+def _append_block(blocks: list, X: np.ndarray, C, ones, scale, tolerance) -> int:
+    """One shift's snapshots ``X`` compressed onto ``blocks``; returns how many were taken.
+
+    The uniform part is the first basis vector: it is taken out of the snapshots, and each is scaled
+    to unit capacity norm so that every input counts alike."""
+    X = X - np.outer(ones, ones @ (C[:, None] * X))
+    norms = np.sqrt(np.einsum("ij,ij->j", X, C[:, None] * X))
+    if not norms.size or norms.max() == 0.0:
+        return 0
+    kept = norms > 1e-12 * norms.max()  # an input with no response beyond the uniform one
+    X = X[:, kept] * (scale[:, None] / norms[kept])
+    blocks.append(_compressed(X, SHIFT_TOLERANCE_FACTOR * tolerance)[0])
+    return X.shape[1]
 
 
 class _OnePattern:
