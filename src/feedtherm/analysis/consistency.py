@@ -181,7 +181,8 @@ def _elongation_law(values, sigma_t, sigma_d, coverage, notes):
 def _speed_monotone(values, points, sigma_t, sigma_d, coverage):
     """Property 2 for every pair of conditions at the same ambient.  A value that breaks it with
     several conditions, where every pair it breaks involves that one condition, is that condition's
-    (a column of condition I in kelvin is hotter than II and III, which agree with each other):
+    (the slowest condition's temperatures written in kelvin are hotter than two faster conditions,
+    which agree with each other):
     flagged there once.  Otherwise each faster condition that is cooler is flagged, as seen."""
     found = []  # (slow, fast, quantity, drop, tolerance) in the order of the pairs
     for slow, fast in itertools.permutations(values, 2):
