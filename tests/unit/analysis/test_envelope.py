@@ -1,5 +1,7 @@
 """A law's training envelope and the samples outside it (analysis/compensation/envelope.py), by hand."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -23,6 +25,16 @@ def test_rates_over_the_window_by_hand():
     # 0 s, 30 s: no sample 60 s before -> 0; 60 s: (290.6 - 290.0)/60 = 0.01 K/s;
     # 90 s: (291.5 - 290.3)/60 = 0.02 K/s; 120 s: (292.4 - 290.6)/60 = 0.03 K/s
     assert rates == pytest.approx([0.0, 0.0, 0.01, 0.02, 0.03])
+
+
+def test_a_window_below_the_times_rounding_takes_the_rate_since_the_previous_sample():
+    # 60 - 5e-324 == 60 in floating point: a sample must not pair with itself (0 / 0)
+    times = np.array([0.0, 30.0, 60.0])
+    values = np.array([[290.0], [290.3], [290.9]])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        rates = windowed_rates(times, values, 5e-324)[:, 0]
+    assert rates == pytest.approx([0.0, 0.3 / 30, 0.6 / 30])  # 0 s: no sample before it
 
 
 def test_the_envelope_of_two_cycles_by_hand():

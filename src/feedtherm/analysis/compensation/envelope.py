@@ -41,7 +41,8 @@ def windowed_rates(times: np.ndarray, readings: np.ndarray, window: float) -> np
     for the samples of the first window), per column of ``readings`` ``(n, k)``."""
     readings = np.atleast_2d(np.asarray(readings, float).T).T
     out = np.zeros_like(readings)
-    earlier = np.searchsorted(times, times - window, side="right") - 1
+    # a sample never pairs with itself: a window below the times' rounding (5e-324 s) would divide 0 by 0
+    earlier = np.minimum(np.searchsorted(times, times - window, side="right") - 1, np.arange(len(times)) - 1)
     has = earlier >= 0
     j = np.flatnonzero(has)
     if j.size:
