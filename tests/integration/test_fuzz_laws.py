@@ -13,7 +13,7 @@ on stderr and nothing written.  A Kalman estimator is read by ``KalmanLaw.from_f
 few readings: a one-line ``FeedthermError``, or finite estimates.  Any other exception, a traceback,
 or an example slower than the deadline is a defect.
 
-The suite runs a fixed-seed budget (``FEEDTHERM_FUZZ_EXAMPLES``, default 150); ``make fuzz`` runs 1,000.
+The suite runs a fixed-seed budget (``FEEDTHERM_FILE_FUZZ_EXAMPLES``, default 300); ``make fuzz`` runs 1,000.
 """
 
 from __future__ import annotations
@@ -39,7 +39,7 @@ from feedtherm import cli
 from feedtherm.analysis.compensation.kalman import KalmanLaw
 from feedtherm.errors import FeedthermError
 
-EXAMPLES = int(os.environ.get("FEEDTHERM_FUZZ_EXAMPLES", "150"))
+EXAMPLES = int(os.environ.get("FEEDTHERM_FILE_FUZZ_EXAMPLES", "300"))
 HAND = {"format": "feedtherm-compensation-law", "version": 1, "kind": "linear_regression",
         "inputs": [{"name": "T1"}], "lags_s": [600.0], "bias_m": -6.0e-3, "weights_m_per_K": [[1.0e-5, 1.0e-5]]}
 DOCUMENTS = {**every_document(), "hand": HAND}

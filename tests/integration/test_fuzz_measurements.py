@@ -19,7 +19,7 @@ Every example goes through both readers' paths:
   (:func:`test_fuzz_laws.check_outcome`).
 
 Any other exception, a traceback or an example slower than the deadline is a defect.  The suite runs
-a fixed-seed budget (``FEEDTHERM_FUZZ_EXAMPLES``, default 150); ``make fuzz`` runs 1,000.
+a fixed-seed budget (``FEEDTHERM_FILE_FUZZ_EXAMPLES``, default 300); ``make fuzz`` runs 1,000.
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ from feedtherm.errors import FeedthermError
 from feedtherm.system.load import load_system
 from feedtherm.system.measurements import read_description_measurements
 
-EXAMPLES = int(os.environ.get("FEEDTHERM_FUZZ_EXAMPLES", "150"))
+EXAMPLES = int(os.environ.get("FEEDTHERM_FILE_FUZZ_EXAMPLES", "300"))
 SYSTEMS = {name: load_system(name) for name in ("ballscrew_example", "paper")}
 LAW = json.dumps(regression_documents()["law"])  # a law of D on T1, T2 with two lags
 
@@ -80,15 +80,16 @@ HEADER_CELLS = ["time [s]", "time [h]", "time", "time []", "time [parsec]", "tim
                 "target [\x00]", "time [min]\x00"]
 
 
-@st.composite
-def mutated(draw):
-    name = draw(st.sampled_from(sorted(FILES)))
-    text, system = FILES[name]
-    lines = text.splitlines()
-    data = [i for i, line in enumerate(lines) if line and not line.startswith("#")]
+LINE_EDITS = ["cell", "cell", "cell", "header", "drop", "double", "swap", "blank", "comment", "column", "uncolumn"]
+FILE_EDITS = ["cut", "crlf", "encoding", "empty"]
+
+
+def _edit_lines(draw, lines: list[str], kind: str) -> None:
+    """One edit of a line (or the header) of ``lines``, in place."""
+    data = [i for i, line in enumerate(lines) if line.strip() and not line.lstrip().startswith("#")]
+    if len(data) < 2:
+        return
     header, rows = data[0], data[1:]
-    kind = draw(st.sampled_from(["cell", "cell", "cell", "header", "drop", "double", "swap", "blank", "comment",
-                                 "column", "uncolumn", "cut", "crlf", "encoding", "empty"]))
     row = draw(st.sampled_from(rows))
     cells = lines[row].split(",")
     if kind == "cell":
@@ -111,19 +112,30 @@ def mutated(draw):
         lines.insert(row, draw(st.sampled_from(["# a note", " # indented", "#,1,2,3"])))
     elif kind == "column":
         lines[row] += draw(st.sampled_from([",", ",1", ",x"]))
-    elif kind == "uncolumn":
+    else:
         lines[row] = ",".join(cells[:-1])
-    text = "\n".join(lines) + "\n"
+
+
+@st.composite
+def mutated(draw):
+    """A bench's file with one to three edits of its lines, or one edit of the whole file."""
+    name = draw(st.sampled_from(sorted(FILES)))
+    text, system = FILES[name]
+    if draw(st.integers(0, 4)):  # mostly lines
+        lines = text.splitlines()
+        kinds = draw(st.lists(st.sampled_from(LINE_EDITS), min_size=1, max_size=3))
+        for kind in kinds:
+            _edit_lines(draw, lines, kind)
+        return name, system, " + ".join(kinds), ("\n".join(lines) + "\n").encode("utf-8")
+    kind = draw(st.sampled_from(FILE_EDITS))
     if kind == "cut":
-        text = text[:draw(st.integers(0, len(text)))]
-    elif kind == "empty":
-        text = draw(st.sampled_from(["", "\n", "# only a comment\n"]))
+        return name, system, kind, text[:draw(st.integers(0, len(text)))].encode("utf-8")
+    if kind == "empty":
+        return name, system, kind, draw(st.sampled_from(["", "\n", "# only a comment\n"])).encode("utf-8")
     if kind == "crlf":
         return name, system, kind, text.replace("\n", "\r\n").encode("utf-8")
-    if kind == "encoding":
-        coding = draw(st.sampled_from(["utf-16", "latin-1", "utf-8-sig"]))
-        return name, system, f"{kind} {coding}", text.replace("degC", "\u00b0C").encode(coding, "replace")
-    return name, system, kind, text.encode("utf-8")
+    coding = draw(st.sampled_from(["utf-16", "latin-1", "utf-8-sig"]))
+    return name, system, f"{kind} {coding}", text.replace("degC", "\u00b0C").encode(coding, "replace")
 
 
 def _validate_path(path: Path, system: str, what: str) -> None:
