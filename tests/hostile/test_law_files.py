@@ -104,6 +104,8 @@ SCHEMA = {
     "a missing bias": (_text(_with(HAND, "bias_m", DROP)), ("law.json: bias_m: missing (required)",)),
     "a foreign format": (_text(_with(HAND, "format", "other")),
                          ("law.json: not a law feedtherm can evaluate: not a feedtherm-compensation-law document",)),
+    "a version of true": (_text(_with(HAND, "version", True)), ("law.json: version: true is a boolean, not a whole number",)),
+    "a version of 1.0": (_text(_with(HAND, "version", 1.0)), ("law.json: version: 1.0 is not a whole number",)),
     "an unknown kind": (_text(_with(HAND, "kind", "neural")), ("law.json: kind: 'neural' is not allowed",)),
     "a stroke law of version 1": (_text({**DOCUMENTS["law_stroke"], "version": 1}),
                                   ("law.json: version: 1 is not allowed; allowed values: 2",)),

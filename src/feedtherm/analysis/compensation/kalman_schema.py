@@ -36,8 +36,9 @@ from .law_schema import (
     StrictDocument,
     Temperature,
     Text,
-    positive,
     entries,
+    positive,
+    versions,
 )
 
 #: The role of the ambient among a Kalman document's inputs (:data:`.kalman.AMBIENT_ROLE`).
@@ -141,7 +142,7 @@ class KalmanLawDocument(StrictDocument):
     """The Kalman estimator's document (:class:`.kalman.KalmanLaw`)."""
 
     format: Literal[FORMAT]
-    version: Literal[1]
+    version: versions(1)
     kind: Literal["kalman"]
     output: Output | None = None
     inputs: Annotated[list[KalmanInput], Field(min_length=1)]

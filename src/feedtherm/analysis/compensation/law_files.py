@@ -307,7 +307,7 @@ def _not_a_number(value, wanted: str) -> str:
     if isinstance(value, str):
         return f"{shown(value)} is text, not {wanted}; write the number without quotes"
     if isinstance(value, float) and value.is_integer() and wanted == "a whole number":
-        return f"{value:g} is not a whole number (write it without a decimal point)"
+        return f"{value!r} is not a whole number (write it without a decimal point)"
     if isinstance(value, (int, float)):
         return f"{shown(value)} is not {wanted} a law can hold"
     return f"must be {wanted}, not {_kind_of(value)}"

@@ -97,6 +97,16 @@ def _temperature(value: float) -> float:
     return value
 
 
+def versions(*allowed: int):
+    """A format version: a whole number among ``allowed`` (strict: ``true`` and ``1.0`` are not 1)."""
+
+    def check(value: int) -> int:
+        if value not in allowed:
+            raise ValueError(f"{value} is not allowed; allowed values: {', '.join(map(str, allowed))}")
+        return value
+    return Annotated[int, AfterValidator(check)]
+
+
 def _name(value: str) -> str:
     if not NAME.match(value):
         raise ValueError(f"{value!r} is not a sensor name (a letter, then letters, digits and underscores)")
@@ -253,7 +263,7 @@ class RegressionLawDocument(_LawDocument):
     input's reading and then its lags; an adapted law carries a ``posterior``."""
 
     kind: Literal["linear_regression"]
-    version: Literal[1, 2]
+    version: versions(1, 2)
     bias_m: Bias
     weights_m_per_K: list[list[Weight]]
     posterior: Posterior | None = None
@@ -301,7 +311,7 @@ class StrokeLawDocument(_LawDocument):
     """A law of E(x): ``E = Σ_m P_m(ξ) (bias_m[m] + Σ_s Σ_f weights_m_per_K[s][f][m] feature[s][f])``."""
 
     kind: Literal["linear_regression_stroke"]
-    version: Literal[2]
+    version: versions(2)
     position: Position
     basis: Basis
     bias_m: list[Bias]
