@@ -106,6 +106,8 @@ SCHEMA = {
                          ("law.json: not a law feedtherm can evaluate: not a feedtherm-compensation-law document",)),
     "a version of true": (_text(_with(HAND, "version", True)), ("law.json: version: true is a boolean, not a whole number",)),
     "a version of 1.0": (_text(_with(HAND, "version", 1.0)), ("law.json: version: 1.0 is not a whole number",)),
+    "a law of D that says it gives E": (_text(_with(DOCUMENTS["law"], "output.name", "E")),
+                                        ("law.json: output.name: 'E', but a law of this kind gives 'D'",)),
     "an unknown kind": (_text(_with(HAND, "kind", "neural")), ("law.json: kind: 'neural' is not allowed",)),
     "a stroke law of version 1": (_text({**DOCUMENTS["law_stroke"], "version": 1}),
                                   ("law.json: version: 1 is not allowed; allowed values: 2",)),

@@ -228,8 +228,10 @@ class _LawDocument(StrictDocument):
     def names(self) -> list[str]:
         return [item.name for item in self.inputs]
 
-    def _check_common(self) -> None:
-        """Distinct inputs; the envelope's entries exactly the inputs."""
+    def _check_common(self, output: str) -> None:
+        """Distinct inputs; the envelope's entries exactly the inputs; the ``output`` named as the kind's."""
+        if self.output is not None and self.output.name != output:
+            raise ValueError(f"output.name: {self.output.name!r}, but a law of this kind gives {output!r}")
         seen: dict[str, int] = {}
         for i, name in enumerate(self.names):
             if name in seen:
@@ -270,7 +272,7 @@ class RegressionLawDocument(_LawDocument):
 
     @model_validator(mode="after")
     def _consistent(self) -> "RegressionLawDocument":
-        self._check_common()
+        self._check_common("D")
         features = 1 + len(self.lags_s)
         _shape("weights_m_per_K", self.weights_m_per_K, len(self.inputs), "one row per input")
         for i, row in enumerate(self.weights_m_per_K):
@@ -321,7 +323,7 @@ class StrokeLawDocument(_LawDocument):
 
     @model_validator(mode="after")
     def _consistent(self) -> "StrokeLawDocument":
-        self._check_common()
+        self._check_common("E")
         q = self.basis.order + 1
         features = 1 + len(self.lags_s)
         _shape("bias_m", self.bias_m, q, f"one per Legendre order 0..{self.basis.order}")
