@@ -14,7 +14,8 @@ Every example goes through both readers' paths:
   bench's description (its sensors, runs and their durations, the air, the table's travel, the
   targets its tests visit): a one-line ``DescriptionError``, or a set whose every time and value is
   finite;
-- ``feedtherm correct``, in this process, with a law of D on T1 and T2: exit 0 and every number
+- ``feedtherm correct``, in this process, with a law of D on T1 and T2, its adapted form (D and its
+  standard deviation) or a stroke law on T1-T3 at three positions: exit 0 and every number
   written finite, or exit 2 with one line and nothing written
   (:func:`test_fuzz_laws.check_outcome`).
 
@@ -34,7 +35,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
-from law_documents import LOG, regression_documents
+from law_documents import LOG, regression_documents, stroke_document
 from test_fuzz_laws import check_outcome, run_correct
 
 from feedtherm.benches import bench
@@ -44,7 +45,10 @@ from feedtherm.system.measurements import read_description_measurements
 
 EXAMPLES = int(os.environ.get("FEEDTHERM_FILE_FUZZ_EXAMPLES", "300"))
 SYSTEMS = {name: load_system(name) for name in ("ballscrew_example", "paper")}
-LAW = json.dumps(regression_documents()["law"])  # a law of D on T1, T2 with two lags
+#: The laws the files are run through: of D on T1, T2 with two lags, adapted (with its sd), along the stroke (T1-T3).
+LAWS = {**{name: json.dumps(regression_documents()[name]) for name in ("law", "law_adapted")},
+        "law_stroke": json.dumps(stroke_document())}
+LAW = LAWS["law"]
 
 
 def _head(path: Path, lines: int) -> str:
@@ -119,6 +123,11 @@ def _edit_lines(draw, lines: list[str], kind: str) -> None:
 @st.composite
 def mutated(draw):
     """A bench's file with one to three edits of its lines, or one edit of the whole file."""
+    return (draw(st.sampled_from(sorted(LAWS))), *draw(_edited()))
+
+
+@st.composite
+def _edited(draw):
     name = draw(st.sampled_from(sorted(FILES)))
     text, system = FILES[name]
     if draw(st.integers(0, 4)):  # mostly lines
@@ -164,15 +173,16 @@ def _validate_path(path: Path, system: str, what: str) -> None:
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(mutated())
 def test_a_mutated_measurement_file_is_refused_in_one_line_or_read_finite(example):
-    name, system, mutation, content = example
-    what = f"{name}: {mutation}"
+    law, name, system, mutation, content = example
+    what = f"{name}: {mutation} ({law})"
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
         (folder / "measured.csv").write_bytes(content)
         _validate_path(folder / "measured.csv", system, what)
-        (folder / "law.json").write_text(LAW, encoding="utf-8")
+        (folder / "law.json").write_text(LAWS[law], encoding="utf-8")
+        x = ["--x", "100 mm,217 mm,300 mm"] if law == "law_stroke" else []
         code, out, err = run_correct(["correct", str(folder / "law.json"), str(folder / "measured.csv"),
-                                      "--out", str(folder / "out")])
+                                      "--out", str(folder / "out"), *x])
         check_outcome(code, out, err, folder / "out", what)
 
 
