@@ -179,7 +179,8 @@ class KalmanLawDocument(StrictDocument):
             for i, plane in enumerate(grid):
                 _rows(f"table.{name}[{i}]", plane, b, None, "one per relative speed")
                 for j, row in enumerate(plane):
-                    _rows(f"table.{name}[{i}][{j}]", row, width, None, "one per surface" if width == s else "one per source")
+                    _rows(f"table.{name}[{i}][{j}]", row, width, None,
+                          "one per surface" if width == s else "one per source")
         _rows("table.h_stopped_W_per_m2K", t.h_stopped_W_per_m2K, s, None, "one per surface")
         _rows("table.q_stopped_W", t.q_stopped_W, k, None, "one per source")
         if self.stroke is not None:
@@ -193,7 +194,8 @@ class KalmanLawDocument(StrictDocument):
     def _check_inputs(self) -> None:
         ambient = [i for i, item in enumerate(self.inputs) if item.role is not None]
         if len(ambient) != 1:
-            raise ValueError(f"inputs: {len(ambient)} inputs have the role {AMBIENT_ROLE!r}; exactly one is the ambient")
+            raise ValueError(f"inputs: {len(ambient)} inputs have the role {AMBIENT_ROLE!r}; exactly one is the "
+                             "ambient")
         seen: dict[str, int] = {}
         for i, item in enumerate(self.inputs):
             if item.name in seen:

@@ -83,7 +83,8 @@ def parse_law_file(path: str | Path) -> Any:
     if not path.exists():
         raise FeedthermError(f"{origin}: no such law file (give a law*.json of `feedtherm compensate`)")
     text = read_text_file(path, origin, MAX_LAW_BYTES, "law")
-    too_deep = FeedthermError(f"{origin}: objects or lists nest deeper than {MAX_LAW_DEPTH} levels; a law nests 5 at most")
+    too_deep = FeedthermError(f"{origin}: objects or lists nest deeper than {MAX_LAW_DEPTH} levels; a law nests 5 "
+                              "at most")
     if nesting_depth(text) > MAX_LAW_DEPTH:
         raise too_deep
     refused: list[_Refused] = []
@@ -251,7 +252,8 @@ def _probe_kalman(document: dict, origin: str) -> None:
             if law.model.C_stroke is not None:
                 values += [estimator.stroke_error(float(law.model.stroke_x[i])) for i in (0, -1)]
     except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
-        raise FeedthermError(f"{origin}: the estimator cannot run at its table's ambient: {one_line(str(exc))}") from None
+        raise FeedthermError(f"{origin}: the estimator cannot run at its table's ambient: "
+                             f"{one_line(str(exc))}") from None
     if not all(math.isfinite(v) for v in values):
         raise FeedthermError(f"{origin}: the estimator gives a non-finite D at its table's ambient "
                              f"({ambient:g} K): not a law")

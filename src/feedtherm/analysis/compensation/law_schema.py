@@ -42,7 +42,7 @@ from ...system.quantities import LENGTH_LIMIT, TEMPERATURE_LIMIT
 from .evaluator import FORMAT
 #: |weight| [m/K] (module notes).
 MAX_WEIGHT_M_PER_K = 1e-2
-#: |bias| [m] and a standard deviation of D [m] (module notes).
+#: |bias| [m] (module notes).
 MAX_BIAS_M = 10.0
 #: A standard deviation of D [m]: an uncertainty of a metre says the law says nothing.
 MAX_SIGMA_M = 1.0
@@ -122,7 +122,7 @@ Lag = Annotated[float, positive(MAX_LAG_S, "s", "a lag's time constant: 0 divide
 Temperature = Annotated[float, AfterValidator(_temperature)]
 Coordinate = Annotated[float, within(LENGTH_LIMIT.high, "m", LENGTH_LIMIT.reason)]
 Sigma = Annotated[float, positive(MAX_SIGMA_M, "m", "a standard deviation of D beyond 1 m says nothing", zero=True)]
-Finite = float
+Finite = float  # finite by the config (allow_inf_nan=False), never a boolean or text (strict)
 NonNegative = Annotated[float, Field(ge=0.0)]
 SensorName = Annotated[str, AfterValidator(_name)]
 Text = Annotated[str, Field(max_length=10_000)]
@@ -301,8 +301,8 @@ def _check_posterior(posterior: Posterior, n: int) -> None:
         limit = MAX_SIGMA_M if i == 0 else MAX_WEIGHT_M_PER_K
         if math.sqrt(variance) > limit:
             unit = "m" if i == 0 else "m/K"
-            raise ValueError(f"posterior.covariance[{i}][{i}]: a standard deviation of {math.sqrt(variance):.3g} {unit}, "
-                             f"above {limit:g} {unit}: an uncertainty that large says nothing")
+            raise ValueError(f"posterior.covariance[{i}][{i}]: a standard deviation of {math.sqrt(variance):.3g} "
+                             f"{unit}, above {limit:g} {unit}: an uncertainty that large says nothing")
         for j in range(i):
             if abs(covariance[i][j] - covariance[j][i]) > SYMMETRY_TOLERANCE * largest:
                 raise ValueError(f"posterior.covariance[{i}][{j}]: {covariance[i][j]:.6g}, but [{j}][{i}] is "
