@@ -63,10 +63,14 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_fast.py
 
 # The description fuzzing contract with a larger budget than the suite's (about 25 minutes),
-# and the geometry fuzz (a box moved, resized or duplicated) with issue 35's 500 examples each.
+# and the geometry fuzz (a box moved, resized or duplicated) with issue 35's 500 examples each;
+# law files and measurement files (issue 57) with 1,000 examples each (about 1 minute each).
 FUZZ_EXAMPLES ?= 2000
 TOPOLOGY_EXAMPLES ?= 500
+FILE_FUZZ_EXAMPLES ?= 1000
 fuzz: $(STAMP)
 	FEEDTHERM_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(BIN)/python -m pytest -q --hypothesis-show-statistics \
 		tests/integration/test_fuzz_descriptions.py
 	FEEDTHERM_TOPOLOGY_EXAMPLES=$(TOPOLOGY_EXAMPLES) $(BIN)/python -m pytest -q tests/unit/system/test_topology_property.py
+	FEEDTHERM_FILE_FUZZ_EXAMPLES=$(FILE_FUZZ_EXAMPLES) $(BIN)/python -m pytest -q -n 0 --hypothesis-show-statistics \
+		tests/integration/test_fuzz_laws.py tests/integration/test_fuzz_measurements.py

@@ -582,6 +582,8 @@ def cmd_correct(args: argparse.Namespace) -> int:
     check_output_dir(out_dir)
     corrections = correct(law, args.readings, args.x or ())
     write_correction(corrections, out_dir, {"law": str(args.law), "readings": str(args.readings)})
+    for warning in law.warnings:
+        print(f"warning: {warning}")
     print_correction(corrections, out_dir)
     return 0
 

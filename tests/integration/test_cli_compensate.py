@@ -270,3 +270,45 @@ def test_the_paper_benchs_laws_are_on_carriable_sensors_and_read_zero_at_the_ref
     out = cwd / "out" / "paper_compensation_physics"
     check_carriable(out)
     check_zero_at_reference("paper", out)
+
+
+def test_the_studys_law_files_pass_the_checked_reader_unchanged(study):
+    """Issue 57: every law file the study writes passes the reader a user's file goes through
+    (analysis/compensation/law_files.py) without a warning and evaluates to the bit as the parsed
+    document did; its conditioning prices each input at its kind's declared offset."""
+    from feedtherm.analysis.compensation.apply import read_law
+    from feedtherm.analysis.compensation.kalman import KalmanLaw
+
+    cwd, result = study
+    assert result.returncode == 0, result.stderr
+    out = cwd / "out" / "paper_compensation_physics"
+    summary = json.loads((out / "compensation.json").read_text())
+    declared = {name: summary["noise"]["kinds"][c["kind"]]["offset_K"] for name, c in summary["candidates"].items()}
+    times = np.arange(0.0, 3600.0, 60.0)
+    for path in sorted(out.glob("law*.json")):
+        document = json.loads(path.read_text())
+        if path.name == "law_kalman.json":
+            runs = []
+            for law in (KalmanLaw.build(document), KalmanLaw.from_file(path)):
+                estimator = law.estimator()
+                inputs = (*estimator.sensors, estimator.model.ambient)
+                runs.append([estimator.update(t, {n: 295.0 + 0.002 * t + i for i, n in enumerate(inputs)}, 1000.0, 900.0)
+                             for t in times])
+            assert np.array(runs[0]).tobytes() == np.array(runs[1]).tobytes()
+        else:
+            law = read_law(path)
+            assert law.warnings == [], path.name
+            runs = []
+            for evaluator in (CompensationLaw(document), law):
+                values = []
+                for t in times:
+                    readings = {n: 295.0 + 0.002 * t + i for i, n in enumerate(evaluator.inputs)}
+                    if evaluator.stroke:
+                        values += [evaluator.update(t, readings, evaluator.x_min), evaluator.at(evaluator.x_max)]
+                    else:
+                        values += list(evaluator.update_with_sd(t, readings)) if evaluator.posterior else \
+                            [evaluator.update(t, readings)]
+                runs.append(np.array(values))
+            assert runs[0].tobytes() == runs[1].tobytes(), path.name
+        offsets = document["conditioning"]["offset_K"]
+        assert offsets == {n: declared[n] for n in offsets}, path.name

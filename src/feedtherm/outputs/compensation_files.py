@@ -62,7 +62,7 @@ def _entry(result: LawResult) -> dict:
     return entry
 
 
-def _stroke_entry(stroke: StrokeResult) -> dict:
+def _stroke_entry(stroke: StrokeResult, offsets: dict[str, float]) -> dict:
     """One law along the stroke, µm: its law of D at every x, and the stroke law where there is one."""
     entry = {"law": stroke.kind, "sensors": list(stroke.sensors),
              "d_only": stroke.d_only.as_dict(per_cycle=False)}
@@ -80,7 +80,7 @@ def _stroke_entry(stroke: StrokeResult) -> dict:
     entry["stroke_law"] = {**stroke.choice.as_dict(), "file": STROKE_FILES[stroke.kind],
                            "test": stroke.test.as_dict(),
                            "multiply_adds_per_sample": law.cost["total"],
-                           "conditioning": stroke_conditioning(law),
+                           "conditioning": stroke_conditioning(law, offsets=offsets),
                            "stroke_m": [law.x_min, law.x_max]}
     return entry
 
@@ -114,7 +114,7 @@ def summary(result: StudyResult, loaded: LoadedSystem, measured: dict[str, list[
             "positions": len(result.sets["test"].cycles[0].positions),
             "metric": "RMS and max of E(x_j, t) - prediction over the recorded table positions and every sample of "
                       "the test cycles; d_only: the law of D applied at every x (correction -D everywhere)",
-            "laws": {kind: _stroke_entry(s) for kind, s in result.stroke.items()}},
+            "laws": {kind: _stroke_entry(s, result.offsets) for kind, s in result.stroke.items()}},
         "out_of_range": _out_of_range_entry(result),
         "drift_tests": [j.as_dict() for j in result.drift_tests],
         **({} if adaptation is None else {"adaptation": adaptation}),
@@ -169,12 +169,12 @@ def write_compensation(result: StudyResult, loaded: LoadedSystem, out_dir: Path,
         for name, kind in (("law.json", "regression_lags"), ("law_static.json", "regression")):
             law = result.chosen[kind].law
             write_json(stage / name, law_document(law, result.candidates, {**provenance, "test": result.chosen[kind].test.as_dict()},
-                                                  reference, envelope(law.sensors)))
+                                                  reference, envelope(law.sensors), result.offsets))
         for kind, stroke in result.stroke.items():
             if stroke.choice is not None:
                 write_json(stage / STROKE_FILES[kind], stroke_law_document(
                     stroke.choice.law, result.candidates, {**provenance, "test": stroke.test.as_dict()},
-                    stroke.choice.as_dict(), stroke_conditioning(stroke.choice.law), reference,
+                    stroke.choice.as_dict(), stroke_conditioning(stroke.choice.law, offsets=result.offsets), reference,
                     envelope(stroke.choice.law.sensors)))
         kalman = result.chosen["kalman"].law.document({**provenance, "test": result.chosen["kalman"].test.as_dict()})
         kalman["conditioning"] = result.chosen["kalman"].conditioning
@@ -183,7 +183,7 @@ def write_compensation(result: StudyResult, loaded: LoadedSystem, out_dir: Path,
             write_json(stage / ADAPTED_FILES[kind], adapted_law_document(law, result.candidates, {
                 **provenance, "fitted_on": "nominal model, training cycles; updated on measurements",
                 "measurements": adapt_data.source, "adaptation": adaptation["laws"][kind]}, reference,
-                envelope(law.law.sensors)))
+                envelope(law.law.sensors), result.offsets))
         write_json(stage / "compensation.json", document)
         with open(stage / "compensation.csv", "w", newline="") as handle:
             writer = csv.writer(handle, lineterminator="\n")

@@ -31,6 +31,7 @@ Values are converted to the units the finals use (°C and µm), times to seconds
 from __future__ import annotations
 
 import math
+import tokenize
 from dataclasses import dataclass
 from typing import Collection, Mapping
 
@@ -38,7 +39,7 @@ import numpy as np
 
 from ..constants import ELONGATION_PROBE, KELVIN_OFFSET
 from ..errors import DescriptionError
-from .quantities import TEMPERATURE_LIMIT, pint, registry  # pint as system.quantities imports it
+from .quantities import LENGTH_LIMIT, TEMPERATURE_LIMIT, pint, registry  # pint as system.quantities imports it
 
 COLUMNS = ["test", "time [<unit>]", "quantity", "value", "unit"]
 OPTIONAL = "uncertainty"
@@ -55,6 +56,10 @@ ELONGATION_QUANTITY, ELONGATION_UNIT = "D_um", "um"
 TEMPERATURE_UNIT = "C"
 # "C" is the finals format's degree Celsius; to pint it is a coulomb.
 _ALIASES = {"C": "degC"}
+#: What pint's parser raises for a unit it cannot read: besides its own errors, an unbalanced "(" ends
+#: in tokenize's TokenError and a dangling operator ("1/", "m^", a NUL) in an AssertionError.
+_UNREADABLE_UNIT = (pint.errors.PintError, AttributeError, TypeError, SyntaxError, ValueError, AssertionError,
+                    tokenize.TokenError)
 
 
 @dataclass(frozen=True, eq=False)
@@ -168,9 +173,7 @@ def parse_series(rows: list[tuple[int, list[str]]], source: str, *, sensors: Col
                                    f"({end:g} s), so no simulated value can be compared with it")
         scale, offset = _conversion(unit, "temperature" if kind == "temperature" else "length", where)
         value = _number(value_text, "value", where) * scale + offset
-        if kind == "temperature" and TEMPERATURE_LIMIT.violated_by(value + KELVIN_OFFSET):
-            raise DescriptionError(f"{where}: {value_text} {unit} lies outside the accepted range, "
-                                   f"{TEMPERATURE_LIMIT.describe()}")
+        check_value_range(kind, value, f"{value_text} {unit}", where)
         uncertainty = None
         if OPTIONAL in extra and row[extra[OPTIONAL][0]].strip():
             uncertainty = _number(row[extra[OPTIONAL][0]].strip(), "uncertainty", where) * scale
@@ -250,7 +253,7 @@ def _unit_in(name: str, column: str, si: str, what: str, source: str, number: in
         return float(registry().Quantity(1.0, unit).to(si).magnitude)
     except pint.errors.DimensionalityError:
         raise DescriptionError(f"{source}: line {number}: {unit!r} is not {what}") from None
-    except (pint.errors.PintError, AttributeError, TypeError, SyntaxError, ValueError):
+    except _UNREADABLE_UNIT:
         raise DescriptionError(f"{source}: line {number}: unknown {column} unit {unit!r}") from None
 
 
@@ -267,6 +270,20 @@ def _kind(quantity: str, sensors: Collection[str] | None, air: str | None, where
         known = [*sensors, *([air] if air else []), ELONGATION_PROBE, POSITIONING_QUANTITY]
         raise DescriptionError(f"{where}: unknown quantity {quantity!r}; expected one of {', '.join(known)}")
     return "temperature"
+
+
+def check_value_range(kind: str, value: float, written: str, where: str) -> None:
+    """A temperature [°C] within TEMPERATURE_LIMIT, a length (D, E) [µm] within LENGTH_LIMIT (a
+    reading of 1e308 µm is finite, but no elongation, and overflows whatever squares it).
+
+    Raises
+    ------
+    DescriptionError
+        One line: ``where``, the value as ``written`` and the accepted range.
+    """
+    limit, si = (TEMPERATURE_LIMIT, value + KELVIN_OFFSET) if kind == "temperature" else (LENGTH_LIMIT, value * 1e-6)
+    if limit.violated_by(si):
+        raise DescriptionError(f"{where}: {written} lies outside the accepted range, {limit.describe()}")
 
 
 def _number(text: str, what: str, where: str) -> float:
@@ -305,7 +322,7 @@ def _conversion(unit: str, kind: str, where: str) -> tuple[float, float]:
             scale = float(ureg.Quantity(1.0, parsed).to(target).magnitude) - offset
         except pint.errors.DimensionalityError:
             raise DescriptionError(f"{where}: {unit!r} is not {name}'s unit") from None
-        except (pint.errors.PintError, AttributeError, TypeError, SyntaxError, ValueError):
+        except _UNREADABLE_UNIT:
             raise DescriptionError(f"{where}: unknown unit {unit!r}") from None
         _CONVERSIONS[key] = (scale, offset)
     return _CONVERSIONS[key]

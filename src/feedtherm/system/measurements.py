@@ -41,6 +41,7 @@ from .measurement_series import (
     RUN_COLUMNS,
     SERIES_HEADER,
     Series,
+    check_value_range,
     is_series_header,
     parse_series,
 )
@@ -198,6 +199,10 @@ def _parse(lines: list[tuple[int, list[str]]], source: str, sensors: list[str] |
             raise DescriptionError(f"{source}: line {number}: values must be numbers, got {','.join(row[3:])}") from None
         if values[0] is None or not all(v is None or math.isfinite(v) for v in values):
             raise DescriptionError(f"{source}: line {number}: the measured value must be a finite number")
+        for text, value in zip(row[3:], values):
+            if value is not None:
+                check_value_range("length" if quantity in UNITS else "temperature", value, f"{text.strip()} {unit}",
+                                  f"{source}: line {number}")
         if (condition, quantity) in seen:
             raise DescriptionError(f"{source}: line {number}: {condition} {quantity} appears twice")
         seen.add((condition, quantity))

@@ -4,12 +4,15 @@ import numpy as np
 import pytest
 
 from feedtherm.analysis.candidates import candidate_sensors
-from feedtherm.analysis.compensation.conditioning import regression_conditioning
+from feedtherm.analysis.compensation.conditioning import kalman_conditioning, regression_conditioning
 from feedtherm.analysis.compensation.data import CycleRecord, CycleSet
+from feedtherm.analysis.compensation.kalman import KalmanLaw
+from feedtherm.analysis.compensation.law import law_document
 from feedtherm.analysis.compensation.metrics import residuals
 from feedtherm.analysis.compensation.noise import DEFAULT_NOISE, KindLevels, SensorNoise, noisy_set
 from feedtherm.analysis.compensation.regression import RegressionLaw, fit_regression, lagged
 from feedtherm.analysis.compensation.selection import fit_on, fit_validated, greedy_selection, predictor
+from feedtherm.analysis.compensation.stroke import StrokeLaw, stroke_conditioning
 from feedtherm.errors import FeedthermError
 from feedtherm.system.load import load_system
 
@@ -123,6 +126,55 @@ def test_the_offset_cost_of_a_lagged_law_is_its_steady_state_gain():
     assert c["offset_transient_um"]["a"] == pytest.approx(5.6)
     assert c["within_limit"] and c["ridge_K"] == pytest.approx(0.1)
     assert not regression_conditioning(RegressionLaw(("a",), (), np.array([[874e-6]]), 0.0))["within_limit"]
+
+
+def test_each_input_is_priced_at_its_own_kinds_declared_offset():
+    """a is a contact sensor (declared offset 0.1 K), b an infrared one (0.5 K), by hand:
+    a: |30 - 25 + 1| µm/K x 0.1 K = 0.6 µm, while the lags settle (30 + 25 + 1) x 0.1 = 5.6 µm;
+    b: |2| µm/K x 0.5 K = 1.0 µm, the worst (at 0.1 K, as before, it read 0.2 µm and a was the worst)."""
+    law = RegressionLaw(("a", "b"), (900.0, 3600.0), np.array([[30e-6, -25e-6, 1e-6], [2e-6, 0.0, 0.0]]), 0.0)
+    offsets = SensorNoise(dict(DEFAULT_NOISE), {"a": "contact", "b": "infrared"}).offsets()
+    assert offsets == {"a": 0.1, "b": 0.5}
+    c = regression_conditioning(law, offsets)
+    assert c["offset_K"] == {"a": 0.1, "b": 0.5}
+    assert c["offset_error_um"] == pytest.approx({"a": 0.6, "b": 1.0})
+    assert c["offset_transient_um"] == pytest.approx({"a": 5.6, "b": 1.0})
+    assert c["max_offset_error_um"] == pytest.approx(1.0)
+    assert law_document(law, {}, offsets=offsets)["conditioning"] == c  # law.json's block
+    # a stroke law, order 1, no lags: a's weight along ξ is 2 + ξ µm/K, b's 4 - ξ; the largest over the
+    # stroke |2 + 1| x 0.1 K = 0.3 µm and |4 + 1| x 0.5 K = 2.5 µm, above the 2 µm limit
+    stroke = StrokeLaw(("a", "b"), (), 1, np.array([[2e-6, 1e-6], [4e-6, -1e-6]]), np.zeros(2), 0.1, 0.3)
+    block = stroke_conditioning(stroke, offsets=offsets)
+    assert block["offset_error_um"] == pytest.approx({"a": 0.3, "b": 2.5})
+    assert block["offset_K"] == {"a": 0.1, "b": 0.5} and not block["within_limit"]
+
+
+def test_the_kalman_estimators_offset_cost_scales_with_each_inputs_declared_offset():
+    """The filter is linear in its readings (its gains do not depend on them): T1 read 0.5 K high
+    moves D̂ by five times what 0.1 K does."""
+    from law_documents import kalman_document
+
+    law = KalmanLaw.build(kalman_document())
+    n = 60
+    times = np.arange(n) * 60.0
+    readings = 293.15 + np.column_stack([np.linspace(0, 4, n), np.linspace(0, 1, n)])  # T1, ambient
+    record = CycleRecord("test-0", times, readings, np.zeros(n), np.full(n, 800.0), np.zeros(n))
+    contact = kalman_conditioning(law, record, ["T1", "ambient"], {"T1": 0.1, "ambient": 0.1})
+    infrared = kalman_conditioning(law, record, ["T1", "ambient"], {"T1": 0.5, "ambient": 0.1})
+    assert infrared["offset_K"] == {"T1": 0.5, "ambient": 0.1}
+    assert contact["offset_error_um"]["T1"] > 0
+    assert infrared["offset_error_um"]["T1"] == pytest.approx(5 * contact["offset_error_um"]["T1"], rel=1e-9)
+    assert infrared["offset_error_um"]["ambient"] == pytest.approx(contact["offset_error_um"]["ambient"], rel=1e-12)
+    assert infrared["max_abs_gain_um_per_K"] == pytest.approx(contact["max_abs_gain_um_per_K"], rel=1e-9)
+
+
+def test_a_studys_offsets_are_the_declared_ones_of_each_kind(paper, tmp_path):
+    """What the study prices the conditioning at: the description's [compensation] values, per kind."""
+    path = _with_section(tmp_path, '[compensation.infrared]\noffset = "1 K"\nreason = "a pyrometer of ±2 K"\n')
+    loaded = load_system(str(path))
+    kinds = {n: c.kind for n, c in candidate_sensors(loaded.system).items()}
+    offsets = SensorNoise.of(loaded.system, kinds).offsets()
+    assert offsets["T4"] == 1.0 and offsets["T1"] == DEFAULT_NOISE["contact"].offset  # T4 infrared, T1 contact
 
 
 @pytest.fixture(scope="module")

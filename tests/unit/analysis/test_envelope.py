@@ -1,10 +1,20 @@
 """A law's training envelope and the samples outside it (analysis/compensation/envelope.py), by hand."""
 
+import warnings
+
 import numpy as np
 import pytest
 
-from feedtherm.analysis.compensation.envelope import (check_envelope, envelope_flags, training_envelope,
-                                                      windowed_rates)
+from feedtherm.analysis.compensation.envelope import envelope_flags, training_envelope, windowed_rates
+from feedtherm.analysis.compensation.law_files import check_law
+from feedtherm.errors import FeedthermError
+
+
+def _law_with(envelope, inputs=("A",)) -> dict:
+    """A law of D on ``inputs`` carrying ``envelope`` (the law's file validates it, :mod:`.law_schema`)."""
+    return {"format": "feedtherm-compensation-law", "version": 1, "kind": "linear_regression",
+            "inputs": [{"name": n} for n in inputs], "lags_s": [], "bias_m": 0.0,
+            "weights_m_per_K": [[1e-6] for _ in inputs], "envelope": envelope}
 
 
 def test_rates_over_the_window_by_hand():
@@ -17,6 +27,16 @@ def test_rates_over_the_window_by_hand():
     assert rates == pytest.approx([0.0, 0.0, 0.01, 0.02, 0.03])
 
 
+def test_a_window_below_the_times_rounding_takes_the_rate_since_the_previous_sample():
+    # 60 - 5e-324 == 60 in floating point: a sample must not pair with itself (0 / 0)
+    times = np.array([0.0, 30.0, 60.0])
+    values = np.array([[290.0], [290.3], [290.9]])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        rates = windowed_rates(times, values, 5e-324)[:, 0]
+    assert rates == pytest.approx([0.0, 0.3 / 30, 0.6 / 30])  # 0 s: no sample before it
+
+
 def test_the_envelope_of_two_cycles_by_hand():
     cycle1 = (np.array([0.0, 60.0, 120.0]), np.array([[293.0, 290.0], [294.2, 290.0], [294.8, 291.2]]))
     cycle2 = (np.array([0.0, 60.0]), np.array([[292.0, 291.0], [292.3, 291.6]]))
@@ -25,7 +45,7 @@ def test_the_envelope_of_two_cycles_by_hand():
     # B: min 290.0, max 291.6; rates 0, 1.2/60 = 0.02, 0.6/60 = 0.01 -> 0.02 K/s
     assert env["inputs"]["A"] == pytest.approx({"min_K": 292.0, "max_K": 294.8, "max_rate_K_per_s": 0.02})
     assert env["inputs"]["B"] == pytest.approx({"min_K": 290.0, "max_K": 291.6, "max_rate_K_per_s": 0.02})
-    assert env["rate_window_s"] == 60.0 and check_envelope(env, ["A", "B"]) is None
+    assert env["rate_window_s"] == 60.0 and check_law(_law_with(env, ("A", "B")), "law.json") == []
 
 
 def test_samples_outside_are_flagged_with_the_input_and_by_how_much():
@@ -41,13 +61,20 @@ def test_samples_outside_are_flagged_with_the_input_and_by_how_much():
 
 
 @pytest.mark.parametrize("envelope, reason", [
-    ([], "envelope.inputs must be an object"),
-    ({"inputs": {}, "rate_window_s": 60.0}, "no entry for the input 'A'"),
-    ({"inputs": {"A": {"min_K": 300.0, "max_K": 290.0, "max_rate_K_per_s": 0.1}}, "rate_window_s": 60.0}, "min_K <= max_K"),
+    ([], "envelope: must be an object {...}, not a list"),
+    ({"inputs": {}, "rate_window_s": 60.0}, "envelope.inputs: no entry for the input 'A'"),
+    ({"inputs": {"A": {"min_K": 300.0, "max_K": 290.0, "max_rate_K_per_s": 0.1}}, "rate_window_s": 60.0},
+     "envelope.inputs.A: min_K (300 K) lies above max_K (290 K)"),
     ({"inputs": {"A": {"min_K": 290.0, "max_K": 300.0, "max_rate_K_per_s": float("nan")}}, "rate_window_s": 60.0},
-     "min_K <= max_K"),
-    ({"inputs": {"A": {"min_K": 290.0, "max_K": 300.0, "max_rate_K_per_s": 0.1}}, "rate_window_s": 0}, "rate_window_s"),
-    ({"inputs": {"A": {"min_K": True, "max_K": 300.0, "max_rate_K_per_s": 0.1}}, "rate_window_s": 60}, "min_K <= max_K"),
+     "envelope.inputs.A.max_rate_K_per_s: nan is not a number"),
+    ({"inputs": {"A": {"min_K": 290.0, "max_K": 300.0, "max_rate_K_per_s": 0.1}}, "rate_window_s": 0},
+     "envelope.rate_window_s: 0 s must be above 0"),
+    ({"inputs": {"A": {"min_K": True, "max_K": 300.0, "max_rate_K_per_s": 0.1}}, "rate_window_s": 60},
+     "envelope.inputs.A.min_K: true is a boolean, not a number"),
+    ({"inputs": {"A": {"min_K": 290.0, "max_K": 300.0, "max_rate_K_per_s": -0.1}}, "rate_window_s": 60},
+     "envelope.inputs.A.max_rate_K_per_s: -0.1 must not be below 0"),
 ])
 def test_a_bad_envelope_block_is_refused(envelope, reason):
-    assert reason in check_envelope(envelope, ["A"])
+    with pytest.raises(FeedthermError) as caught:
+        check_law(_law_with(envelope), "law.json")
+    assert str(caught.value).startswith("law.json: ") and reason in str(caught.value), str(caught.value)

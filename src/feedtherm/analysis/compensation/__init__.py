@@ -6,7 +6,7 @@ and the positioning error E(x, t) along the stroke.
 - :mod:`.regression`: the industry baseline, multiple linear regression with optional lags and a ridge;
 - :mod:`.selection`: greedy forward choice of K sensors on held-out error;
 - :mod:`.metrics`: residual error of a law over cycles (RMS, maximum, reduction);
-- :mod:`.conditioning`: a law's largest weight and the error a 0.1 K offset of each sensor causes;
+- :mod:`.conditioning`: a law's largest weight and the error each sensor's declared offset causes;
 - :mod:`.stroke`: the positioning error E(x, t) along the stroke, a Legendre basis in x per regressor;
 - :mod:`.law` and :mod:`.evaluator`: the law as a JSON document, and its evaluation on a stream;
 - :mod:`.pairs`, :mod:`.adapt`, :mod:`.leave_one_out`, :mod:`.adaptation`: a law updated on measured

@@ -20,7 +20,6 @@ line naming the file or ``--x`` and the reason, raised before anything is writte
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -29,8 +28,9 @@ import numpy as np
 from ...constants import KELVIN_OFFSET
 from ...errors import FeedthermError
 from ...system.measurements import ELONGATION_QUANTITY, read_measurements
-from .envelope import check_envelope, envelope_flags
+from .envelope import envelope_flags
 from .evaluator import CompensationLaw
+from .law_files import check_law, one_line, parse_law_file
 from .pairs import union_times, values_at
 
 
@@ -55,32 +55,17 @@ class Correction:
 
 
 def read_law(path: str | Path) -> CompensationLaw:
-    """The law of ``path``; one line naming the file for a missing, unreadable or foreign document."""
-    path = Path(path)
-    if not path.is_file():
-        raise FeedthermError(f"{path}: no such law file (give a law*.json of `feedtherm compensate`)")
-    try:
-        document = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise FeedthermError(f"{path}: not a JSON law document ({exc.__class__.__name__})") from None
+    """The law of ``path``, checked at the boundary (:mod:`.law_files`: one line naming the file, the
+    key and the reason); its ``envelope`` (or None) and ``warnings`` (suspect but possible) beside it."""
+    document = parse_law_file(path)
     if isinstance(document, dict) and document.get("kind") == "kalman":
-        raise FeedthermError(f"{path}: a Kalman estimator needs the motor speeds and the ambient as well as the "
-                             "readings; evaluate it with feedtherm.analysis.compensation.kalman.KalmanEstimator")
-    try:
-        law = CompensationLaw(document)
-    except (ValueError, KeyError, TypeError, AttributeError) as exc:
-        raise FeedthermError(f"{path}: not a law feedtherm can evaluate: {_reason(exc)}") from None
-    envelope = document.get("envelope")
-    if envelope is not None:
-        problem = check_envelope(envelope, list(law.inputs))
-        if problem:
-            raise FeedthermError(f"{path}: {problem}")
-    law.envelope = envelope
+        raise FeedthermError(f"{one_line(str(path))}: a Kalman estimator needs the motor speeds and the ambient as "
+                             "well as the readings; evaluate it with feedtherm.analysis.compensation.kalman.KalmanEstimator")
+    warnings = check_law(document, str(path))
+    law = CompensationLaw(document)
+    law.envelope = document.get("envelope")
+    law.warnings = warnings
     return law
-
-
-def _reason(exc: Exception) -> str:
-    return f"missing field {exc}" if isinstance(exc, KeyError) else str(exc)
 
 
 def check_positions(law: CompensationLaw, positions: tuple[float, ...]) -> None:

@@ -11,8 +11,6 @@ number.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 #: The span over which a rate is taken [s]: the training's sample interval (a study samples every
@@ -43,34 +41,14 @@ def windowed_rates(times: np.ndarray, readings: np.ndarray, window: float) -> np
     for the samples of the first window), per column of ``readings`` ``(n, k)``."""
     readings = np.atleast_2d(np.asarray(readings, float).T).T
     out = np.zeros_like(readings)
-    earlier = np.searchsorted(times, times - window, side="right") - 1
+    # a sample never pairs with itself: a window below the times' rounding (5e-324 s) would divide 0 by 0
+    earlier = np.minimum(np.searchsorted(times, times - window, side="right") - 1, np.arange(len(times)) - 1)
     has = earlier >= 0
     j = np.flatnonzero(has)
     if j.size:
         i = earlier[has]
         out[j] = (readings[j] - readings[i]) / (times[j] - times[i])[:, None]
     return out
-
-
-def check_envelope(envelope: dict, inputs: list[str]) -> str | None:
-    """Why an envelope block cannot be used with a law on ``inputs``, or None (a law file is input)."""
-    if not isinstance(envelope, dict) or not isinstance(envelope.get("inputs"), dict):
-        return "envelope.inputs must be an object of the law's inputs"
-    window = envelope.get("rate_window_s")
-    if not _number(window) or not window > 0:
-        return "envelope.rate_window_s must be a positive number of seconds"
-    for name in inputs:
-        entry = envelope["inputs"].get(name)
-        if not isinstance(entry, dict):
-            return f"envelope.inputs has no entry for the input {name!r}"
-        values = [entry.get(key) for key in ("min_K", "max_K", "max_rate_K_per_s")]
-        if not all(_number(v) for v in values) or not 0 < values[0] <= values[1] or values[2] < 0:
-            return f"envelope.inputs.{name}: min_K <= max_K (kelvin, positive) and max_rate_K_per_s >= 0, all numbers"
-    return None
-
-
-def _number(value) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
 
 
 def envelope_flags(envelope: dict, times: np.ndarray, columns: dict[str, np.ndarray]) -> list[str]:

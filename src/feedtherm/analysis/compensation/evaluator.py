@@ -94,7 +94,15 @@ class CompensationLaw:
 
     @classmethod
     def from_file(cls, path: str | Path) -> "CompensationLaw":
-        return cls(json.loads(Path(path).read_text(encoding="utf-8")))
+        """The law of the file ``path``.  Inside feedtherm the file is checked first
+        (:func:`feedtherm.analysis.compensation.law_files.read_law_document`: a one-line
+        ``FeedthermError`` naming the key and the reason for anything that is not a law); this
+        module copied beside a controller's code reads it with the standard library alone."""
+        try:
+            from .law_files import read_law_document
+        except ImportError:  # the standalone copy: no package around it
+            return cls(json.loads(Path(path).read_text(encoding="utf-8")))
+        return cls(read_law_document(path)[0])
 
     def reset(self) -> None:
         """Forget the past readings (the next one restarts the lags)."""

@@ -33,7 +33,10 @@ import numpy as np
 import scipy.linalg as sl
 
 from ...constants import ELONGATION_PROBE
-from .evaluator import table_position
+from ...errors import FeedthermError
+from .evaluator import FORMAT, table_position
+from .law_files import check_law, one_line, parse_law_file
+from .kalman_schema import AMBIENT_ROLE
 from .operating_table import OperatingTable
 from .state_space import ReducedModel
 
@@ -261,10 +264,13 @@ def run_filter(estimator: KalmanEstimator, times, readings: np.ndarray, names: l
 
 # --------------------------------------------------------------------------- the law and its document
 
-FORMAT = "feedtherm-compensation-law"
-#: The role of the ambient among a law document's inputs: the model's input, not a reading.
-AMBIENT_ROLE = "ambient (model input)"
 VERSION = 1
+
+
+def _require_kalman(document, origin: str) -> None:
+    if not isinstance(document, dict) or document.get("format") != FORMAT or document.get("kind") != "kalman":
+        raise FeedthermError(f"{one_line(origin)}: not a feedtherm Kalman law document (format "
+                             f"{FORMAT!r}, kind 'kalman')")
 
 
 #: Records whose filtered states a law keeps (a study's law asks for about 40: its validation and test
@@ -380,14 +386,29 @@ class KalmanLaw:
         }
 
     @classmethod
-    def from_document(cls, document: dict) -> "KalmanLaw":
-        if document.get("format") != FORMAT or document.get("kind") != "kalman":
-            raise ValueError("not a feedtherm Kalman law document")
+    def from_document(cls, document: dict, origin: str = "the Kalman law document") -> "KalmanLaw":
+        """The estimator of ``document``, checked first (:func:`.law_files.check_law`: a one-line
+        ``FeedthermError`` naming ``origin``, the key and the reason for anything that is not one)."""
+        _require_kalman(document, origin)
+        check_law(document, origin)
+        return cls.build(document)
+
+    @classmethod
+    def from_file(cls, path) -> "KalmanLaw":
+        """The estimator of the law file ``path`` (``law_kalman.json``), checked as :meth:`from_document`."""
+        return cls.from_document(parse_law_file(path), str(path))
+
+    @classmethod
+    def build(cls, document: dict) -> "KalmanLaw":
+        """The estimator of a document already checked (:meth:`from_document`)."""
         d = document["model"]
         ambient = next(i["name"] for i in document["inputs"] if i.get("role") == AMBIENT_ROLE)
-        model = ReducedModel(d["surfaces"], d["sources"], d["outputs"], np.array(d["A0"]), np.array(d["A_surface"]),
-                             np.array(d["f_surface"]), np.array(d["Bq"]), np.array(d["Cy"]), np.array(d["dy"]),
-                             np.array(d["uniform"]), np.array(d["hankel"]), ambient)
+        r, s = len(d["A0"]), len(d["surfaces"])  # shaped, so that a model without surfaces or sources keeps its axes
+        model = ReducedModel(d["surfaces"], d["sources"], d["outputs"], np.array(d["A0"]),
+                             np.array(d["A_surface"], dtype=float).reshape(s, r, r),
+                             np.array(d["f_surface"], dtype=float).reshape(s, r),
+                             np.array(d["Bq"], dtype=float).reshape(r, len(d["sources"])), np.array(d["Cy"]),
+                             np.array(d["dy"]), np.array(d["uniform"]), np.array(d["hankel"]), ambient)
         stroke = document.get("stroke")  # optional: a law of D only before issue 34's item 3
         if stroke is not None:
             model = replace(model, stroke_x=np.array(stroke["x_m"], dtype=float), C_stroke=np.array(stroke["C"], dtype=float),

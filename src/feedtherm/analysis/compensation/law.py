@@ -41,14 +41,16 @@ def reference_block(law, reference: float | None) -> dict:
 
 
 def law_document(law: RegressionLaw, candidates: dict[str, Candidate], provenance: dict | None = None,
-                 reference: float | None = None, envelope: dict | None = None) -> dict:
+                 reference: float | None = None, envelope: dict | None = None,
+                 offsets: dict[str, float] | None = None) -> dict:
     """The JSON-able document of ``law``: inputs with their part and position, weights, lags, bias.
 
     Units are SI: inputs in kelvin, D in metres, weights in m/K, time constants in seconds; the
     ``conditioning`` block (:mod:`.conditioning`) in µm/K and µm, for people.  A law of D stays a
     document of version 1, which every evaluator reads.  ``reference``: the temperature [K] the law
     passes through (its ``reference`` block states what it gives there); ``envelope``: its training
-    envelope (:mod:`.envelope`), which ``feedtherm correct`` checks every sample against.
+    envelope (:mod:`.envelope`), which ``feedtherm correct`` checks every sample against; ``offsets``:
+    each input's declared offset [K], what the conditioning prices it at (:mod:`.conditioning`).
     """
     inputs = _inputs(law, candidates)
     return {
@@ -62,7 +64,7 @@ def law_document(law: RegressionLaw, candidates: dict[str, Candidate], provenanc
         "weights_m_per_K": law.weights.tolist(),
         "lag_start": "settled at the first reading",
         "ridge_K": float(law.ridge) ** 0.5,
-        "conditioning": regression_conditioning(law),
+        "conditioning": regression_conditioning(law, offsets),
         **reference_block(law, reference),
         **({"envelope": envelope} if envelope else {}),
         "provenance": provenance or {},
@@ -70,12 +72,13 @@ def law_document(law: RegressionLaw, candidates: dict[str, Candidate], provenanc
 
 
 def adapted_law_document(adapted: AdaptedLaw, candidates: dict[str, Candidate], provenance: dict | None = None,
-                         reference: float | None = None, envelope: dict | None = None) -> dict:
+                         reference: float | None = None, envelope: dict | None = None,
+                         offsets: dict[str, float] | None = None) -> dict:
     """The document of an adapted law (:mod:`.adapt`): the posterior mean as in :func:`law_document`,
     and a ``posterior`` block from which :meth:`.evaluator.CompensationLaw.update_with_sd` gives the
     predictive standard deviation ``sqrt(φᵀ Σ φ + σ²)``, ``φ = [1, features − centre]``.
     """
-    document = law_document(adapted.law, candidates, provenance, reference, envelope)
+    document = law_document(adapted.law, candidates, provenance, reference, envelope, offsets)
     document["posterior"] = {
         "centre_K": adapted.centre.tolist(),
         "covariance": adapted.covariance.tolist(),

@@ -102,6 +102,10 @@ class SensorNoise:
         return (np.array([self.levels[self.kinds[n]].noise for n in names], dtype=float),
                 np.array([self.levels[self.kinds[n]].offset for n in names], dtype=float))
 
+    def offsets(self) -> dict[str, float]:
+        """Each candidate's offset [K], its kind's (what :mod:`.conditioning` prices it at)."""
+        return {name: self.levels[kind].offset for name, kind in self.kinds.items()}
+
     def as_dict(self) -> dict:
         return {"kinds": {k: v.as_dict() for k, v in self.levels.items()},
                 "white": "independent at every reading", "offset": "one draw per sensor and machine "

@@ -206,23 +206,27 @@ def fit_stroke(train: CycleSet, sensors: tuple[str, ...], lags: tuple[float, ...
                      float(x_min), float(x_max), float(ridge))
 
 
-def stroke_conditioning(law: StrokeLaw, points: int = 101) -> dict:
+def stroke_conditioning(law: StrokeLaw, points: int = 101, offsets: dict[str, float] | None = None) -> dict:
     """A stroke law's conditioning (:mod:`.conditioning`): per sensor, the largest error [µm] over the
-    stroke that a constant offset of 0.1 K on that sensor alone causes once the lags settle,
-    ``max_x |Σ_m P_m(ξ) Σ_f w_{s,f,m}| · 0.1 K`` on ``points`` positions; the largest |weight| [µm/K]
-    of a feature at any x, ``max_x |Σ_m P_m(ξ) w_{f,m}|``."""
-    from .conditioning import LIMIT_UM, OFFSET_K
+    stroke that its declared offset ``δ_s`` on that sensor alone causes once the lags settle,
+    ``max_x |Σ_m P_m(ξ) Σ_f w_{s,f,m}| · δ_s`` on ``points`` positions (``offsets``: name -> δ [K],
+    :func:`.conditioning.input_offsets`); the largest |weight| [µm/K] of a feature at any x,
+    ``max_x |Σ_m P_m(ξ) w_{f,m}|``."""
+    from .conditioning import LIMIT_UM, input_offsets
 
     B = basis(np.linspace(-1.0, 1.0, points), law.order)
     k, m = len(law.sensors), 1 + len(law.lags)
     along = law.weights @ B.T  # (features, points) [m/K]
-    steady = np.abs(along.reshape(k, m, points).sum(axis=1)).max(axis=1) * OFFSET_K * 1e6
+    delta = input_offsets(law.sensors, offsets)
+    steady = np.abs(along.reshape(k, m, points).sum(axis=1)).max(axis=1) * delta * 1e6
     worst = float(steady.max()) if steady.size else 0.0
     return {"max_abs_weight_um_per_K": float(np.abs(along).max() * 1e6) if along.size else 0.0,
-            "offset_K": OFFSET_K, "offset_error_um": {s: float(v) for s, v in zip(law.sensors, steady)},
+            "offset_K": {s: float(v) for s, v in zip(law.sensors, delta)},
+            "offset_error_um": {s: float(v) for s, v in zip(law.sensors, steady)},
             "max_offset_error_um": worst, "limit_um": LIMIT_UM, "within_limit": bool(worst <= LIMIT_UM),
             "ridge_K": math.sqrt(law.ridge),
-            "how": "the largest over the stroke of |sum of a sensor's weights at x| x 0.1 K"}
+            "how": "the largest over the stroke of |sum of a sensor's weights at x| x its kind's declared offset "
+                   "(offset_K)"}
 
 
 @dataclass(frozen=True)

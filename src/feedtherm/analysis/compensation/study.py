@@ -96,6 +96,9 @@ class StudyResult:
     out_of_range: dict[str, dict[str, dict[str, Residuals]]] = field(default_factory=dict)
     #: each law asked for on the description's drift tests, as ISO 230-3 would judge it (:mod:`.drift_judge`)
     drift_tests: list[DriftJudgement] = field(default_factory=list)
+    #: each candidate's declared offset [K] (its kind's, also in a noise-free study): what the laws'
+    #: conditioning prices it at (:mod:`.conditioning`)
+    offsets: dict[str, float] = field(default_factory=dict)
 
     def best(self, max_sensors: int = 3) -> LawResult:
         """The law with the smallest validation RMS among the curves' laws of at most ``max_sensors`` sensors."""
@@ -159,7 +162,9 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
     if isinstance(request, int) and request > len(pool):
         raise FeedthermError(f"--sensors: K = {request} but there are {len(pool)} candidate positions a machine can carry")
     kinds = {name: c.kind for name, c in candidates.items()}
-    noise = SensorNoise.of(loaded.system, kinds) if settings.noise else SensorNoise.none(kinds)
+    declared_noise = SensorNoise.of(loaded.system, kinds)
+    noise = declared_noise if settings.noise else SensorNoise.none(kinds)
+    offsets = declared_noise.offsets()  # a noise-free study's laws are priced at the declared offsets too
     clean = simulate_sets(loaded, candidates, settings, tuple(STREAMS), progress, execution)
     sets = {name: noisy_set(cycles, noise, settings.seed, STREAMS[name], one_machine=name == "train")
             for name, cycles in clean.items()}
@@ -169,22 +174,23 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
     own = tuple(n for n in loaded.system.sensors if n != loaded.system.room.ambient_sensor)
     for kind, lags in LAWS.items():
         steps = greedy_selection(sets["train"], sets["validation"], n_curve, lags, allowed=pool)
-        curves[kind] = [_judge(kind, step.law, sets) for step in steps]
+        curves[kind] = [_judge(kind, step.law, sets, offsets) for step in steps]
         if isinstance(request, int):
             chosen[kind] = curves[kind][request - 1]
         else:
-            chosen[kind] = _judge(kind, fit_validated(sets["train"], sets["validation"], request, lags), sets)
+            chosen[kind] = _judge(kind, fit_validated(sets["train"], sets["validation"], request, lags), sets, offsets)
         if own:
-            declared[kind] = _judge(kind, fit_validated(sets["train"], sets["validation"], own, lags), sets)
+            declared[kind] = _judge(kind, fit_validated(sets["train"], sets["validation"], own, lags), sets, offsets)
     kalman = kalman_factory(loaded, candidates, sets["train"].clean(), settings, kalman_noise(noise))
-    curves[KALMAN] = [_with_kalman_conditioning(_judge(KALMAN, kalman(r.sensors), sets), sets)
+    curves[KALMAN] = [_with_kalman_conditioning(_judge(KALMAN, kalman(r.sensors), sets), sets, offsets)
                       for r in curves["regression_lags"]]
-    chosen[KALMAN] = _with_kalman_conditioning(_judge(KALMAN, kalman(chosen["regression_lags"].sensors), sets), sets)
+    chosen[KALMAN] = _with_kalman_conditioning(_judge(KALMAN, kalman(chosen["regression_lags"].sensors), sets), sets,
+                                               offsets)
     if own:
-        declared[KALMAN] = _with_kalman_conditioning(_judge(KALMAN, kalman(own), sets), sets)
+        declared[KALMAN] = _with_kalman_conditioning(_judge(KALMAN, kalman(own), sets), sets, offsets)
     has_stroke = all(c.stroke_error is not None for name in ("test", "out_of_range") for c in sets[name].cycles)
     stroke = along_stroke(chosen, sets) if has_stroke else {}
-    result = StudyResult(settings, candidates, sets, curves, chosen, declared, request, noise, stroke)
+    result = StudyResult(settings, candidates, sets, curves, chosen, declared, request, noise, stroke, offsets=offsets)
     result = replace(result, out_of_range=out_of_range(result))
     predictors = {kind: (r.law, _stroke_predictor(kind, r.law, result)) for kind, r in result.chosen.items()}
     return replace(result, drift_tests=judge_on_drift_tests(loaded, result, predictors, noise, settings.seed,
@@ -291,17 +297,18 @@ def kalman_factory(loaded: LoadedSystem, candidates: dict[str, Candidate], train
     return law
 
 
-def _judge(kind: str, law: RegressionLaw | KalmanLaw, sets: dict[str, CycleSet]) -> LawResult:
+def _judge(kind: str, law: RegressionLaw | KalmanLaw, sets: dict[str, CycleSet],
+           offsets: dict[str, float] | None = None) -> LawResult:
     names = sets["test"].names
     if isinstance(law, KalmanLaw):  # every cycle of both sets through the filter side by side
         law.filter_records([*sets["validation"].cycles, *sets["test"].cycles], names)
     return LawResult(kind, tuple(law.sensors), law,
                      residuals(lambda record: law.predict_record(record, names), sets["validation"]),
                      residuals(lambda record: law.predict_record(record, names), sets["test"]),
-                     regression_conditioning(law) if isinstance(law, RegressionLaw) else {})
+                     regression_conditioning(law, offsets) if isinstance(law, RegressionLaw) else {})
 
 
-def _with_kalman_conditioning(result: LawResult, sets: dict[str, CycleSet]) -> LawResult:
+def _with_kalman_conditioning(result: LawResult, sets: dict[str, CycleSet], offsets: dict[str, float]) -> LawResult:
     """``result`` with the Kalman law's conditioning on the first test cycle (:mod:`.conditioning`)."""
     test = sets["test"]
-    return replace(result, conditioning=kalman_conditioning(result.law, test.cycles[0], test.names))
+    return replace(result, conditioning=kalman_conditioning(result.law, test.cycles[0], test.names, offsets))

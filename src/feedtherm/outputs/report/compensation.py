@@ -31,9 +31,9 @@ def compensation_section(summary: dict, figures: dict[str, bytes]) -> str:
     for kind, entry in summary.get("declared", {}).items():
         rows.append(_row(kind, entry, note=" (the description's sensors)"))
     body.append(table(["law", "K", "sensors", "RMS", "max", "reduction", "validation RMS", "ridge √α [K]",
-                       "worst 0.1 K offset [µm]"], rows,
+                       "worst declared offset [µm]"], rows,
                       caption="held-out test cycles (machine variants); the ridge chosen on the validation cycles; "
-                              "the error a 0.1 K offset of one sensor causes, the worst sensor's"))
+                              "the error one sensor's declared offset (its kind's) causes, the worst sensor's"))
     best = summary["best"]
     body.append(paragraph(
         f"Best law with at most 3 sensors (on the validation cycles): {LAW_LABELS.get(best['law'], best['law'])} on "
