@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 import re
 import sys
+import tokenize
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Annotated
@@ -130,6 +131,11 @@ SIZE_MINIMUM_REASON = ("no part, bore or feature of a feed drive is made smaller
 FACTOR_LIMIT = Limit(0.01, 100.0, "", "", "a model off by more than a hundred either way is another model, not a "
                      "correction of it")
 
+#: What pint's parser may raise on a unit it cannot read: besides its own errors, the tokenizer's
+#: (``"2 ("``), an assertion of its expression tree (``"1**"``), a bad exponent or operand.
+_UNREADABLE = (pint.errors.PintError, AttributeError, TypeError, SyntaxError, AssertionError, tokenize.TokenError,
+               ValueError, KeyError, IndexError, ZeroDivisionError, OverflowError)
+
 #: The unit a bare number's hint suggests, where it is not the SI unit.
 _HINT_UNITS = {"m": "mm", "rad/s": "rpm", "m^2": "mm^2"}
 
@@ -211,7 +217,7 @@ def to_si(value: object, si_unit: str, *, sign: str = "any", limit: Limit | None
         raise ValueError(f"unknown unit {unit!r} in {value!r}") from None
     except pint.errors.DimensionalityError:
         raise ValueError(f"{value!r} is not convertible to {si_unit or 'a dimensionless number'}") from None
-    except (pint.errors.PintError, AttributeError, TypeError, SyntaxError):
+    except _UNREADABLE:
         raise ValueError(f"cannot read the unit of {value!r}") from None
     if not math.isfinite(converted):
         raise ValueError(f"must be a finite number, got {value!r} ({converted:g} {si_unit or ''})".replace(" )", ")"))
@@ -348,7 +354,7 @@ def to_base_si(value: object) -> float:
     try:
         quantity = registry().Quantity(number, _pint_unit(unit) or "dimensionless")
         converted = float(quantity.to_base_units().magnitude)
-    except (pint.errors.PintError, AttributeError, TypeError, SyntaxError):
+    except _UNREADABLE:
         raise ValueError(f"cannot read the unit of {value!r}") from None
     if not math.isfinite(converted):
         raise ValueError(f"must be a finite number, got {value!r}")
@@ -371,5 +377,5 @@ def same_dimension(value: object, si_unit: str) -> bool:
     try:
         return ureg.Quantity(1, _pint_unit(unit) or "dimensionless").dimensionality == \
             ureg.Quantity(1, si_unit or "dimensionless").dimensionality
-    except (pint.errors.PintError, AttributeError, TypeError, SyntaxError):
+    except _UNREADABLE:
         return False

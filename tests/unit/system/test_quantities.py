@@ -14,6 +14,8 @@ from feedtherm.system.quantities import (
     Power,
     Speed,
     Temperature,
+    same_dimension,
+    to_base_si,
     to_si,
 )
 
@@ -137,3 +139,13 @@ def test_loading_a_description_imports_pint_without_dask_and_dask_still_imports_
     )
     result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
     assert result.returncode == 0, result.stderr[-2000:]
+
+
+@pytest.mark.parametrize("value", ["1**", "2 (", "1 m^", "1 1/", "3 )(", "1 m**"])
+def test_a_unit_pints_parser_cannot_read_is_one_valueerror(value):
+    # pint's tokenizer raises TokenError ("2 ("), its expression tree an AssertionError ("1**"):
+    # both reached `feedtherm correct --x` as tracebacks
+    for convert in (lambda v: to_si(v, "m"), to_base_si):
+        with pytest.raises(ValueError, match="cannot read the unit"):
+            convert(value)
+    assert not same_dimension(value, "m")
