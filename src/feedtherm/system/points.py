@@ -9,8 +9,10 @@ points, and have none to place.
 
 A part that moves with the table (``moving = true``) travels ±stroke/2 along x, where the drive
 sets its place.  A support on it may hold it across its travel (``y``, ``z``: its guides, as
-the free-bar verification case holds its ring; the support travels with the part), never
-along x: that would hold the table against the drive.  The positioning reference is a point
+the free-bar verification case holds its ring; the support travels with the part), and along x
+only where no joint ties its moving group to the frame: joined (the nut on the screw), the drive
+holds it along x, and a support there would hold the table against the drive; joined to nothing
+fixed, its own supports stand for the drive.  The positioning reference is a point
 of the machine's frame the error is measured from, so it may not lie on a moving part.  The
 elongation's target and mount may (a displacement sensor can ride on the table).
 """
@@ -67,14 +69,33 @@ def misplaced(system: FeedSystem) -> list[Finding]:
     return findings
 
 
+def driven_moving_parts(system: FeedSystem) -> set[str]:
+    """The moving parts a joint ties, through other moving parts, to a part that does not move: the
+    nut on the screw, the sliders on the rails.  The drive holds them along x; a moving group joined
+    to nothing fixed (a carriage drawn beside a test's rod) is held by its own supports."""
+    moving = {name for name, part in system.parts.items() if part.moving}
+    driven = {a if a in moving else b for j in system.joints for a, b in [tuple(j.between)]
+              if (a in moving) != (b in moving)}
+    grown = True
+    while grown:
+        more = {b if a in driven else a for j in system.joints for a, b in [tuple(j.between)]
+                if a in moving and b in moving and (a in driven) != (b in driven)}
+        grown = bool(more - driven)
+        driven |= more
+    return driven
+
+
 def on_moving_parts(system: FeedSystem) -> list[Finding]:
-    """Errors: a support along x or the positioning reference on a part that moves with the table."""
+    """Errors: a support along x on a part of a driven moving group (:func:`driven_moving_parts`), or the
+    positioning reference on a part that moves with the table."""
     parts, mech = system.parts, system.mechanics
+    driven = driven_moving_parts(system)
     findings = [Finding(f"mechanics.supports[{i}].fix",
-                        f"holds {s.part!r} along x, and it moves with the table (moving = true): along x the drive "
-                        "sets where the moving group stands, so a support there holds the table against it; a "
-                        "support on a moving part holds it across its travel only (y, z: its guides)", "error")
-                for i, s in enumerate(mech.supports) if parts[s.part].moving and "x" in s.fix]
+                        f"holds {s.part!r} along x, and it moves with the table (moving = true), joined to the "
+                        "machine's frame: along x the drive sets where the moving group stands, so a support there "
+                        "holds the table against it; a support on a moving part holds it across its travel only "
+                        "(y, z: its guides)", "error")
+                for i, s in enumerate(mech.supports) if s.part in driven and "x" in s.fix]
     if mech.positioning is not None and parts[mech.positioning.reference.part].moving:
         findings.append(Finding("mechanics.positioning.reference.part",
                                 f"{mech.positioning.reference.part!r} moves with the table (moving = true): the "

@@ -64,3 +64,22 @@ def test_the_whole_surface_is_an_upper_bound_of_the_drawn_one():
 
 def test_the_reach_of_an_unbounded_normal_is_the_samplers():
     assert -ndtri(EDGE) <= SAMPLED_SIGMAS < -ndtri(EDGE) + 0.01
+
+
+def test_the_benches_moving_groups_are_driven_through_their_joints(paper):
+    from feedtherm.system.points import driven_moving_parts
+
+    system = paper.system
+    moving = {name for name, part in system.parts.items() if part.moving}
+    # the worktable reaches the frame only through the sliders or the nut housing, the nut: every one is held by the drive
+    assert moving and driven_moving_parts(system) == moving
+
+
+def test_a_moving_group_joined_to_nothing_fixed_is_not_driven(paper):
+    from feedtherm.system.points import driven_moving_parts
+
+    system = paper.system
+    moving = {name for name, part in system.parts.items() if part.moving}
+    loose = system.model_copy(update={"joints": [j for j in system.joints
+                                                 if (j.between[0] in moving) == (j.between[1] in moving)]})
+    assert driven_moving_parts(loose) == set()

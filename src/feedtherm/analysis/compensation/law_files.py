@@ -357,7 +357,7 @@ def _model_in(annotation) -> type[BaseModel] | None:
 
 
 def key_path(loc) -> str:
-    """``weights_m_per_K[2][0]``, ``envelope.inputs.T1``; a key that is no plain name in quotes."""
+    """``weights_m_per_K[2][0]``, ``envelope.inputs.<input>``; a key that is no plain name in quotes."""
     text = ""
     for part in loc:
         if isinstance(part, int):
