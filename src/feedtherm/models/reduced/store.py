@@ -74,7 +74,7 @@ from .training import (CHECK_SEED, declared_domain, domain_digest, inside, omitt
 __all__ = ["cached_projected_model", "file_digest", "operator_code_digest", "projection_key", "projection_cache_path"]
 
 #: Changes whenever the file layout below changes.
-STORE_VERSION = 7
+STORE_VERSION = 8
 #: The distributions whose code builds a full model, its basis or its projection.
 LIBRARIES = ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "pymor")
 _PACKAGE = Path(__file__).resolve().parents[2]  # src/feedtherm
