@@ -10,18 +10,14 @@ import pytest
 
 from feedtherm.benches import bench
 from feedtherm.system.load import load_system
+from bench_text import paper_text  # tests/: the paper bench with changes made
 
-PAPER = bench("paper").description.read_text(encoding="utf-8")
 OVERLAY = (bench("paper").folder / "overlay.toml").read_text(encoding="utf-8")
 
 
 def variant(folder, *changes: tuple[str, str], name: str = "variant.toml") -> str:
     """The paper bench's description with ``changes`` (old, new) made, written to ``folder/name``."""
-    text = PAPER
-    for old, new in changes:
-        assert old in text, f"test fixture out of date: {old!r} not in the bench file"
-        text = text.replace(old, new, 1)
-    (folder / name).write_text(text, encoding="utf-8")
+    (folder / name).write_text(paper_text(*changes), encoding="utf-8")
     return name
 
 
