@@ -588,6 +588,50 @@ def cmd_correct(args: argparse.Namespace) -> int:
     return 0
 
 
+def _quantity_of(si_unit: str):
+    """argparse type: one quantity with its unit, in ``si_unit``."""
+    def parse(text: str) -> float:
+        from .system.quantities import to_si
+
+        try:
+            return to_si(text.strip(), si_unit)
+        except ValueError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+    return parse
+
+
+def _temperature_range(text: str) -> tuple[float, float]:
+    """argparse type: "LOW,HIGH" temperatures with their unit ("5 degC,45 degC") [K]."""
+    parts = text.split(",")
+    if len(parts) != 2:
+        raise argparse.ArgumentTypeError(f"must be two temperatures, low and high, as \"5 degC,45 degC\"; got {text!r}")
+    low, high = (_quantity_of("K")(part) for part in parts)
+    return low, high
+
+
+def cmd_export(args: argparse.Namespace) -> int:
+    from .outputs.controller.export import ExportOptions, export_law
+    from .outputs.files import check_output_dir
+
+    out_dir = Path(args.out) if args.out else Path("out") / f"{Path(args.law).stem}_{args.to}"
+    check_output_dir(out_dir)
+    options = ExportOptions(args.to, args.name, args.valid_range, args.margin, args.max_rate, args.start, args.x_ref,
+                            args.axis, args.units)
+    summary = export_law(args.law, options, out_dir)
+    for warning in summary["warnings"]:
+        print(f"warning: {warning}")
+    guards = summary["guards"]
+    print(f"{out_dir}: {', '.join(summary['files'])}")
+    print(f"  {summary['kind']} on {', '.join(i['name'] for i in summary['inputs'])}; rate limit "
+          f"{guards['max_rate_m_per_s'] * 1e6:g} um/s; valid range from {guards['valid_range_from']}; start "
+          f"{guards['start']}")
+    if "offset_slope" in summary:
+        form = summary["offset_slope"]
+        print(f"  offset and slope about x = {form['x_ref_m'] * 1e3:g} mm: error at most "
+              f"{form['reduction_error_bound_m'] * 1e6:.3g} um over the stroke for inputs within {form['ranges_from']}")
+    return 0
+
+
 def _power_of_two(text: str) -> int:
     """argparse type: a power of 2 (Sobol' points are balanced only in such sets)."""
     value = _positive_int(text)
@@ -912,6 +956,32 @@ def build_parser() -> argparse.ArgumentParser:
                          help="table positions with their unit, for a stroke law (law_stroke*.json): \"150 mm,250 mm\"")
     _out_argument(correct, "out/<law>_correction")
     correct.set_defaults(func=cmd_correct)
+
+    export = sub.add_parser("export", help="write an exported law (law*.json) as C99 or as a LinuxCNC HAL component, "
+                                           "with guards: valid input ranges, a rate limit, the power-up")
+    export.add_argument("law", metavar="LAW.json", help="a law file of `feedtherm compensate` (not a Kalman estimator)")
+    export.add_argument("--to", required=True, choices=("c", "linuxcnc"),
+                        help="c: a header and a source; linuxcnc: those, a halcompile component and a HAL file")
+    export.add_argument("--name", help="the prefix of the C names and the component's name (default "
+                                       "feedtherm_<law file's name>)")
+    export.add_argument("--valid-range", type=_temperature_range, metavar="LOW,HIGH",
+                        help="every input's valid range, e.g. \"5 degC,45 degC\" (default: the law's training "
+                             "envelope widened by --margin); outside it the output holds")
+    export.add_argument("--margin", type=_quantity_of("K"), metavar="DT",
+                        help="the widening of the training envelope, e.g. \"10 K\" (default 10 K)")
+    export.add_argument("--max-rate", type=_quantity_of("m/s"), metavar="RATE",
+                        help="the output's largest change, e.g. \"1 um/s\" (default 1 um/s)")
+    export.add_argument("--start", choices=("first-sample", "reference"), default="first-sample",
+                        help="power-up: the lags settle at the first valid sample (as `correct`), or start at the "
+                             "law's reference temperature; the output starts at 0 and ramps (default first-sample)")
+    export.add_argument("--x-ref", type=_quantity_of("m"), metavar="X",
+                        help="a stroke law: the reference position of the offset-and-slope form, e.g. \"300 mm\" "
+                             "(default: the stroke's middle)")
+    export.add_argument("--axis", default="x", help="linuxcnc: the axis letter the HAL file wires (default x)")
+    export.add_argument("--units", choices=("mm", "inch"), default="mm",
+                        help="linuxcnc: the machine's linear units (default mm)")
+    _out_argument(export, "out/<law>_<to>")
+    export.set_defaults(func=cmd_export)
 
     uncertainty = sub.add_parser("uncertainty", help="prediction bands (5-95 %%) of the sensors and D over time and Sobol' "
                                                      "indices from the description's declared uncertainties")

@@ -47,6 +47,7 @@ class Correction:
     sd: np.ndarray | None = None
     measured: np.ndarray | None = None
     flags: list[str] | None = None  # per sample, why it lies outside the law's training envelope ("" inside)
+    readings: dict[str, np.ndarray] | None = None  # the law's inputs [K] at ``times``, as the law was given them
 
     @property
     def flagged(self) -> int:
@@ -115,7 +116,7 @@ def correct(law: CompensationLaw, readings: str, positions: tuple[float, ...] = 
         envelope = getattr(law, "envelope", None)
         flags = None if envelope is None else envelope_flags(envelope, times, columns)
         out.append(Correction(condition, times, tuple(positions), np.asarray(predicted, float),
-                              np.asarray(sd, float) if sd else None, measured, flags))
+                              np.asarray(sd, float) if sd else None, measured, flags, columns))
     return out
 
 
