@@ -36,13 +36,17 @@ uncertainty: $(STAMP)
 
 # The report test renders report.html in headless Chromium (Debian package `chromium`); the
 # FE tests need the X/GL libraries that gmsh's wheel links against (Debian packages), and the
-# FE model's check against CalculiX needs its solver (Debian package `calculix-ccx`).
+# FE model's check against CalculiX needs its solver (Debian package `calculix-ccx`); the exported
+# laws' LinuxCNC component is built and run by LinuxCNC's own tools (Debian packages
+# `linuxcnc-uspace`, `linuxcnc-uspace-dev`; without them its tests are skipped, the C's still run).
 GMSH_LIBS := libglu1-mesa libgl1 libopengl0 libxrender1 libxcursor1 libxfixes3 libxext6 libxft2 libxinerama1 libx11-6
 
 setup-test: $(STAMP)
 	command -v chromium >/dev/null || (apt-get update -qq && apt-get install -y -qq chromium >/dev/null)
 	$(BIN)/python -c "import gmsh" 2>/dev/null || (apt-get update -qq && apt-get install -y -qq $(GMSH_LIBS) >/dev/null)
 	command -v ccx >/dev/null || (apt-get update -qq && apt-get install -y -qq calculix-ccx >/dev/null)
+	command -v halcompile >/dev/null || (apt-get update -qq && apt-get install -y -qq --no-install-recommends \
+		linuxcnc-uspace linuxcnc-uspace-dev >/dev/null) || echo "LinuxCNC could not be installed: its tests are skipped"
 
 # The suite on TEST_WORKERS pytest-xdist processes (2: this project's machines have two cores), each
 # module whole on one of them and the modules that start Dask clusters one after another

@@ -12,6 +12,7 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -77,6 +78,19 @@ def time_steps(times) -> np.ndarray:
     return np.array([0.0] + [b - a for a, b in zip(times, times[1:])])
 
 
+def random_day_log(path: Path, seed: int = 58) -> Path:
+    """24 h of T1-T3 [°C] at irregular intervals (30-90 s), smooth random walks: a measurement file."""
+    rng = np.random.default_rng(seed)
+    times = np.cumsum(rng.uniform(30.0, 90.0, 1500))
+    times = np.concatenate([[0.0], times[times < 86400.0]])
+    walk = 20.0 + np.cumsum(rng.normal(0.0, 0.08, (len(times), 3)), axis=0)
+    lines = ["condition,time [s],quantity,value,unit"]
+    for t, row in zip(times, walk):
+        lines += [f"day,{float(t)!r},T{i + 1},{float(v)!r},degC" for i, v in enumerate(row)]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
 # --------------------------------------------------------------------------- LinuxCNC
 
 def linuxcnc_available() -> bool:
@@ -87,10 +101,10 @@ def _hal_environment(tmp: Path) -> dict:
     """halrun's environment: as root, rtapi_app runs as nobody, with its FIFO where nobody may write."""
     env = dict(os.environ)
     if os.geteuid() == 0:
-        fifo = tmp / "rtapi"
+        # pytest's own temporary folders are private to root: the FIFO goes in a folder of /tmp's
+        fifo = Path(tempfile.gettempdir()) / f"feedtherm-rtapi-{os.getpid()}"
         fifo.mkdir(exist_ok=True)
         fifo.chmod(0o1777)
-        tmp.chmod(0o755)
         env.update(RTAPI_UID="65534", RTAPI_FIFO_PATH=str(fifo / "fifo"))
     return env
 

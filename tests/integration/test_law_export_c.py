@@ -18,9 +18,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from controller_harness import build_driver, run_driver, time_steps
+from controller_harness import build_driver, random_day_log, run_driver, time_steps
 from feedtherm.analysis.compensation.apply import correct, read_law
 from feedtherm.analysis.compensation.evaluator import CompensationLaw
+from feedtherm.cli import main
 from law_documents import LAGS, POSITIONS, REFERENCE, every_document
 
 pytestmark = pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler (cc) on this machine")
@@ -34,26 +35,13 @@ WIDE = "-50 degC,150 degC"
 
 
 def export(tmp: Path, kind: str, *options: str) -> tuple[Path, str]:
+    """`feedtherm export LAW --to c` in this process (the command's own exit code; one process saves
+    the package's import per export)."""
     law = tmp / f"{kind}.json"
     law.write_text(json.dumps(DOCUMENTS[kind]))
     out = tmp / f"{kind}_c"
-    done = subprocess.run([sys.executable, "-m", "feedtherm", "export", str(law), "--to", "c", "--name", f"ft_{kind}",
-                           "--out", str(out), *options], capture_output=True, text=True, timeout=120)
-    assert done.returncode == 0, done.stderr
+    assert main(["export", str(law), "--to", "c", "--name", f"ft_{kind}", "--out", str(out), *options]) == 0
     return out, f"ft_{kind}"
-
-
-def random_day_log(path: Path, seed: int = 58) -> Path:
-    """24 h of T1-T3 [°C] at irregular intervals (30-90 s), smooth random walks: a measurement file."""
-    rng = np.random.default_rng(seed)
-    times = np.cumsum(rng.uniform(30.0, 90.0, 1500))
-    times = np.concatenate([[0.0], times[times < 86400.0]])
-    walk = 20.0 + np.cumsum(rng.normal(0.0, 0.08, (len(times), 3)), axis=0)
-    lines = ["condition,time [s],quantity,value,unit"]
-    for t, row in zip(times, walk):
-        lines += [f"day,{float(t)!r},T{i + 1},{float(v)!r},degC" for i, v in enumerate(row)]
-    path.write_text("\n".join(lines) + "\n")
-    return path
 
 
 @pytest.fixture(scope="module")
@@ -225,8 +213,15 @@ def _export(tmp_path, law: Path, *options):
     return done, out
 
 
+def _export_here(capsys, tmp_path, law: Path, *options):
+    """The same in this process: (exit code, stderr, the output folder)."""
+    out = tmp_path / "out"
+    code = main(["export", str(law), "--to", "c", "--out", str(out), *options])
+    return code, capsys.readouterr().err, out
+
+
 @pytest.mark.parametrize("case", ["kalman", "nan", "x_ref_on_d", "range", "name", "reference_missing", "x_ref_out"])
-def test_what_cannot_export_is_refused_in_one_line_and_nothing_is_written(tmp_path, case):
+def test_what_cannot_export_is_refused_in_one_line_and_nothing_is_written(tmp_path, capsys, case):
     document = dict(DOCUMENTS["law_kalman" if case == "kalman" else "law_stroke" if case == "x_ref_out" else "law"])
     options, expect = [], ""
     if case == "kalman":
@@ -249,10 +244,10 @@ def test_what_cannot_export_is_refused_in_one_line_and_nothing_is_written(tmp_pa
     law = tmp_path / "law.json"
     if case != "nan":
         law.write_text(json.dumps(document))
-    done, out = _export(tmp_path, law, *options)
-    assert done.returncode == 2, done.stderr
-    lines = done.stderr.strip().splitlines()
-    assert len(lines) == 1 and expect in lines[0] and "Traceback" not in done.stderr
+    code, err, out = _export_here(capsys, tmp_path, law, *options)
+    assert code == 2, err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and expect in lines[0] and "Traceback" not in err
     assert not out.exists()
 
 
