@@ -31,6 +31,7 @@ pytestmark = pytest.mark.skipif(not linuxcnc_available(),
 DOCUMENTS = every_document()
 BENCH_LOG = Path(__file__).resolve().parents[2] / "src" / "feedtherm" / "benches" / "ballscrew_example" / "drift_tests.csv"
 AGREEMENT_UM = 1e-6
+KINDS = ("law", "law_static", "law_adapted", "law_stroke")
 
 
 @pytest.fixture(scope="module")
@@ -38,7 +39,7 @@ def components(tmp_path_factory):
     """Each kind exported and installed once (a module name unique to this run), removed afterwards."""
     folder = tmp_path_factory.mktemp("hal")
     built, installed = {}, []
-    for kind in ("law", "law_adapted", "law_stroke"):
+    for kind in KINDS:
         law = folder / f"{kind}.json"
         law.write_text(json.dumps(DOCUMENTS[kind]))
         name = f"ft_test_{kind}_{abs(hash(str(folder))) % 10**6}"
@@ -60,7 +61,7 @@ def _log_in_celsius(law, condition: str):
     return times, np.column_stack([values_at(rows[n], times) for n in law.inputs])
 
 
-@pytest.mark.parametrize("kind", ["law", "law_adapted", "law_stroke"])
+@pytest.mark.parametrize("kind", KINDS)
 def test_the_component_gives_what_correct_gives_on_the_bench_log(components, kind):
     law_file, out, name = components[kind]
     law = read_law(law_file)
@@ -80,17 +81,23 @@ def test_the_component_gives_what_correct_gives_on_the_bench_log(components, kin
     assert not rows[:, 2].any()
 
 
-def test_the_component_gives_what_correct_gives_on_a_random_day(components, tmp_path):
-    law_file, out, name = components["law"]
+@pytest.mark.parametrize("kind", KINDS)
+def test_the_component_gives_what_correct_gives_on_a_random_day(components, tmp_path, kind):
+    law_file, out, name = components[kind]
     law = read_law(law_file)
     log = random_day_log(tmp_path / "day.csv")
-    (c,) = correct(law, str(log))
+    x = float(POSITIONS[3])
+    (c,) = correct(law, str(log), (x,) if law.stroke else ())
     assert len(c.times) > 1000
     celsius = np.column_stack([c.readings[n] for n in law.inputs]) - KELVIN_OFFSET
     # the log's °C values, read back: (T - 273.15) + 273.15 is the reading correct used, to the bit here
     assert np.array_equal(celsius + KELVIN_OFFSET, np.column_stack([c.readings[n] for n in law.inputs]))
-    rows = replay(out, name, c.times, celsius, ["law-um"])
+    position = (x - law.x_min) * 1e3 if law.stroke else None
+    rows = replay(out, name, c.times, celsius, ["law-um"] + (["sd-um"] if kind == "law_adapted" else []),
+                  position=position)
     np.testing.assert_allclose(rows[:, 0], c.predicted[:, 0] * 1e6, rtol=0, atol=AGREEMENT_UM)
+    if kind == "law_adapted":
+        np.testing.assert_allclose(rows[:, 1], c.sd * 1e6, rtol=0, atol=AGREEMENT_UM)
 
 
 def test_a_failed_sensor_raises_the_fault_pin_and_holds_the_offset(components):
