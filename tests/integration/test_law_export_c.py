@@ -261,3 +261,15 @@ def test_a_bad_law_file_is_refused_as_correct_refuses_it(tmp_path):
                                 str(tmp_path / "c")], capture_output=True, text=True, timeout=120)
     assert exported.returncode == corrected.returncode == 2
     assert exported.stderr == corrected.stderr
+
+
+def test_a_name_too_long_for_hal_is_refused_before_anything_is_written(tmp_path, capsys):
+    """HAL names are at most 47 characters (HAL_NAME_LEN): the component's longest pin must fit."""
+    law = tmp_path / "law.json"
+    law.write_text(json.dumps(DOCUMENTS["law_stroke"]))
+    out = tmp_path / "out"
+    code = main(["export", str(law), "--to", "linuxcnc", "--name", "a" * 27, "--out", str(out)])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1 and "--name" in err and "use at most 26 characters" in err
+    assert not out.exists()
+    assert main(["export", str(law), "--to", "linuxcnc", "--name", "a" * 26, "--out", str(out)]) == 0

@@ -86,9 +86,9 @@ def c_identifier(text: str, option: str = "--name") -> str:
 
 
 def default_name(stem: str) -> str:
-    """A code name from a law file's stem (``law_stroke`` → ``feedtherm_law_stroke``)."""
-    cleaned = re.sub(r"[^a-z0-9_]+", "_", stem.lower()).strip("_")[:30] or "law"
-    return f"feedtherm_{cleaned}"
+    """A code name from a law file's stem (``law_stroke`` → ``ft_law_stroke``), short enough for HAL's names."""
+    cleaned = re.sub(r"[^a-z0-9_]+", "_", stem.lower()).strip("_")[:20].strip("_") or "law"
+    return f"ft_{cleaned}"
 
 
 def pin_names(inputs: tuple[str, ...]) -> list[str]:

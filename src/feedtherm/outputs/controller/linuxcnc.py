@@ -24,10 +24,15 @@ own rate limit keeps it to a thermal change's pace.
 
 from __future__ import annotations
 
+from ...errors import FeedthermError
 from .c_code import number
 from .law_spec import LawSpec, comment_text, pin_names
 
 KELVIN_OFFSET_C = "273.15"
+#: The longest name of a HAL pin (HAL_NAME_LEN of LinuxCNC's hal.h).
+HAL_NAME_LEN = 47
+#: The component's longest fixed pin name.
+LONGEST_PIN = "reduction-bound-um"
 
 COMPONENT = """\
 component @P@ "feedtherm thermal-error compensation from @SOURCE@: the axis correction from temperatures";
@@ -144,6 +149,7 @@ def component_files(spec: LawSpec, name: str, source: str, version: str, axis: s
     per metre and the external offset's units per count.
     """
     pins = pin_names(spec.inputs)
+    check_hal_names(name, pins)
     upper = name.upper()
     temperature_pins = "".join(f'pin in float temp_{p} "{comment_text(n)} [degC]";\n' for p, n in zip(pins, spec.inputs))
     inputs = "".join(f"    inputs[{i}] = temp_{p} + {KELVIN_OFFSET_C};\n" for i, p in enumerate(pins))
@@ -162,6 +168,19 @@ def component_files(spec: LawSpec, name: str, source: str, version: str, axis: s
     hal_file = _fill(HAL, H=hal, NETS=nets, AXIS=axis, AXIS_UPPER=axis.upper(), UNITS_PER_M=number(units_per_m),
                 SCALE=number(scale), POSITION=position, **common)
     return {f"{name}.comp": comp, f"{name}.hal": hal_file}
+
+
+def check_hal_names(name: str, pins: list[str]) -> None:
+    """Every pin's full HAL name within :data:`HAL_NAME_LEN`; else one line naming ``--name`` or the input."""
+    hal = hal_name(name)
+    if len(f"{hal}.0.{LONGEST_PIN}") > HAL_NAME_LEN:
+        raise FeedthermError(f"--name: {name!r} makes HAL pin names longer than HAL's {HAL_NAME_LEN} characters "
+                             f"({hal}.0.{LONGEST_PIN}); use at most {HAL_NAME_LEN - 3 - len(LONGEST_PIN)} characters")
+    for pin in pins:
+        full = f"{hal}.0.temp-{pin.replace('_', '-')}"
+        if len(full) > HAL_NAME_LEN:
+            raise FeedthermError(f"inputs: the pin {full} is longer than HAL's {HAL_NAME_LEN} characters; use a "
+                                 "shorter --name")
 
 
 def hal_name(name: str) -> str:
