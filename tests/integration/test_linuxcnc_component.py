@@ -129,3 +129,19 @@ def test_the_hal_file_wires_into_linuxcncs_motion_module(components, tmp_path, k
     assert f"{hal}.0.counts" in done.stdout and "axis.x.eoffset-counts" in done.stdout
     if kind == "law_stroke":
         assert "axis.x.pos-cmd" in done.stdout
+
+
+def test_a_reversed_axis_maps_the_position_the_other_way_and_turns_the_offset(components):
+    """With `reversed`, machine position p is x = x-at-zero-m - p / 1000 and the offset is +E in mm."""
+    law_file, out, name = components["law_stroke"]
+    law = read_law(law_file)
+    x = float(POSITIONS[1])
+    (c,) = [c for c in correct(law, str(BENCH_LOG), (x,)) if c.condition == "drift"]
+    times, celsius = _log_in_celsius(law, "drift")
+    hal = name.replace("_", "-")
+    extra = f"setp {hal}.0.reversed 1\nsetp {hal}.0.x-at-zero-m {law.x_max!r}"
+    rows = replay(out, name, times, celsius, ["law-um", "output-um", "offset"], position=(law.x_max - x) * 1e3,
+                  extra=extra)
+    np.testing.assert_allclose(rows[:, 0], c.predicted[:, 0] * 1e6, rtol=0, atol=AGREEMENT_UM)
+    np.testing.assert_allclose(rows[:, 2], rows[:, 1] * 1e-3, rtol=0, atol=1e-12)
+    assert np.abs(rows[:, 2]).max() > 1e-4

@@ -89,6 +89,12 @@ def export_law(path: str | Path, options: ExportOptions, out_dir: Path) -> dict:
         files = {**c_files(spec, guards, name, source, __version__, options.x_ref, stem=f"{name}_law"),
                  **component_files(spec, name, source, __version__, options.axis, UNITS_PER_M[options.units],
                                    options.scale)}
+        summary["linuxcnc"] = {"module": name, "component": hal_name(name), "axis": options.axis,
+                               "units": options.units, "units_per_m": UNITS_PER_M[options.units],
+                               "eoffset_scale": options.scale,
+                               **({"x_at_zero_m": spec.x_min} if spec.stroke else {}),
+                               "build": f"halcompile --install {name}.comp",
+                               "wiring": f"{name}.hal: counts to axis.{options.axis}.eoffset-counts"}
     summary["files"] = sorted(files) + ["export.json"]
     with staged_directory(Path(out_dir), replaces=tuple(summary["files"])) as stage:
         for file_name, text in files.items():

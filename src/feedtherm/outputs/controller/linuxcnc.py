@@ -14,6 +14,8 @@ once a period of the thread it is added to (the servo thread):
   the output is held), ``ramping`` (rate limited), ``flags`` and ``bad-input``;
 - **parameters**: ``eoffset-scale`` (machine units a count; set ``axis.L.eoffset-scale`` to the
   same), ``units-per-m`` (1000 for mm), ``x-at-zero-m`` (the law's x at machine position 0),
+  ``reversed`` (the machine's axis runs against the law's x: the position maps to x the other way,
+  and the offset, a displacement along x, changes sign in machine coordinates),
   ``replay`` (step when ``sample-time`` increases, by its increase, instead of by the thread's
   period: a logged series fed through the pins, as the test suite does).
 
@@ -57,6 +59,7 @@ pin out s32 bad_input "the first invalid input, -1 if none";
 param rw float eoffset_scale = 1e-6 "machine units per count: the value of axis.L.eoffset-scale";
 param rw float units_per_m = 1000.0 "machine units per metre (1000: mm)";
 param rw float x_at_zero_m = @X_AT_ZERO@ "the law's table position x [m] at machine position 0";
+param rw bit reversed = 0 "the machine's axis runs against the law's x: x falls as the position grows";
 param rw bit replay = 0 "step when sample-time increases, by its increase, not by the thread's period";
 variable @P@_state state;
 variable double last_time = 0.0;
@@ -87,7 +90,7 @@ FUNCTION(_) {
     if (step) @P@_step(&state, dt, inputs);
 @OUTPUT@\
     output_um = e * 1e6;
-    offset = -e * units_per_m;
+    offset = (reversed ? e : -e) * units_per_m;
     counts = (hal_s32_t)floor(offset / eoffset_scale + 0.5);
     flags = @P@_flags(&state) | at;
     bad_input = @P@_bad_input(&state);
@@ -104,7 +107,7 @@ D_OUTPUT = """\
 
 STROKE_OUTPUT = """\
     {
-        double x = x_at_zero_m + position / units_per_m, offset_m, slope, bound;
+        double x = x_at_zero_m + (reversed ? -position : position) / units_per_m, offset_m, slope, bound;
         law_um = @P@_law_at_m(&state, x) * 1e6;
         at = @P@_output_at_m(&state, x, &e);
         @P@_offset_slope(&state, &offset_m, &slope, &bound);
