@@ -963,7 +963,7 @@ def build_parser() -> argparse.ArgumentParser:
     export.add_argument("--to", required=True, choices=("c", "linuxcnc"),
                         help="c: a header and a source; linuxcnc: those, a halcompile component and a HAL file")
     export.add_argument("--name", help="the prefix of the C names and the component's name (default "
-                                       "feedtherm_<law file's name>)")
+                                       "ft_<law file's name>)")
     export.add_argument("--valid-range", type=_temperature_range, metavar="LOW,HIGH",
                         help="every input's valid range, e.g. \"5 degC,45 degC\" (default: the law's training "
                              "envelope widened by --margin); outside it the output holds")

@@ -41,6 +41,7 @@ def test_the_default_valid_range_is_the_envelope_widened_by_the_margin():
 
 
 @pytest.mark.parametrize("kwargs, field", [({"max_rate": 0.0}, "--max-rate"), ({"margin_K": -1.0}, "--margin"),
+                                           ({"margin_K": 283.15}, "--margin"),
                                            ({"start": "warm"}, "--start"), ({"start": "reference"}, "--start"),
                                            ({"valid_range_K": (300.0, 290.0)}, "--valid-range")])
 def test_each_bad_option_is_named(kwargs, field):

@@ -32,6 +32,8 @@ from ...errors import FeedthermError
 #: shorted one about -240 °C), while a machine a few kelvin beyond its training is still measured
 #: right (``feedtherm correct`` flags such samples; they are not failures).
 DEFAULT_MARGIN_K = 10.0
+#: The largest margin [K]: beyond it a failed sensor's reading would pass as valid.
+MAX_MARGIN_K = 100.0
 #: The default rate limit [m/s], 1 µm/s: a feed drive's thermal error changes by tens of µm an hour
 #: (0.01 µm/s; the paper's screw, 30-40 µm in its first hour), so the limit never clips a thermal
 #: change, while a 30 µm step becomes a 30 s ramp.
@@ -91,8 +93,9 @@ def resolve_guards(document: dict, valid_range_K: tuple[float, float] | None = N
     inputs = [item["name"] for item in document["inputs"]]
     if not (math.isfinite(max_rate) and max_rate > 0):
         raise FeedthermError(f"--max-rate: {max_rate:g} m/s is not a positive rate")
-    if not (math.isfinite(margin_K) and margin_K >= 0):
-        raise FeedthermError(f"--margin: {margin_K:g} K is not a margin (a finite number of kelvin, 0 or more)")
+    if not (math.isfinite(margin_K) and 0 <= margin_K <= MAX_MARGIN_K):
+        raise FeedthermError(f"--margin: {margin_K:g} K is not a margin: a difference of 0 to {MAX_MARGIN_K:g} K "
+                             "(\"10 K\"; \"10 degC\" reads as the temperature 283.15 K)")
     if start not in STARTS:
         raise FeedthermError(f"--start: {start!r} is not a start; allowed: {', '.join(STARTS)}")
     reference = document.get("reference")
