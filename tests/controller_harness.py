@@ -94,7 +94,12 @@ def random_day_log(path: Path, seed: int = 58) -> Path:
 # --------------------------------------------------------------------------- LinuxCNC
 
 def linuxcnc_available() -> bool:
-    return all(shutil.which(tool) for tool in ("halcompile", "halrun", "halstreamer", "halsampler"))
+    """LinuxCNC's tools are here, and its module folder (where halcompile installs) is writable."""
+    if not all(shutil.which(tool) for tool in ("halcompile", "halrun", "halstreamer", "halsampler")):
+        return False
+    done = subprocess.run(["halcompile", "--print-modinc"], capture_output=True, text=True)
+    modules = Path("/usr/lib/linuxcnc/modules")
+    return done.returncode == 0 and os.access(modules, os.W_OK)
 
 
 def _hal_environment(tmp: Path) -> dict:

@@ -26,7 +26,8 @@ from feedtherm.system.measurements import read_measurements
 from law_documents import POSITIONS, every_document
 
 pytestmark = pytest.mark.skipif(not linuxcnc_available(),
-                                reason="LinuxCNC (Debian linuxcnc-uspace, linuxcnc-uspace-dev) is not installed")
+                                reason="LinuxCNC (Debian linuxcnc-uspace, linuxcnc-uspace-dev) is not installed, or "
+                                       "its module folder is not writable (halcompile --install needs it)")
 
 DOCUMENTS = every_document()
 BENCH_LOG = Path(__file__).resolve().parents[2] / "src" / "feedtherm" / "benches" / "ballscrew_example" / "drift_tests.csv"
