@@ -16,7 +16,7 @@ import numpy as np
 
 from . import __version__
 from .constants import KELVIN_OFFSET
-from .errors import FeedthermError
+from .errors import ArgumentError, FeedthermError
 from .models.integrator import Integrator, Segment
 from .models.interface import ThermalModel
 from .models.options import ModelOptions
@@ -216,7 +216,8 @@ def steady_solve(loaded: LoadedSystem, condition: str, *, single_drive: bool = F
                  model: str = "fast", mesh: str | None = None, options: ModelOptions | None = None) -> SteadySolve:
     """Plan ``condition``, build the model and solve its steady state (no transient)."""
     if condition not in loaded.system.conditions:
-        raise FeedthermError(f"no condition {condition!r} in {loaded.origin}")
+        raise ArgumentError("condition", f"no condition {condition!r} in {loaded.origin}; "
+                                         f"conditions: {', '.join(loaded.system.conditions)}")
     plan = plan_run(loaded, condition=condition, model=model, single_drive=single_drive, mesh=mesh,
                     options=options)
     segment = plan.segments[0]
