@@ -1,7 +1,8 @@
 """Run a model on a described feed system: ``simulate(loaded, condition=name)``.
 
 This is the public entry point the CLI and the analyses use, and ``feedtherm.simulate`` of the
-public API (docs/python-api.md): the module is callable, a call runs :func:`simulate`.  A run has three steps:
+public API (docs/python-api.md): this module is callable, ``ft.simulate(system, condition="I")``
+runs :func:`simulate` (its parameters: ``help(feedtherm.simulate.simulate)``).  A run has three steps:
 :func:`~feedtherm.plan.plan_run` (validated segments and their boundary conditions),
 integration by the shared :class:`~feedtherm.models.integrator.Integrator` with the model
 from the registry, and :func:`~feedtherm.solution.pack.pack_solution`.
