@@ -5,8 +5,9 @@ import importlib.util
 import grimp
 from importlinter.cli import lint_imports
 
-#: Modules run from outside the package: the command line.
-ENTRY_POINTS = {"feedtherm.cli", "feedtherm.__main__"}
+#: Modules run from outside the package: the command line, and the Python API (``feedtherm``
+#: imports it by name, on first use).
+ENTRY_POINTS = {"feedtherm.cli", "feedtherm.__main__", "feedtherm.api"}
 
 
 def test_import_contracts_hold(capsys):

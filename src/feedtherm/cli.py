@@ -17,7 +17,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from . import __version__
-from .errors import FeedthermError, ModelError, Terminated
+from .errors import ArgumentError, FeedthermError, ModelError, Terminated, cli_message
 
 
 class _Parser(argparse.ArgumentParser):
@@ -57,7 +57,7 @@ def _naming(origin: str):
 def _condition(loaded, name: str) -> str:
     conditions = loaded.system.conditions
     if name not in conditions:
-        raise FeedthermError(f"--condition: no condition {name!r} in {loaded.origin}; conditions: {', '.join(conditions)}")
+        raise ArgumentError("condition", f"no condition {name!r} in {loaded.origin}; conditions: {', '.join(conditions)}")
     return name
 
 
@@ -124,7 +124,7 @@ def cmd_check(args: argparse.Namespace) -> int:
             try:
                 plan = plan_run(loaded, **{kind: name})
             except FeedthermError as exc:
-                raise FeedthermError(f"{loaded.origin}: {section}.{name}: {exc}") from None
+                raise FeedthermError(f"{loaded.origin}: {section}.{name}: {cli_message(exc)}") from None
             costs.extend(cost_lines(f"{section}.{name}", plan.end - plan.segments[0].t0, run_cost(plan)))
     print(f"{loaded.origin}: valid description '{system.meta.name}' — {len(system.parts)} parts, "
           f"{len(system.joints)} joints, {len(system.sources)} heat sources, {len(system.surfaces)} surfaces, "
@@ -1033,7 +1033,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return args.func(args)
     except FeedthermError as exc:
-        print(f"feedtherm: error: {exc}", file=sys.stderr)
+        print(f"feedtherm: error: {cli_message(exc)}", file=sys.stderr)
         return 2
     except Terminated as stop:
         print(f"feedtherm: terminated{_what_was_kept(stop)}", file=sys.stderr)

@@ -1,6 +1,8 @@
 """Run a model on a described feed system: ``simulate(loaded, condition=name)``.
 
-This is the public entry point the CLI and the analyses use.  A run has three steps:
+This is the public entry point the CLI and the analyses use, and ``feedtherm.simulate`` of the
+public API (docs/python-api.md): this module is callable, ``ft.simulate(system, condition="I")``
+runs :func:`simulate` (its parameters: ``help(feedtherm.simulate.simulate)``).  A run has three steps:
 :func:`~feedtherm.plan.plan_run` (validated segments and their boundary conditions),
 integration by the shared :class:`~feedtherm.models.integrator.Integrator` with the model
 from the registry, and :func:`~feedtherm.solution.pack.pack_solution`.
@@ -8,7 +10,9 @@ from the registry, and :func:`~feedtherm.solution.pack.pack_solution`.
 
 from __future__ import annotations
 
+import sys
 import time
+import types
 from dataclasses import dataclass, replace
 from typing import Callable
 
@@ -16,7 +20,7 @@ import numpy as np
 
 from . import __version__
 from .constants import KELVIN_OFFSET
-from .errors import FeedthermError
+from .errors import ArgumentError, FeedthermError
 from .models.integrator import Integrator, Segment
 from .models.interface import ThermalModel
 from .models.options import ModelOptions
@@ -28,12 +32,12 @@ from .system.overlay import mode_of
 from .solution import Solution
 from .solution.health import check_health
 from .solution.pack import pack_solution, sample_times
-from .system.load import LoadedSystem
+from .system.load import LoadedSystem, as_loaded
 from .system.mechanics import loop_summary
 from .system.schema import FeedSystem
 
 
-def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str | None = None,
+def simulate(loaded: LoadedSystem | str, *, condition: str | None = None, cycle: str | None = None,
              test: str | None = None, model: str = "fast", duration: float | None = None,
              single_drive: bool = False, sample_interval: float = 10.0,
              progress: Callable[[float], None] | None = None, motion: str | None = None,
@@ -47,6 +51,9 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
 
     Parameters
     ----------
+    loaded : LoadedSystem, str or path-like
+        A description from :func:`feedtherm.load` (:func:`~feedtherm.system.load.load_system`),
+        or a bench name or a description's path, loaded here in the physics mode.
     condition, test, cycle : str
         Exactly one: a test or a condition by name (``condition`` and ``test`` are the same
         argument: a condition is the simplest test; docs/tests.md), or a duty cycle (a name in the
@@ -76,7 +83,29 @@ def simulate(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
     measured : MeasurementSet, optional
         The measurements a test with a measured room or start reads (default: its own file, else the
         description's).
+
+    Returns
+    -------
+    Solution
+        Sensor series, screw fields, D and E(x, t), final and steady values, the energy balance;
+        :meth:`~feedtherm.solution.Solution.to_dataframe` tabulates them.
+
+    Raises
+    ------
+    ArgumentError
+        An argument the run cannot take, named as here: ``condition: no condition or test 'nope'
+        in …``, ``model: no model …``, ``duration: must be positive …``.
+    ModelError
+        The description asks for something the model cannot do.
+
+    Examples
+    --------
+    >>> import feedtherm as ft
+    >>> run = ft.simulate(ft.load("paper"), condition="I", duration=600.0)  # doctest: +SKIP
+    >>> run.to_dataframe().columns[:2].tolist()  # doctest: +SKIP
+    ['time [s]', 'T1 [degC]']
     """
+    loaded = as_loaded(loaded)
     plan = plan_run(loaded, condition=condition, cycle=cycle, test=test, model=model, duration=duration,
                     single_drive=single_drive, sample_interval=sample_interval, motion=motion, mesh=mesh,
                     solver=solver, start=start, options=options, allow_overload=allow_overload, measured=measured)
@@ -216,7 +245,8 @@ def steady_solve(loaded: LoadedSystem, condition: str, *, single_drive: bool = F
                  model: str = "fast", mesh: str | None = None, options: ModelOptions | None = None) -> SteadySolve:
     """Plan ``condition``, build the model and solve its steady state (no transient)."""
     if condition not in loaded.system.conditions:
-        raise FeedthermError(f"no condition {condition!r} in {loaded.origin}")
+        raise ArgumentError("condition", f"no condition {condition!r} in {loaded.origin}; "
+                                         f"conditions: {', '.join(loaded.system.conditions)}")
     plan = plan_run(loaded, condition=condition, model=model, single_drive=single_drive, mesh=mesh,
                     options=options)
     segment = plan.segments[0]
@@ -250,3 +280,21 @@ def provenance(loaded: LoadedSystem) -> dict:
 
 
 __all__ = ["simulate", "execute", "steady_state", "steady_solve", "SteadySolve", "discretize", "provenance", "ModelOptions"]
+
+
+class _Verb(types.ModuleType):
+    """This module, callable: ``feedtherm.simulate(...)`` runs :func:`simulate`.
+
+    The public API's verb and this module share the name ``feedtherm.simulate``, and the import
+    system sets a package's attribute to its submodule whenever the submodule is imported, over
+    whatever the package had put there.  So the attribute is this module, and calling it is the
+    verb; ``from feedtherm.simulate import simulate`` and patching the module's names work as before.
+    """
+
+    def __call__(self, *args, **kwargs) -> Solution:
+        return simulate(*args, **kwargs)
+
+
+_module = sys.modules[__name__]
+_module.__class__ = _Verb
+_module.__wrapped__ = simulate  # inspect.signature(feedtherm.simulate) is the function's

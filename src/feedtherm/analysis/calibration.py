@@ -50,7 +50,7 @@ from scipy.special import stdtrit
 
 from ..boundary import boundary_conditions
 from ..boundary.heat import motor_duties
-from ..errors import FeedthermError
+from ..errors import ArgumentError, FeedthermError
 from ..models.options import ModelOptions
 from ..models.registry import model_entry
 from ..simulate import prepare, simulate
@@ -183,10 +183,10 @@ def resolve_parameters(loaded: LoadedSystem, names: list[str]) -> list[FitParame
     for name in names:
         if name not in declared:
             if re.search(r"[.\[]", name):
-                raise FeedthermError(f"--params: {name!r} has no declared bounds; declare it under "
-                                     f"[calibration.parameters] with kind, paths and bounds")
+                raise ArgumentError("params", f"{name!r} has no declared bounds; declare it under "
+                                              f"[calibration.parameters] with kind, paths and bounds")
             known = ", ".join(declared) or "none declared"
-            raise FeedthermError(f"--params: unknown parameter {name!r}{closest(name, declared)} (declared: {known})")
+            raise ArgumentError("params", f"unknown parameter {name!r}{closest(name, declared)} (declared: {known})")
         spec = declared[name]
         paths = [p for path in spec.paths for p in expand(loaded, path)]
         try:
@@ -201,7 +201,7 @@ def resolve_parameters(loaded: LoadedSystem, names: list[str]) -> list[FitParame
             raise FeedthermError(f"calibration.parameters.{name}.bounds: the lower bound must be below the upper")
         out.append(FitParameter(name, spec.kind, paths, originals, lower, upper))
     if not out:
-        raise FeedthermError("--params: name at least one parameter")
+        raise ArgumentError("params", "name at least one parameter")
     return out
 
 
@@ -581,11 +581,12 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
     measured = data.runs()
     missing = [c for c in fit if c not in measured]
     if missing:
-        raise FeedthermError(f"--fit: no measurements for {', '.join(missing)} in {data.source} (measured: {', '.join(measured)})")
+        raise ArgumentError("fit", f"no measurements for {', '.join(missing)} in {data.source} "
+                                   f"(measured: {', '.join(measured)})")
     runs = run_names(loaded.system)
     unknown = [c for c in fit if c not in runs]
     if unknown:
-        raise FeedthermError(f"--fit: no condition or test {', '.join(unknown)} in {loaded.origin}")
+        raise ArgumentError("fit", f"no condition or test {', '.join(unknown)} in {loaded.origin}")
     parameters = resolve_parameters(loaded, names)
     fitted_data = _data(data, fit, consistency, equilibrium)
     rows = [r for r in fitted_data if not r.flag]
@@ -597,7 +598,7 @@ def calibrate(loaded: LoadedSystem, data: MeasurementSet, fit: list[str], names:
     target = np.concatenate([np.atleast_1d(r.series.values if r.series is not None else r.measured)
                              for r in rows]) if rows else np.zeros(0)
     if len(target) < len(parameters):
-        raise FeedthermError(f"--fit: {len(target)} measured values cannot determine {len(parameters)} parameters")
+        raise ArgumentError("fit", f"{len(target)} measured values cannot determine {len(parameters)} parameters")
     with _Model(loaded, parameters, workers, cache, execution, series=_series_quantities(every), model=model,
                 mesh=mesh) as runner:
         lower = np.array([p.lower for p in parameters])

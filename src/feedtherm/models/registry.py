@@ -14,7 +14,7 @@ from functools import cache
 from importlib import import_module, metadata
 from typing import Callable
 
-from ..errors import FeedthermError
+from ..errors import ArgumentError, FeedthermError
 from ..system.schema import FeedSystem
 from .interface import ThermalModel
 from .options import ModelOptions
@@ -162,7 +162,7 @@ def model_entry(name: str) -> ModelEntry:
     if name not in models:
         close = difflib.get_close_matches(name, models, n=1)
         hint = f"; did you mean {close[0]!r}?" if close else ""
-        raise FeedthermError(f"--model: no model {name!r}; models: {', '.join(models)}{hint}")
+        raise ArgumentError("model", f"no model {name!r}; models: {', '.join(models)}{hint}")
     return models[name]
 
 

@@ -16,7 +16,7 @@ from ..boundary.heat import motor_overloads
 from ..boundary.operating import OperatingPoint, operating_point
 from ..boundary.room import RoomAir
 from ..constants import RPM_PER_RAD_S
-from ..errors import FeedthermError, ModelError
+from ..errors import ArgumentError, FeedthermError, ModelError
 from ..models.coupling import Coupling
 from ..models.integrator import Segment
 from ..models.options import ModelOptions
@@ -129,15 +129,15 @@ def plan_run(loaded: LoadedSystem, *, condition: str | None = None, cycle: str |
     """
     entry = _check_arguments(model, duration, sample_interval, motion, mesh, solver, start)
     if factor_memory is not None and not (math.isfinite(factor_memory) and factor_memory > 0.0):
-        raise FeedthermError(f"--factor-memory: must be a positive number of GB, got {factor_memory / 1e9!r}")
+        raise ArgumentError("factor_memory", f"must be a positive number of GB, got {factor_memory / 1e9!r}")
     if condition is not None and test is not None:
-        raise FeedthermError("give the test once: --condition and --test name the same thing")
+        raise ArgumentError("test", "condition and test name the same thing; give one of them")
     name = condition if condition is not None else test
     opts = options or ModelOptions()
     opts = replace(opts, **{name: value for name, value in (("motion", motion), ("mesh", mesh), ("solver", solver),
                                                             ("factor_memory", factor_memory)) if value is not None})
     if name is not None and cycle is None:
-        profile = test_profile(loaded, name, duration, measured)
+        profile = test_profile(loaded, name, duration, measured, "condition" if condition is not None else "test")
         what = f"test {name}" if name in loaded.system.tests else f"condition {name}"
     else:
         profile = cycle_profile(loaded, name, cycle, duration)
@@ -200,9 +200,10 @@ def _check_duration(loaded: LoadedSystem, segments: list[Segment], end: float, o
     """A run must last one time step at least: shorter, it has no step to report."""
     step = _time_step(_stroke(loaded.system), segments[0], options)
     if end < step:
-        what = "--duration" if given else "the run's duration"
-        raise FeedthermError(f"{what}: {end:g} s is shorter than one time step of this run ({step:g} s); "
-                             f"give {step:g} s or more")
+        detail = f"{end:g} s is shorter than one time step of this run ({step:g} s); give {step:g} s or more"
+        if given:
+            raise ArgumentError("duration", detail)
+        raise FeedthermError(f"the run's duration: {detail}")
 
 
 #: Wall time per time step [s] of each model (and FE mesh), measured on the project's machine
@@ -372,17 +373,17 @@ def _size(n_bytes: float) -> str:
 def _check_arguments(model, duration, sample_interval, motion, mesh, solver, start) -> ModelEntry:
     entry = model_entry(model)
     if duration is not None and not duration > 0:
-        raise FeedthermError(f"--duration: must be positive, got {duration!r} s")
+        raise ArgumentError("duration", f"must be positive, got {duration!r} s")
     if motion not in (None, *MOTIONS):
-        raise FeedthermError(f"--motion: must be resolved or averaged, got {motion!r}")
+        raise ArgumentError("motion", f"must be resolved or averaged, got {motion!r}")
     if mesh not in (None, *MESHES):
-        raise FeedthermError(f"--mesh: must be one of {', '.join(MESHES)}, got {mesh!r}")
+        raise ArgumentError("mesh", f"must be one of {', '.join(MESHES)}, got {mesh!r}")
     if solver not in (None, *SOLVERS):
-        raise FeedthermError(f"--solver: must be one of {', '.join(SOLVERS)}, got {solver!r}")
+        raise ArgumentError("solver", f"must be one of {', '.join(SOLVERS)}, got {solver!r}")
     if not sample_interval > 0:
-        raise FeedthermError(f"--sample-interval: must be positive, got {sample_interval!r} s")
+        raise ArgumentError("sample_interval", f"must be positive, got {sample_interval!r} s")
     if start not in STARTS:
-        raise FeedthermError(f"start must be 'initial' or 'steady', got {start!r}")
+        raise ArgumentError("start", f"must be 'initial' or 'steady', got {start!r}")
     return entry
 
 

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from ..boundary.room import RoomAir
 from ..constants import ELONGATION_PROBE, KELVIN_OFFSET
-from ..errors import FeedthermError
+from ..errors import ArgumentError, FeedthermError
 from ..system.duty_cycle import read_duty_cycle_csv
 from ..system.load import LoadedSystem
 from ..system.measurement_series import ELONGATION_QUANTITY
@@ -60,14 +60,15 @@ class _Profile:
 
 
 def test_profile(loaded: LoadedSystem, name: str, duration: float | None,
-                  measured: MeasurementSet | None) -> _Profile:
-    """A test's (or a condition's) segments, its start and its room's air."""
+                  measured: MeasurementSet | None, argument: str = "condition") -> _Profile:
+    """A test's (or a condition's) segments, its start and its room's air (``argument``: the
+    caller's name for ``name``, which an unknown one's error names)."""
     system = loaded.system
     test = as_test(system, name)
     if test is None:
         tests = f"; tests: {', '.join(system.tests)}" if system.tests else ""
-        raise FeedthermError(f"--condition: no condition or test {name!r} in {loaded.origin}; "
-                             f"conditions: {', '.join(system.conditions)}{tests}")
+        raise ArgumentError(argument, f"no condition or test {name!r} in {loaded.origin}; "
+                                      f"conditions: {', '.join(system.conditions)}{tests}")
     end = duration if duration is not None else run_duration(system, name)
     data = _measurements(loaded, name, test, measured) if test.needs_measurements else None
     air, room = None, None
@@ -143,17 +144,17 @@ def cycle_profile(loaded: LoadedSystem, condition: str | None, cycle: str | None
     """A duty cycle's segments (a name in the description or a CSV file), from ``temperatures.initial``."""
     system = loaded.system
     if condition is not None:
-        raise FeedthermError("give exactly one of --condition and --cycle")
+        raise ArgumentError("cycle", "give exactly one of condition (or test) and cycle, not both")
     if cycle is None:
-        raise FeedthermError("give exactly one of --condition (a test or a condition) and --cycle")
+        raise ArgumentError("condition", "give exactly one of condition (a test or a condition), test and cycle")
     if cycle in system.duty_cycles:
         profile = system.duty_cycles[cycle]
         end = duration if duration is not None else profile.total_duration
         label, duty = cycle, _timeline(profile, end, None)
     elif not Path(cycle).is_file():
         names = ", ".join(system.duty_cycles) or "none"
-        raise FeedthermError(f"--cycle: {cycle!r} is neither a duty cycle of {loaded.origin} (declared: {names}) "
-                             "nor an existing CSV file")
+        raise ArgumentError("cycle", f"{cycle!r} is neither a duty cycle of {loaded.origin} (declared: {names}) "
+                                     "nor an existing CSV file")
     else:
         end = duration if duration is not None else DEFAULT_DURATION_S
         label, duty = Path(cycle).stem, read_duty_cycle_csv(cycle, end).segments

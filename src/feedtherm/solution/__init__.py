@@ -2,17 +2,23 @@
 
 Analyses, outputs and the CLI read only this type; they never reach into a solver.
 Temperatures are in kelvin and lengths in metres inside; converters below give the °C and
-µm that files and plots show.
+µm that files and plots show, properties named with their unit (``sensors_degC``,
+``positioning_error_um``) say which one a value is in, and :meth:`Solution.to_dataframe` gives
+the series as pandas tables.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..constants import ELONGATION_PROBE, KELVIN_OFFSET
 from .fields import FieldSeries
+
+if TYPE_CHECKING:  # pandas is imported where a table is built (.tables)
+    import pandas as pd
 
 ENERGY_FLOOR_J = 1.0  # [J] smallest energy scale of the balance
 
@@ -77,6 +83,14 @@ class Ledger:
 class Solution:
     """Sensor series, screw fields and summary values of one run.
 
+    Every field is in SI units (s, K, m, J).  Beside each, a property whose name ends in its unit
+    gives the same values in that unit: ``time_s``, ``sensors_K``, ``sensors_degC``,
+    ``elongation_m``, ``elongation_um``, ``screw_x_m``, ``screw_temperature_K``,
+    ``screw_temperature_degC``, ``screw_displacement_m``, ``screw_displacement_um``,
+    ``table_x_m``, ``positioning_error_m``, ``positioning_error_um``, ``nut_offset_m``,
+    ``part_temperatures_K``, ``part_temperatures_degC``, ``equilibrium_time_s``.
+    :meth:`to_dataframe` tabulates the series with units in the column names.
+
     Attributes
     ----------
     times : ndarray, shape (n,)
@@ -103,8 +117,12 @@ class Solution:
         Displacement [m] of the moving group from the middle of the stroke.
     part_temperatures : dict[str, ndarray]
         Mean temperature [K] of every part at ``times``, each node weighted by its heat capacity.
-    cycle_times, cycle_sensors, cycle_elongation
-        Series averaged over each full reciprocation cycle (time = cycle midpoint).
+    cycle_times : ndarray
+        Midpoints [s] of the full reciprocation cycles.
+    cycle_sensors : dict[str, ndarray]
+        Sensor temperatures [K] averaged over each full cycle.
+    cycle_elongation : ndarray
+        D [m] averaged over each full cycle.
     final : dict[str, float]
         Sensor temperatures [K] and ``D`` [m]: the mean over the last full cycle.
     steady : dict[str, float]
@@ -112,6 +130,7 @@ class Solution:
     equilibrium_time : float or None
         When the run reached thermal equilibrium [s] (definition: docs/fast-model.md), None if it did not.
     energy : EnergyBalance
+        Heat in, lost and stored over the run [J].
     info : dict
         Model, mode, condition, time step, unknowns, wall time, provenance (JSON-able).
     fields : FieldSeries or None
@@ -155,7 +174,127 @@ class Solution:
         return self.info.get("ambient_sensor", "ambient")
 
     def sensors_celsius(self) -> dict[str, np.ndarray]:
+        """:attr:`sensors` in °C (the same as :attr:`sensors_degC`)."""
         return {name: values - KELVIN_OFFSET for name, values in self.sensors.items()}
+
+    # The fields under names that carry their unit (views, no copies where the unit is SI).
+
+    @property
+    def time_s(self) -> np.ndarray:
+        """:attr:`times` [s]."""
+        return self.times
+
+    @property
+    def sensors_K(self) -> dict[str, np.ndarray]:
+        """:attr:`sensors` [K]."""
+        return self.sensors
+
+    @property
+    def sensors_degC(self) -> dict[str, np.ndarray]:
+        """:attr:`sensors` [°C]."""
+        return self.sensors_celsius()
+
+    @property
+    def elongation_m(self) -> np.ndarray:
+        """:attr:`elongation` D [m]."""
+        return self.elongation
+
+    @property
+    def screw_x_m(self) -> np.ndarray:
+        """:attr:`screw_x` [m]."""
+        return self.screw_x
+
+    @property
+    def screw_temperature_K(self) -> np.ndarray:
+        """:attr:`screw_temperature` [K], shape (times, screw_x)."""
+        return self.screw_temperature
+
+    @property
+    def screw_temperature_degC(self) -> np.ndarray:
+        """:attr:`screw_temperature` [°C], shape (times, screw_x)."""
+        return self.screw_temperature - KELVIN_OFFSET
+
+    @property
+    def screw_displacement_m(self) -> np.ndarray:
+        """:attr:`screw_displacement` [m], shape (times, screw_x)."""
+        return self.screw_displacement
+
+    @property
+    def screw_displacement_um(self) -> np.ndarray:
+        """:attr:`screw_displacement` [µm], shape (times, screw_x)."""
+        return self.screw_displacement * 1e6
+
+    @property
+    def table_x_m(self) -> np.ndarray:
+        """:attr:`table_x` [m]."""
+        return self.table_x
+
+    @property
+    def positioning_error_m(self) -> np.ndarray:
+        """:attr:`positioning_error` E(x, t) [m], shape (times, table_x)."""
+        return self.positioning_error
+
+    @property
+    def positioning_error_um(self) -> np.ndarray:
+        """:attr:`positioning_error` E(x, t) [µm], shape (times, table_x)."""
+        return self.positioning_error * 1e6
+
+    @property
+    def nut_offset_m(self) -> np.ndarray:
+        """:attr:`nut_offset` [m]."""
+        return self.nut_offset
+
+    @property
+    def part_temperatures_K(self) -> dict[str, np.ndarray]:
+        """:attr:`part_temperatures` [K]."""
+        return self.part_temperatures
+
+    @property
+    def part_temperatures_degC(self) -> dict[str, np.ndarray]:
+        """:attr:`part_temperatures` [°C]."""
+        return {name: values - KELVIN_OFFSET for name, values in self.part_temperatures.items()}
+
+    @property
+    def equilibrium_time_s(self) -> float | None:
+        """:attr:`equilibrium_time` [s], None if the run did not reach equilibrium."""
+        return self.equilibrium_time
+
+    def to_dataframe(self, kind: str = "sensors", form: str = "wide") -> "pd.DataFrame":
+        """A series of the run as a pandas DataFrame, units in the column names.
+
+        Parameters
+        ----------
+        kind : {"sensors", "parts", "screw_temperature", "screw_displacement", "positioning_error"}
+            ``sensors``: every sensor's temperature [°C] (as declared, the ambient last) and D [µm];
+            ``parts``: each part's capacity-weighted mean temperature [°C]; ``screw_temperature``
+            [°C] and ``screw_displacement`` [µm] along the screw; ``positioning_error`` E(x, t) [µm]
+            at the table positions.
+        form : {"wide", "long"}
+            ``wide``: one row per sample time, a column ``time [s]`` and one column per sensor
+            (``T1 [degC]``, ``D [um]``), part (``screw [degC]``) or position (``E(x=12.5 mm) [um]``).
+            ``long``: one row per value: ``time [s]``, ``sensor``, ``value``, ``unit`` for the
+            sensors; ``time [s]``, ``part``, ``temperature [degC]`` for the parts; ``time [s]``,
+            ``x [mm]`` and the quantity (``temperature [degC]``, ``displacement [um]``,
+            ``positioning error [um]``) for a field along x.
+
+        Returns
+        -------
+        pandas.DataFrame
+
+        Raises
+        ------
+        feedtherm.errors.ArgumentError
+            An unknown ``kind`` or ``form`` (a ``ValueError`` naming the argument).
+
+        Examples
+        --------
+        >>> import feedtherm as ft
+        >>> run = ft.simulate(ft.load("paper"), condition="I", duration=600.0)  # doctest: +SKIP
+        >>> run.to_dataframe()["T1 [degC]"].iloc[-1]  # doctest: +SKIP
+        """
+        from .tables import to_dataframe
+
+        return to_dataframe(self, kind, form)
 
     @property
     def elongation_um(self) -> np.ndarray:

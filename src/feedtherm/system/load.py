@@ -10,6 +10,7 @@ from __future__ import annotations
 import difflib
 import hashlib
 import json
+import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -18,7 +19,7 @@ from typing import TYPE_CHECKING, get_args
 from pydantic import BaseModel, ValidationError
 
 from ..benches import ORIGIN_PREFIX, bench, bench_names, suggestion
-from ..errors import DescriptionError
+from ..errors import ArgumentError, DescriptionError
 from .areas import with_joint_areas
 from .files import parse_bounded_toml, read_text_file
 from .schema import FeedSystem
@@ -69,6 +70,31 @@ def load_system(spec: str = "paper") -> LoadedSystem:
     """Load a description given as a TOML path or a bench name, and validate it (:func:`validate_description`)."""
     text, origin = read_text(spec)
     return validate_description(parse_toml(text, origin), origin)
+
+
+def as_loaded(system: "LoadedSystem | str | os.PathLike", argument: str = "system") -> LoadedSystem:
+    """``system`` as given if loaded, else loaded from a bench name or a description's path.
+
+    Parameters
+    ----------
+    system : LoadedSystem, str or path-like
+        A loaded description, a bench name or the path of a TOML description.
+    argument : str
+        The caller's name for ``system``, which the error for anything else names.
+
+    Raises
+    ------
+    ArgumentError
+        ``system`` is none of those.
+    DescriptionError
+        The bench or file cannot be loaded.
+    """
+    if isinstance(system, LoadedSystem):
+        return system
+    if isinstance(system, (str, os.PathLike)):
+        return load_system(os.fspath(system))
+    raise ArgumentError(argument, "a description from feedtherm.load(), a bench name or a path, "
+                                  f"got {type(system).__name__}")
 
 
 def validate_description(data: dict, origin: str) -> LoadedSystem:

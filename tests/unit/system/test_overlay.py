@@ -74,7 +74,9 @@ def test_a_bad_overlay_is_one_line_naming_the_file_and_field(tmp_path, paper, ed
 
 
 def test_the_mode_argument_lives_in_plan_and_the_cli_only():
-    """The mode becomes an overlay once, in plan.with_mode; everything else reads the LoadedSystem."""
+    """The mode becomes an overlay once, in plan.with_mode; everything else reads the LoadedSystem.
+
+    The CLI's ``--mode`` and the Python API's ``ft.load(..., mode=)`` pass it there."""
     found = set()
     for path in SRC.rglob("*.py"):
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
@@ -88,4 +90,4 @@ def test_the_mode_argument_lives_in_plan_and_the_cli_only():
                                                       and keyword.value.value in ("json", "python", "wrap",
                                                                                   "after", "before", "plain")):
                         found.add(path.relative_to(SRC).as_posix())
-    assert found <= {"plan/__init__.py", "cli.py"}, found
+    assert found <= {"plan/__init__.py", "cli.py", "api.py"}, found

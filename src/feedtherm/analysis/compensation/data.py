@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...constants import RPM_PER_RAD_S
-from ...errors import FeedthermError
+from ...errors import ArgumentError, FeedthermError
 from ...models.options import ModelOptions
 from ...simulate import prepare
 from ...system.load import LoadedSystem
@@ -100,9 +100,9 @@ class StudySettings:
 
     def __post_init__(self) -> None:
         if isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer)):
-            raise FeedthermError(f"--seed: {self.seed!r} is not an integer")
+            raise ArgumentError("seed", f"{self.seed!r} is not an integer")
         if isinstance(self.cycles, bool) or not isinstance(self.cycles, (int, np.integer)) or self.cycles < 1:
-            raise FeedthermError(f"--cycles: {self.cycles!r} is not a positive integer")
+            raise ArgumentError("cycles", f"{self.cycles!r} is not a positive integer")
         if not self.sample_interval > 0:
             raise FeedthermError("the sample interval must be positive")
 

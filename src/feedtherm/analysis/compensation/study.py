@@ -23,7 +23,7 @@ from dataclasses import dataclass, field, replace
 
 from ...boundary.operating import OperatingPoint
 from ...constants import ELONGATION_PROBE, KELVIN_OFFSET
-from ...errors import FeedthermError
+from ...errors import ArgumentError, FeedthermError
 from ...system.load import LoadedSystem
 from ..candidates import Candidate, candidate_sensors, carriable, with_candidates
 from ..execution import Execution
@@ -116,9 +116,11 @@ def parse_sensors(text: str, candidates: dict[str, Candidate]) -> int | tuple[st
 
     Raises
     ------
+    ArgumentError
+        Naming ``sensors``: K not a positive whole number or larger than the carriable candidates, an
+        unknown name (with the closest ones), a name listed twice.
     FeedthermError
-        One line: K not a positive whole number or larger than the carriable candidates, an unknown
-        name (with the closest ones), a name listed twice, ``declared`` without declared sensors.
+        ``declared`` without declared sensors (the description is what is missing).
     """
     text = text.strip()
     if text == DECLARED:
@@ -130,19 +132,19 @@ def parse_sensors(text: str, candidates: dict[str, Candidate]) -> int | tuple[st
         k = int(text)
         pool = carriable(candidates)
         if k < 1:
-            raise FeedthermError(f"--sensors: K must be at least 1, got {k}")
+            raise ArgumentError("sensors", f"K must be at least 1, got {k}")
         if k > len(pool):
-            raise FeedthermError(f"--sensors: K = {k} but there are {len(pool)} candidate positions a machine can "
-                                 f"carry (of {len(candidates)}; docs/compensation.md, *Candidates*)")
+            raise ArgumentError("sensors", f"K = {k} but there are {len(pool)} candidate positions a machine can "
+                                           f"carry (of {len(candidates)}; docs/compensation.md, *Candidates*)")
         return k
     names = tuple(item.strip() for item in text.split(","))
     for name in names:
         if not name or not _NAME.fullmatch(name):
-            raise FeedthermError(f"--sensors: {text!r} is neither a count nor a list of sensor names")
+            raise ArgumentError("sensors", f"{text!r} is neither a count nor a list of sensor names")
         if name not in candidates:
-            raise FeedthermError(f"--sensors: no candidate sensor {name!r}{_closest(name, candidates)}")
+            raise ArgumentError("sensors", f"no candidate sensor {name!r}{_closest(name, candidates)}")
     if len(set(names)) != len(names):
-        raise FeedthermError(f"--sensors: a sensor is listed twice in {text!r}")
+        raise ArgumentError("sensors", f"a sensor is listed twice in {text!r}")
     return names
 
 
@@ -160,7 +162,7 @@ def run_study(loaded: LoadedSystem, settings: StudySettings, request: int | tupl
     candidates = candidate_sensors(loaded.system)
     pool = carriable(candidates)  # what the greedy choice chooses among (named sensors may be any candidate)
     if isinstance(request, int) and request > len(pool):
-        raise FeedthermError(f"--sensors: K = {request} but there are {len(pool)} candidate positions a machine can carry")
+        raise ArgumentError("sensors", f"K = {request} but there are {len(pool)} candidate positions a machine can carry")
     kinds = {name: c.kind for name, c in candidates.items()}
     declared_noise = SensorNoise.of(loaded.system, kinds)
     noise = declared_noise if settings.noise else SensorNoise.none(kinds)
