@@ -4,6 +4,7 @@ repository's docs; then the figures the page states, checked on what the command
 
 import csv
 import json
+import os
 import re
 import shlex
 from pathlib import Path
@@ -38,25 +39,34 @@ def tutorial(tmp_path_factory):
     folder = tmp_path_factory.mktemp("tutorial")
     (folder / "docs").symlink_to(ROOT / "docs")
     done = []
-    import os
-
     here = os.getcwd()
     os.chdir(folder)
-    try:
-        for kind, what in steps(PAGE.read_text(encoding="utf-8")):
-            if kind == "append":
-                path, body = what
-                with open(path, "a", encoding="utf-8") as handle:
-                    handle.write("\n" + body)
-            elif what[0] == "cp":
-                Path(what[2]).write_bytes(Path(what[1]).read_bytes())
-            else:
-                assert what[0] == "feedtherm", what
-                assert main(what[1:]) == 0, what
-            done.append(what)
-    finally:
-        os.chdir(here)
+    # One core seen: `calibrate` without --workers fits serially, to the bit as on its default local
+    # cluster of one worker per core (test_cli_calibrate_parallel.py), which costs more than it gains
+    # on this small fit (16.4 s against 11.2 s serially on an idle machine) and loses further to the
+    # other pytest-xdist worker on the same two cores.
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(os, "cpu_count", lambda: 1)
+        try:
+            _run_steps(done)
+        finally:
+            os.chdir(here)
     return folder, done
+
+
+def _run_steps(done: list) -> None:
+    """Every step of the page in the present folder, each appended to ``done`` once it has run."""
+    for kind, what in steps(PAGE.read_text(encoding="utf-8")):
+        if kind == "append":
+            path, body = what
+            with open(path, "a", encoding="utf-8") as handle:
+                handle.write("\n" + body)
+        elif what[0] == "cp":
+            Path(what[2]).write_bytes(Path(what[1]).read_bytes())
+        else:
+            assert what[0] == "feedtherm", what
+            assert main(what[1:]) == 0, what
+        done.append(what)
 
 
 def test_every_step_ran(tutorial):
