@@ -14,8 +14,8 @@ from pydantic import ValidationError
 
 from ..errors import DescriptionError
 from .files import MAX_DATA_BYTES, read_text_file
-from .load import describe_error
 from .schema import DutyCycle
+from .validation_errors import describe_error
 
 HEADER = ["time_s", "screw_rpm", "nut_rpm", "ambient_C"]
 

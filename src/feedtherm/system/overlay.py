@@ -41,6 +41,7 @@ from .files import parse_bounded_toml, read_text_file
 from .quantities import PosHeatTransferCoefficient, Power
 from .references import closest
 from .schema import FeedSystem
+from .validation_errors import describe_error
 
 OVERLAY = "overlay.toml"
 #: What runs without an overlay are called in outputs: every value from the physics.
@@ -134,8 +135,6 @@ def read_overlay(path: Path, system: FeedSystem) -> Overlay:
     try:
         overlay = Overlay.model_validate(data)
     except ValidationError as exc:
-        from .load import describe_error  # load imports the schema this module extends
-
         raise DescriptionError(f"{path}: {describe_error(exc)}") from None
     problem = _dangling(overlay, system)
     if problem:

@@ -21,9 +21,10 @@ from pydantic import BaseModel, TypeAdapter, ValidationError
 
 from ..errors import DescriptionError
 from .areas import with_joint_areas
-from .load import LoadedSystem, describe_error
+from .load import LoadedSystem
 from .quantities import SIUnit
 from .schema import Condition, FeedSystem
+from .validation_errors import describe_error
 
 _STEP = re.compile(r"([A-Za-z0-9_]+)|\[(\d+)\]")
 
