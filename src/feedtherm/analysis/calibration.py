@@ -57,9 +57,10 @@ from ..simulate import prepare, simulate
 from ..solution.equilibrium import rise_time
 from ..system.load import LoadedSystem
 from ..system.overlay import mode_of
+from ..system.paths import expand_path, get_path
 from ..system.quantities import to_base_si
 from ..system.references import closest
-from ..system.variants import expand_path, get_path, with_values
+from ..system.variants import with_values
 from .consistency import ConsistencyReport
 from .execution import Execution, TaskFailure, kept_open, run_ordered
 from ..system.measurement_series import Series

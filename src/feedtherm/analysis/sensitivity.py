@@ -16,9 +16,10 @@ from typing import Callable
 
 from ..constants import ELONGATION_PROBE
 from ..simulate import steady_state
-from ..system.checks import covers, leaf_paths, specificity
+from ..system.checks import covers, specificity
 from ..system.load import LoadedSystem
-from ..system.variants import get_path, with_values
+from ..system.paths import get_path, leaf_paths
+from ..system.variants import with_values
 from .validation_types import ELONGATION_QUANTITY, Sensitivity
 
 PERTURBED_SECTIONS = ("materials", "joints", "sources", "surfaces", "temperatures.convection_delta_t", "kinematics.lead")

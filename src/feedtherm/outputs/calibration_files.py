@@ -25,8 +25,8 @@ from ..benches import bench, bench_name_of
 from ..errors import FeedthermError
 from ..system.load import LoadedSystem, read_text
 from ..system.overlay import overlay_spec
+from ..system.paths import expand_path, split_path
 from ..system.quantities import registry
-from ..system.variants import expand_path, split_path
 from .files import read_study_summary, staged_directory, write_json
 
 PREDICTION_HEADER = ["condition", "quantity", "unit", "predicted", "measured", "deviation", "interval95", "flag"]

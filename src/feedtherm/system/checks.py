@@ -25,11 +25,11 @@ from .finding import Finding
 from .geometry import bounds, screw_axis, surface_area, table_travel
 from .holding import free_motions
 from .joint_contacts import joint_contacts
+from .paths import leaf_paths, si_unit_at, unresolved
 from .quantities import same_dimension, to_base_si
 from .schema import FeedSystem
 from .surfaces import RotatingConvection
 from .uncertainties import uncertainty_problems
-from .variants import si_unit_at, unresolved
 
 _RAD_PER_S_TO_RPM = 60.0 / (2.0 * math.pi)
 #: Relative tolerance on a stated feed speed against (n_s - n_n) * lead.
@@ -315,21 +315,6 @@ def _ambient_paths(system: FeedSystem) -> list[Finding]:
     return [Finding(f"parts.{name}", "no surface and no chain of joints connects it to the ambient; its "
                     "temperature would have no steady state", "error")
             for name in system.parts if name not in reached]
-
-
-def leaf_paths(data, prefix: str = "") -> list[str]:
-    """Dotted paths of every value in nested dicts/lists (lists of scalars are leaves)."""
-    if isinstance(data, dict):
-        paths = []
-        for key, value in data.items():
-            paths.extend(leaf_paths(value, f"{prefix}.{key}" if prefix else str(key)))
-        return paths
-    if isinstance(data, list) and any(isinstance(v, (dict, list)) for v in data):
-        paths = []
-        for i, value in enumerate(data):
-            paths.extend(leaf_paths(value, f"{prefix}[{i}]"))
-        return paths
-    return [prefix]
 
 
 def covers(prefix: str, path: str) -> bool:

@@ -115,7 +115,7 @@ class _Problem(Exception):
 
 
 def _check(system: "FeedSystem", name: str, spec: UncertaintyParameter) -> None:
-    from .variants import expand_path, get_path, si_unit_at, unresolved  # variants imports the loader, which imports the schema
+    from .paths import expand_path, get_path, si_unit_at, unresolved  # paths imports the schema, which imports this module
 
     where = f"uncertainty.parameters.{name}"
     paths = []
@@ -168,7 +168,7 @@ def _reach_accepted(system: "FeedSystem", where: str, spec: UncertaintyParameter
     bounds the declared value passed (an expansion coefficient stays positive, a tcr inside its
     range).  ``ends``: how far it reaches, a range's ends or, without a range, SAMPLED_SIGMAS
     standard deviations (a factor's, times each path's value)."""
-    from .variants import refusal_at
+    from .paths import refusal_at
 
     for path, value in values.items():
         for end in ends:

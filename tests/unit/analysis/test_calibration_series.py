@@ -14,7 +14,8 @@ from feedtherm.analysis.calibration import RunCache, calibrate, cross_validate, 
 from feedtherm.system.measurements import read_measurements
 from feedtherm.errors import FeedthermError
 from feedtherm.outputs.calibration_files import calibration_summary, cross_summary, print_calibration
-from feedtherm.system.variants import get_path, with_values
+from feedtherm.system.paths import get_path
+from feedtherm.system.variants import with_values
 
 PRELOAD, CHTC = "sources.screw_nut.preload", "surfaces.screw_shaft.chtc_factor"
 SENSORS = ["T1", "T2"]

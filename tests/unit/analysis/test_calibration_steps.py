@@ -10,7 +10,7 @@ import pytest
 from feedtherm.analysis import calibration
 from feedtherm.analysis.calibration import RunCache, _Broyden, _converged, calibrate, cross_validate
 from feedtherm.system.measurements import read_measurements
-from feedtherm.system.variants import get_path
+from feedtherm.system.paths import get_path
 
 PARAMS = ["screw_nut_preload", "chtc_screw"]
 CONDITIONS = ["I", "II", "III", "IV"]

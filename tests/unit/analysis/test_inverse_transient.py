@@ -17,7 +17,8 @@ from feedtherm.errors import FeedthermError
 from feedtherm.models.options import ModelOptions
 from feedtherm.simulate import simulate
 from feedtherm.system.load import load_system
-from feedtherm.system.variants import get_path, with_values
+from feedtherm.system.paths import get_path
+from feedtherm.system.variants import with_values
 
 STEP = ModelOptions(motion="averaged", averaged_step=10.0, max_step=10.0)
 TIMES = np.arange(0.0, 1201.0, 120.0)

@@ -9,7 +9,8 @@ from feedtherm.analysis.uncertainty.declared import resolve_uncertainties
 from feedtherm.benches import bench
 from feedtherm.errors import DescriptionError, FeedthermError
 from feedtherm.system.load import load_system
-from feedtherm.system.variants import get_path, with_values
+from feedtherm.system.paths import get_path
+from feedtherm.system.variants import with_values
 
 BENCH = bench("paper").description.read_text(encoding="utf-8")
 FRICTION = '''[uncertainty.parameters.screw_nut_friction]

@@ -2,7 +2,8 @@ import pytest
 
 from feedtherm.errors import DescriptionError
 from feedtherm.system.load import load_system
-from feedtherm.system.variants import get_path, split_path, with_condition, with_values
+from feedtherm.system.paths import get_path, split_path
+from feedtherm.system.variants import with_condition, with_values
 
 
 def test_split_path():

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 from ...errors import FeedthermError
 from ...system.load import LoadedSystem
+from ...system.paths import expand_path, get_path, si_unit_at
 from ...system.quantities import to_base_si
 from ...system.uncertainties import uncertainty_problems
-from ...system.variants import expand_path, get_path, si_unit_at, with_values
+from ...system.variants import with_values
 from ..sensitivity import source_of
 from .types import UncertainParameter
 

@@ -21,7 +21,7 @@ import numpy as np
 from ...errors import FeedthermError
 from ...system.load import LoadedSystem, load_system
 from ...system.overlay import with_overlay
-from ...system.variants import si_unit_at
+from ...system.paths import si_unit_at
 from .declared import resolve_uncertainties
 from .sampling import POSTERIOR, to_values
 from .types import UncertainParameter

@@ -34,10 +34,10 @@ import math
 
 import numpy as np
 
+from ...system.paths import expand_path, get_path
 from ...system.quantities import to_base_si
 from ...system.schema import FeedSystem
 from ...system.surfaces import FixedConvection
-from ...system.variants import expand_path, get_path
 from ..interface import affine_value
 
 __all__ = ["RANDOM_POINTS", "declared_domain", "domain_digest", "inside", "omitted_values", "structure",
