@@ -6,7 +6,7 @@ displacement sensor's or support's point outside its part or in its hole (system
 support or the positioning reference on a moving part, a joint whose parts do not touch
 (system/joint_contacts.py), supports and joints that leave a part free to move, a stroke longer than the thread, calibration bounds reversed or
 of another dimension than their value, a part that no path connects to the ambient, a declared
-uncertainty whose range excludes its value or leaves the value's accepted range (system/uncertainties.py).
+uncertainty whose range excludes its value or leaves the value's accepted range (system/uncertainty_checks.py).
 :func:`~feedtherm.system.load.load_system` refuses such a description with the first error's
 line, so that no command starts on it.  A *warning* is content worth a look that the models
 can still run: a stated feed speed that the motor speeds contradict, a value no provenance
@@ -29,7 +29,7 @@ from .paths import leaf_paths, si_unit_at, unresolved
 from .quantities import same_dimension, to_base_si
 from .schema import FeedSystem
 from .surfaces import RotatingConvection
-from .uncertainties import uncertainty_problems
+from .uncertainty_checks import uncertainty_problems
 
 _RAD_PER_S_TO_RPM = 60.0 / (2.0 * math.pi)
 #: Relative tolerance on a stated feed speed against (n_s - n_n) * lead.
@@ -54,7 +54,7 @@ def check_system(system: FeedSystem) -> list[Finding]:
 
 
 def _uncertainties(system: FeedSystem, severity: str) -> list[Finding]:
-    """The declared uncertainties' problems of one severity (system/uncertainties.py)."""
+    """The declared uncertainties' problems of one severity (system/uncertainty_checks.py)."""
     return [Finding(path, reason, kind) for path, reason, kind in uncertainty_problems(system) if kind == severity]
 
 

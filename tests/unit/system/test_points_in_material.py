@@ -10,7 +10,7 @@ from scipy.special import ndtri
 from feedtherm.analysis.uncertainty.sampling import EDGE
 from feedtherm.system.geometry import contains, hole_at, part_surface_area
 from feedtherm.system.schema import Part
-from feedtherm.system.uncertainties import SAMPLED_SIGMAS
+from feedtherm.system.uncertainty_checks import SAMPLED_SIGMAS
 
 MM = 1e-3
 # a 100 x 100 x 100 mm block at the origin: a through hole Ø40 along x on (y, z) = (50, 50) mm,

@@ -6,7 +6,7 @@ from ...errors import FeedthermError
 from ...system.load import LoadedSystem
 from ...system.paths import expand_path, get_path, si_unit_at
 from ...system.quantities import to_base_si
-from ...system.uncertainties import uncertainty_problems
+from ...system.uncertainty_checks import uncertainty_problems
 from ...system.variants import with_values
 from ..sensitivity import source_of
 from .types import UncertainParameter
