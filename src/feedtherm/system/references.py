@@ -2,15 +2,18 @@
 
 Raised errors start with the dotted path of the offending field and, where a name is
 unknown, suggest the closest declared one.
+
+The schema runs :func:`check_references` as the validator of its
+:class:`~feedtherm.system.schema.FeedSystem`; so that the dependency runs one way, the rules
+here take that description (``system``) without importing its class.
 """
 
 from __future__ import annotations
 
 import difflib
-from typing import TYPE_CHECKING, Iterable
+from typing import Iterable
 
-if TYPE_CHECKING:  # pragma: no cover
-    from .schema import FeedSystem
+from .thermal_tests import Soak
 
 
 def closest(name: str, candidates: Iterable[str]) -> str:
@@ -24,8 +27,8 @@ def _require(kind: str, name: str, declared: dict, path: str) -> None:
         raise ValueError(f"{path}: no {kind} named {name!r}{closest(name, declared)}")
 
 
-def check_references(system: "FeedSystem") -> None:
-    """Raise ``ValueError("<path>: <reason>")`` for the first dangling reference."""
+def check_references(system) -> None:
+    """Raise ``ValueError("<path>: <reason>")`` for the first dangling reference of ``system`` (a FeedSystem)."""
     parts, sources, surfaces = system.parts, system.sources, system.surfaces
     for name, part in parts.items():
         _require("material", part.material, system.materials, f"parts.{name}.material")
@@ -72,10 +75,8 @@ def check_references(system: "FeedSystem") -> None:
     _check_tests(system)
 
 
-def _check_tests(system: "FeedSystem") -> None:
+def _check_tests(system) -> None:
     """A test names a declared condition or duty cycle, and a soaked start one that does not lead back to it."""
-    from .thermal_tests import Soak  # the schema imports this module's caller
-
     for name, cycle in system.duty_cycles.items():
         if cycle.ambient is None:
             for i, segment in enumerate(cycle.segments):
@@ -103,7 +104,7 @@ def _check_tests(system: "FeedSystem") -> None:
                 current = system.tests[current.soaked].start
 
 
-def _check_mechanics(system: "FeedSystem") -> None:
+def _check_mechanics(system) -> None:
     mech, parts = system.mechanics, system.parts
     for i, support in enumerate(mech.supports):
         _require("part", support.part, parts, f"mechanics.supports[{i}].part")
@@ -126,7 +127,7 @@ def _check_mechanics(system: "FeedSystem") -> None:
 _NO_DRIVE = "the system has no feed drive ([kinematics] is left out)"
 
 
-def _runs(system: "FeedSystem"):
+def _runs(system):
     """``(path, run)`` of every condition, then every duty-cycle segment, in declared order."""
     for name, condition in system.conditions.items():
         yield f"conditions.{name}", condition
@@ -135,7 +136,7 @@ def _runs(system: "FeedSystem"):
             yield f"duty_cycles.{name}.segments[{i}]", segment
 
 
-def _check_without_feed_drive(system: "FeedSystem") -> None:
+def _check_without_feed_drive(system) -> None:
     """Without a feed drive nothing moves or turns: no moving part, sliding joint, turning
     source or speed; only ``fixed`` sources and still or natural convection."""
     for name, part in system.parts.items():
@@ -159,7 +160,7 @@ def _check_without_feed_drive(system: "FeedSystem") -> None:
                 raise ValueError(f"{path}.{field}: {_NO_DRIVE}; leave the speed out")
 
 
-def _check_speeds_given(system: "FeedSystem") -> None:
+def _check_speeds_given(system) -> None:
     """With a feed drive a condition or segment states its screw speed: it defaults to 0 only so
     that a system without a drive can leave it out, and a forgotten speed is not a standstill."""
     for path, run in _runs(system):
@@ -167,7 +168,7 @@ def _check_speeds_given(system: "FeedSystem") -> None:
             raise ValueError(f"{path}.screw_speed: missing (required with a feed drive; 0 rpm for a standstill)")
 
 
-def _check_single_drive(system: "FeedSystem") -> None:
+def _check_single_drive(system) -> None:
     """A single drive has no nut motor: nothing may turn with the nut."""
     for path, run in _runs(system):
         if run.nut_speed != 0.0:

@@ -46,6 +46,7 @@ from .quantities import (
     Speed,
     Temperature,
 )
+from .references import check_references
 from .sources import (
     HeatSource,
 )
@@ -379,7 +380,5 @@ class FeedSystem(Strict):
 
     @model_validator(mode="after")
     def _references_resolve(self) -> "FeedSystem":
-        from .references import check_references  # the cross-reference rules live there
-
         check_references(self)
         return self
