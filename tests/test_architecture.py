@@ -11,7 +11,7 @@ ENTRY_POINTS = {"feedtherm.cli", "feedtherm.__main__", "feedtherm.api"}
 
 
 def test_import_contracts_hold(capsys):
-    """pyproject.toml's [tool.importlinter] contracts: layers, pure physics, independent models."""
+    """pyproject.toml's [tool.importlinter] contracts: layers, pure physics, independent models, a system/ without cycles."""
     result = lint_imports(no_cache=True, no_logo=True)
     report = capsys.readouterr().out
     assert result == 0, report
