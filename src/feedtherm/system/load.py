@@ -19,6 +19,7 @@ from pydantic import ValidationError
 from ..benches import ORIGIN_PREFIX, bench, bench_names, suggestion
 from ..errors import ArgumentError, DescriptionError
 from .areas import with_joint_areas
+from .checks import check_errors
 from .files import parse_bounded_toml, read_text_file
 from .schema import FeedSystem
 from .validation_errors import describe_error
@@ -103,8 +104,6 @@ def validate_description(data: dict, origin: str) -> LoadedSystem:
     exist, joints declared twice, ...); the first is raised as one line, so that no command
     starts on such a description.
     """
-    from .checks import check_errors  # checks reads descriptions through variants, which imports this module
-
     loaded = validate_data(data, origin)
     errors = check_errors(loaded.system)
     if errors:
