@@ -6,8 +6,8 @@ physics -> system -> boundary conditions -> models -> solution -> analyses/outpu
 The public API (docs/python-api.md)::
 
     import feedtherm as ft
-    run = ft.simulate(ft.load("paper"), condition="I")
-    run.to_dataframe("sensors")          # time [s], T1 [degC], …, D [um]
+    run = ft.simulate(ft.load("ballscrew_example"), condition="v10")
+    run.to_dataframe("sensors")          # time [s], a column per sensor [degC], D [um]
 
 ``load``, ``simulate``, ``calibrate`` and ``compensate`` (:mod:`feedtherm.api`), the types they
 return and the errors they raise.  They are imported when first used (PEP 562), so that

@@ -40,7 +40,7 @@ def load(system: str | os.PathLike, *, mode: str = "physics") -> LoadedSystem:
     mode : str
         ``"physics"`` (default): every heat and coefficient from the correlations; or the name of
         the overlay of printed values the bench supplies (``"paper"`` for the paper's bench: its
-        Tables 1–3 laid over the physics).
+        printed heats and coefficients laid over the physics).
 
     Returns
     -------
@@ -78,7 +78,7 @@ def calibrate(system: LoadedSystem | str | os.PathLike, *, fit: str | Sequence[s
     system : LoadedSystem, str or path-like
         A description from :func:`load` (its mode is the runs'), or a bench name or path.
     fit : str or sequence of str
-        The measured conditions or tests to fit (``["I", "II"]`` or ``"I,II"``).
+        The measured conditions or tests to fit (``["v5", "v20"]`` or ``"v5,v20"``).
     params : str or sequence of str
         Parameters declared under ``[calibration.parameters]`` with their bounds.
     measured : str or path-like, optional

@@ -271,7 +271,7 @@ class Solution:
             at the table positions.
         form : {"wide", "long"}
             ``wide``: one row per sample time, a column ``time [s]`` and one column per sensor
-            (``T1 [degC]``, ``D [um]``), part (``screw [degC]``) or position (``E(x=12.5 mm) [um]``).
+            (``<sensor> [degC]``, ``D [um]``), part (``screw [degC]``) or position (``E(x=12.5 mm) [um]``).
             ``long``: one row per value: ``time [s]``, ``sensor``, ``value``, ``unit`` for the
             sensors; ``time [s]``, ``part``, ``temperature [degC]`` for the parts; ``time [s]``,
             ``x [mm]`` and the quantity (``temperature [degC]``, ``displacement [um]``,
@@ -289,8 +289,8 @@ class Solution:
         Examples
         --------
         >>> import feedtherm as ft
-        >>> run = ft.simulate(ft.load("paper"), condition="I", duration=600.0)  # doctest: +SKIP
-        >>> run.to_dataframe()["T1 [degC]"].iloc[-1]  # doctest: +SKIP
+        >>> run = ft.simulate(ft.load("ballscrew_example"), condition="v10", duration=600.0)  # doctest: +SKIP
+        >>> run.to_dataframe().iloc[-1]  # doctest: +SKIP
         """
         from .tables import to_dataframe
 
