@@ -26,7 +26,7 @@ not finite or outside the stroke, and then gives the last output it gave.
 from __future__ import annotations
 
 from ...analysis.compensation.guards import Guards
-from .law_spec import LawSpec, comment_text, pin_names
+from .law_spec import LawSpec, comment_text
 
 #: Positions within this distance [m] of the stroke's ends count as inside (the evaluator's tolerance).
 STROKE_TOLERANCE_M = 1e-9
@@ -356,7 +356,3 @@ def c_files(spec: LawSpec, guards: Guards, name: str, source: str, version: str,
                  START_K=number(start_K), **common)
     return {f"{stem}.h": header, f"{stem}.c": body}
 
-
-def input_pins(spec: LawSpec) -> list[str]:
-    """The inputs' names as C and HAL names (:func:`.law_spec.pin_names`)."""
-    return pin_names(spec.inputs)
