@@ -32,7 +32,8 @@ from .law_spec import LawSpec, comment_text
 STROKE_TOLERANCE_M = 1e-9
 
 
-def _fill(template: str, **values) -> str:
+def fill(template: str, **values) -> str:
+    """``template`` with each ``@KEY@`` replaced by its value (C's braces need no escaping this way)."""
     for key, value in values.items():
         template = template.replace(f"@{key}@", str(value))
     return template
@@ -330,27 +331,27 @@ def c_files(spec: LawSpec, guards: Guards, name: str, source: str, version: str,
               "STEM": stem}
     if spec.stroke:
         middle = 0.5 * (spec.x_min + spec.x_max)
-        api = _fill(STROKE_API, X_MIN=number(spec.x_min), X_MAX=number(spec.x_max),
+        api = fill(STROKE_API, X_MIN=number(spec.x_min), X_MAX=number(spec.x_max),
                     X_REF=number(middle if x_ref is None else x_ref), **common)
-        data = _fill(STROKE_DATA, BIAS=_array(spec.bias), WEIGHTS=_array(spec.weights), **common)
-        coefficients = _fill(STROKE_COEFFICIENTS, **common)
-        functions = _fill(STROKE_FUNCTIONS, TOLERANCE=number(STROKE_TOLERANCE_M), **common)
+        data = fill(STROKE_DATA, BIAS=_array(spec.bias), WEIGHTS=_array(spec.weights), **common)
+        coefficients = fill(STROKE_COEFFICIENTS, **common)
+        functions = fill(STROKE_FUNCTIONS, TOLERANCE=number(STROKE_TOLERANCE_M), **common)
     else:
-        api = _fill(D_API, **common)
-        data = _fill(D_DATA, BIAS=number(spec.bias), WEIGHTS=_array(spec.weights), **common)
+        api = fill(D_API, **common)
+        data = fill(D_DATA, BIAS=number(spec.bias), WEIGHTS=_array(spec.weights), **common)
         sd = ""
         if spec.posterior is not None:
             centre, covariance, noise = spec.posterior
-            data += _fill(POSTERIOR_DATA, CENTRE=_array(centre), COVARIANCE=_array(covariance), NOISE=number(noise),
+            data += fill(POSTERIOR_DATA, CENTRE=_array(centre), COVARIANCE=_array(covariance), NOISE=number(noise),
                           **common)
-            sd = _fill(SD_CODE, **common)
-        coefficients = _fill(D_COEFFICIENTS, SD=sd, **common)
-        functions = _fill(D_FUNCTIONS, **common)
+            sd = fill(SD_CODE, **common)
+        coefficients = fill(D_COEFFICIENTS, SD=sd, **common)
+        functions = fill(D_FUNCTIONS, **common)
     names = ", ".join(f"{i}: {comment_text(n)}" for i, n in enumerate(spec.inputs))
-    header = _fill(HEADER, WHAT=what, INPUT_LIST=names, INPUTS=len(spec.inputs), LAGS=lags, TERMS=spec.terms,
+    header = fill(HEADER, WHAT=what, INPUT_LIST=names, INPUTS=len(spec.inputs), LAGS=lags, TERMS=spec.terms,
                    STROKE=int(spec.stroke), ADAPTED=int(spec.posterior is not None), API=api, **common)
     start_K = guards.reference_K if guards.start == "reference" else 0.0
-    body = _fill(SOURCE, TAUS=_array(list(spec.lags) or [1.0]), LOW=_array([r[0] for r in guards.valid_K]),
+    body = fill(SOURCE, TAUS=_array(list(spec.lags) or [1.0]), LOW=_array([r[0] for r in guards.valid_K]),
                  HIGH=_array([r[1] for r in guards.valid_K]), MAX_RATE=number(guards.max_rate), DATA=data,
                  COEFFICIENTS=coefficients, FUNCTIONS=functions, START_REFERENCE=int(guards.start == "reference"),
                  START_K=number(start_K), **common)

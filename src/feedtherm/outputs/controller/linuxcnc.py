@@ -27,7 +27,7 @@ own rate limit keeps it to a thermal change's pace.
 from __future__ import annotations
 
 from ...errors import FeedthermError
-from .c_code import number
+from .c_code import fill, number
 from .law_spec import LawSpec, comment_text, pin_names
 
 KELVIN_OFFSET_C = "273.15"
@@ -138,12 +138,6 @@ setp axis.@AXIS@.eoffset-enable 1
 """
 
 
-def _fill(template: str, **values) -> str:
-    for key, value in values.items():
-        template = template.replace(f"@{key}@", str(value))
-    return template
-
-
 def component_files(spec: LawSpec, name: str, source: str, version: str, axis: str = "x",
                     units_per_m: float = 1000.0, scale: float = 1e-6) -> dict[str, str]:
     """``{"<name>.comp": ..., "<name>.hal": ...}``: the component and its wiring (module notes).
@@ -159,8 +153,8 @@ def component_files(spec: LawSpec, name: str, source: str, version: str, axis: s
     what = ("A stroke law: E(x) at the axis position, and its offset-and-slope form." if spec.stroke
             else "A law of D: one correction along the whole axis.")
     common = {"P": name, "UPPER": upper, "SOURCE": comment_text(source), "VERSION": version}
-    output = _fill(STROKE_OUTPUT if spec.stroke else D_OUTPUT, **common)
-    comp = _fill(COMPONENT, WHAT=what, TEMPERATURE_PINS=temperature_pins, INPUTS=inputs, OUTPUT=output,
+    output = fill(STROKE_OUTPUT if spec.stroke else D_OUTPUT, **common)
+    comp = fill(COMPONENT, WHAT=what, TEMPERATURE_PINS=temperature_pins, INPUTS=inputs, OUTPUT=output,
                  X_AT_ZERO=number(spec.x_min if spec.stroke else 0.0), **common)
     hal = hal_name(name)
     nets = "\n".join(f"# {comment_text(n)}\nnet {hal}-temp-{p.replace('_', '-')} => {hal}.0.temp-{p.replace('_', '-')}"
@@ -168,7 +162,7 @@ def component_files(spec: LawSpec, name: str, source: str, version: str, axis: s
     position = (f"# The law's x [m] at machine position 0 (the stroke is {spec.x_min:g} to {spec.x_max:g} m):\n"
                 f"setp {hal}.0.x-at-zero-m {number(spec.x_min)}\n"
                 f"net {hal}-position axis.{axis}.pos-cmd => {hal}.0.position\n") if spec.stroke else ""
-    hal_file = _fill(HAL, H=hal, NETS=nets, AXIS=axis, AXIS_UPPER=axis.upper(), UNITS_PER_M=number(units_per_m),
+    hal_file = fill(HAL, H=hal, NETS=nets, AXIS=axis, AXIS_UPPER=axis.upper(), UNITS_PER_M=number(units_per_m),
                 SCALE=number(scale), POSITION=position, **common)
     return {f"{name}.comp": comp, f"{name}.hal": hal_file}
 
