@@ -25,3 +25,10 @@ def test_readme_example_runs(command):
     args = shlex.split(command)[1:]
     result = subprocess.run([sys.executable, "-m", "feedtherm", *args], capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stderr
+
+
+def test_the_readme_is_a_landing_page_without_dates():
+    """At most 900 words (as `wc -w` counts them) and no date: dated figures live in benchmarks/README.md."""
+    text = README.read_text(encoding="utf-8")
+    assert len(text.split()) <= 900
+    assert not re.search(r"\b(19|20)\d\d-\d\d-\d\d\b", text)
