@@ -18,6 +18,7 @@ from pathlib import Path
 
 from . import __version__
 from .errors import ArgumentError, FeedthermError, ModelError, Terminated, cli_message
+from .models.options import MOTIONS
 
 
 class _Parser(argparse.ArgumentParser):
@@ -159,6 +160,8 @@ def cmd_run(args: argparse.Namespace) -> int:
     options = ModelOptions(reduced_training="description")
     if args.max_step is not None:
         options = replace(options, max_step=args.max_step)
+    if args.window_step is not None:
+        options = replace(options, window_step=args.window_step)
     measured = None
     if args.measured:
         from .system.measurements import read_description_measurements
@@ -790,8 +793,14 @@ def build_parser() -> argparse.ArgumentParser:
     _mode_argument(run)
     run.add_argument("--duration", type=_positive_seconds, metavar="S",
                      help="length of the run [s] (default: the condition's or the cycle's)")
-    run.add_argument("--motion", choices=["resolved", "averaged"], default="resolved",
-                     help="the moving nut's position over time (default), or cycle-averaged contacts and heats")
+    run.add_argument("--motion", choices=MOTIONS, default="resolved",
+                     help="the moving nut's position over time (default; the FE and reduced models step it window "
+                          "by window, docs/fem-model.md), exact (grid position by grid position in every model: "
+                          "the reference), or averaged (cycle-averaged contacts and heats)")
+    run.add_argument("--window-step", type=_positive_seconds, metavar="S",
+                     help="with the resolved motion of the FE and reduced models: the longest a step may take to "
+                          "sweep its window of the stroke [s] (default 10; shorter: more, narrower windows, "
+                          "nearer the exact motion)")
     run.add_argument("--single-drive", action="store_true", help="operate a dual drive as a single (screw-only) drive")
     run.add_argument("--solver", choices=["auto", "direct", "cg"], default="auto",
                      help="linear solver of the time steps: cached factors per position (direct: PARDISO's "
@@ -829,7 +838,7 @@ def build_parser() -> argparse.ArgumentParser:
     _mode_argument(sweep)
     sweep.add_argument("--duration", type=_positive_seconds, metavar="S",
                        help="length of every run [s] (default: a condition's, 10800)")
-    sweep.add_argument("--motion", choices=["resolved", "averaged"], default="averaged",
+    sweep.add_argument("--motion", choices=MOTIONS, default="averaged",
                        help="cycle-averaged contacts and heats (default, fast), or the nut's position over time")
     _execution_arguments(sweep)
     sweep.add_argument("--resume", action="store_true",
@@ -842,8 +851,9 @@ def build_parser() -> argparse.ArgumentParser:
     _system_argument(validate)
     validate.add_argument("--model", default="fast", help="a model of `feedtherm models` (default fast)")
     validate.add_argument("--mesh", choices=MESHES, default="coarse", help="FE mesh density (with --model fem)")
-    validate.add_argument("--motion", choices=["resolved", "averaged"], default="resolved",
-                          help="the table's motion in the runs: resolved stroke by stroke (default), or averaged "
+    validate.add_argument("--motion", choices=MOTIONS, default="resolved",
+                          help="the table's motion in the runs: resolved stroke by stroke (default; window by "
+                               "window in the FE and reduced models), exact (grid position by grid position), or averaged "
                                "over a stroke, for fast axes whose strokes are short against the thermal time "
                                "constants (docs/fast-model.md)")
     _mode_argument(validate)

@@ -68,8 +68,10 @@ def simulate(loaded: LoadedSystem | str, *, condition: str | None = None, cycle:
         screw at the relative speed, so that the table speed is unchanged.
     sample_interval : float
         Interval of the output series [s].
-    motion : {"resolved", "averaged"}, optional
-        Position over time (default), or the cycle-averaged contacts and heats.
+    motion : {"resolved", "exact", "averaged"}, optional
+        Position over time (default; the FE and reduced models step it window by window,
+        :mod:`feedtherm.models.windows`), ``"exact"`` grid position by grid position in every model
+        (the reference the windows are measured against), or the cycle-averaged contacts and heats.
     mesh : {"coarse", "medium", "fine"}, optional
         Mesh density of the FE model.
     start : {"initial", "steady"}
@@ -135,6 +137,9 @@ def execute(plan: RunPlan, progress: Callable[[float], None] | None = None,
         "declared_drive": None if kin is None else kin.drive,  # None: the system has no feed drive
         "single_drive_option": plan.single_drive,
         "motion": plan.options.motion,
+        # the resolved motion's windows (models/windows.py): cells a step swept, of the grid's K
+        **({"motion_windows": {"cells": sorted(integrator.window_cells), "grid_cells": len(disc.positions) - 1,
+                               "window_step_s": plan.options.window_step}} if integrator.window_cells else {}),
         **({"mesh": plan.options.mesh, "mesh_statistics": stats} if plan.model.uses_mesh
            else {k: v for k, v in stats.items() if k != "unknowns"}),
         "screw_rpm": last.screw_rpm,

@@ -43,8 +43,10 @@ from feedtherm.simulate import execute
 STROKE = 0.16
 SPEEDS = {"slow": 2e-3, "faster": 8e-3, "fastest": 32e-3}  # table speed [m/s] of each condition
 SLIDER_HEAT, ROD_HEAT = 5.0 + 1.0, 1.0  # [W]: the slider's source and friction half; the rod's half
-# 20 positions over the stroke (8 mm apart), one per step: the default 20 steps per stroke
-OPTIONS = ModelOptions(axial_cells=20)
+# 20 positions over the stroke (8 mm apart), one per step: the default 20 steps per stroke; the
+# exact motion, whose sliding contact this case verifies position by position (the windowed motion
+# is checked against it in tests/integration/test_fem_motion.py)
+OPTIONS = ModelOptions(axial_cells=20, motion="exact")
 
 
 @pytest.fixture(scope="module")
@@ -58,7 +60,7 @@ def model():
 def run(model, condition, duration, start="initial", every_step=False):
     period = 2 * STROKE / SPEEDS[condition]
     step = period / 40  # 20 positions per stroke, one per step
-    options = OPTIONS if not every_step else ModelOptions(axial_cells=20, snapshot_interval=step)
+    options = OPTIONS if not every_step else ModelOptions(axial_cells=20, motion="exact", snapshot_interval=step)
     plan = plan_run(load_case("sliding_contact"), condition=condition, model="fem", mesh="coarse", duration=duration,
                     start=start, solver="direct", options=options,
                     sample_interval=step if every_step else period / 4)

@@ -2,7 +2,9 @@
 
 Each step solves ``(C/dt + G(k) + A(k)) T⁺ = C/dt T + q(k) + a(k) T_amb`` (the operators of
 :class:`~feedtherm.models.interface.ThermalModel`) with ``k`` the moving group's grid
-position at the end of the step.  While the table moves, a step advances the group by a whole
+position at the end of the step (the exact motion), or the window of positions the step
+sweeps (the windowed motion of the models that take it, :mod:`.windows`), or the cycle
+average (the averaged motion).  While the table moves, a step advances the group by a whole
 number of grid positions, so each position's matrix can be factorised once and reused
 (:mod:`.direct`: a symmetric fill-reducing ordering, dense Cholesky for a projected model); large FE
 meshes use conjugate gradients on the step's increment instead (:mod:`.iterative`), started
@@ -46,8 +48,9 @@ from .coupling import (
 from . import pardiso
 from .direct import EliminationOrder, _pattern, dense_factors, factorize
 from .iterative import IncrementHistory, StepCG, jacobi
-from .interface import AmbientCoupling, Operator, ThermalModel, source_powers
+from .interface import AmbientCoupling, Operator, PositionWindow, ThermalModel, source_powers
 from .options import ModelOptions
+from .windows import swept_window, window_cells
 
 #: Above this many unknowns the "auto" solver uses conjugate gradients, not cached SuperLU factors
 #: (PARDISO's Cholesky factors, where installed, are kept at any size within a memory budget).
@@ -227,7 +230,7 @@ class Integrator:
         self._readout: TemperatureReadout | None = None
         self._lu = {}  # (step-matrix key, dt) → LU factors (direct solver)
         self._cg = {}  # (step-matrix key, dt) → StepCG (conjugate gradients)
-        self._conductance = {}  # position (None: cycle average) → conduction operator
+        self._conductance = {}  # position (None: cycle average; or a PositionWindow) → conduction operator
         self._loads = {}  # (segment, boundary conditions' id, position) → (boundary conditions, Loads)
         self._matrix_keys = {}  # same keys → key of the step matrix (without C/dt)
         self._link_changes = {}  # (segment, evaluated bc's id, factorised bc's id, position) → link difference
@@ -247,6 +250,7 @@ class Integrator:
         self._coarse_space = None
         self.over_budget = 0  # step matrices solved by cg because their factors would exceed the budget
         self.cg_iterations = 0  # conjugate-gradient iterations of every time step so far
+        self.window_cells = set()  # the cells the windowed steps swept, per moving segment (none: no windows)
         self._samples = []  # sample states whose readings :meth:`_read_samples` has yet to take
 
     def release(self) -> None:
@@ -294,6 +298,8 @@ class Integrator:
         if k not in self._conductance:
             if k is None:
                 self._conductance[k] = self.model.averaged_conductance()
+            elif isinstance(k, PositionWindow):
+                self._conductance[k] = self.model.window_conductance(k)
             else:
                 self._conductance[k] = self.model.conductance(k)
         return self._conductance[k]
@@ -545,6 +551,10 @@ class Integrator:
             moving = seg.speed > 0.0
             resolved = moving and not averaged
             dt_nominal, cells_per_step = self._step(seg)
+            windowed = resolved and self._windowed(seg)
+            window = self._window_cells(seg) if windowed else 0
+            if windowed:
+                self.window_cells.add(window)
             # whole grid cells a step (or none): the phases of the stroke recur, and so do their increments
             repeating = float(cells_per_step).is_integer()
             if moving and trace.time_step == 0.0:
@@ -567,10 +577,14 @@ class Integrator:
                         reading = now
                         trace.coupling_updates += 1
                 dt = min(dt_nominal, seg.t1 - t)
+                u_start = path.u
                 if moving:
                     path.advance(cells_per_step * dt / dt_nominal)
                 k = path.k
-                k_step = None if (averaged and moving) else k
+                if windowed:
+                    k_step = swept_window(u_start, path.u, path.K, window)
+                else:
+                    k_step = None if (averaged and moving) else k
                 step = steps.get((k_step, dt))
                 if step is None:
                     step = steps[k_step, dt] = self._step_kernel(seg_id, bc, factorised, k_step, dt)
@@ -674,6 +688,18 @@ class Integrator:
         parts = m.part_means(states)
         trace.sample_parts.extend({p: float(v[i]) for p, v in parts.items()} for i in range(len(states)))
 
+    def _windowed(self, seg: Segment) -> bool:
+        """Whether ``seg``'s resolved steps sweep windows (:mod:`.windows`): a moving segment of a model
+        that takes the windowed motion, unless the run asks for the exact one."""
+        return (seg.speed > 0.0 and self.options.motion == "resolved" and self.model.windowed_motion
+                and len(self.model.positions) > 1)
+
+    def _window_cells(self, seg: Segment) -> int:
+        """Cells a windowed step of ``seg`` sweeps (:func:`.windows.window_cells`)."""
+        K = len(self.model.positions) - 1
+        return window_cells(K, max(1, K // self.options.steps_per_stroke), self.model.dx, seg.speed,
+                            self.options.window_step)
+
     def _step(self, seg: Segment) -> tuple[float, float]:
         """Nominal time step [s] and grid positions advanced per step in ``seg``."""
         opts = self.options
@@ -682,7 +708,7 @@ class Integrator:
         if seg.speed == 0.0:
             return min(opts.standstill_step, opts.max_step), 0.0
         K = len(self.model.positions) - 1
-        cells = max(1, K // opts.steps_per_stroke)
+        cells = self._window_cells(seg) if self._windowed(seg) else max(1, K // opts.steps_per_stroke)
         dt = cells * self.model.dx / seg.speed
         if dt > opts.max_step:  # slow table: smaller steps, fractional advance per step
             return opts.max_step, cells * opts.max_step / dt

@@ -33,6 +33,30 @@ Operator = np.ndarray | sp.spmatrix  # a 1-D array is a diagonal
 
 
 @dataclass(frozen=True)
+class PositionWindow:
+    """The grid positions ``first…last`` that the moving group sweeps in one step of the windowed
+    motion, each weighted by the time the group spends at it (the trapezoid rule over the sweep: the
+    two ends count half, as :func:`cycle_weights` counts the stroke's).
+
+    A model's operators over a window are the weighted sums of its positions' operators, so that
+    a step steps with the contacts and heats of the stretch it sweeps, not of its end position
+    (:mod:`~feedtherm.models.windows`).  Hashable: the integrator's and the models' caches key
+    on it as on a position.
+    """
+
+    first: int
+    last: int
+
+    @property
+    def positions(self) -> range:
+        return range(self.first, self.last + 1)
+
+    @property
+    def weights(self) -> np.ndarray:
+        return cycle_weights(self.last - self.first + 1)
+
+
+@dataclass(frozen=True)
 class AmbientCoupling:
     """How the state exchanges heat with the air (or a surface's sink) at one position.
 
@@ -248,8 +272,15 @@ class ThermalModel(ABC):
     then the screw's axial displacement at ``screw_centres`` relative to the positioning
     reference (``mechanics.positioning``), from which the positioning error along the stroke is
     taken.  D is also the last probe.
+
+    A model whose step matrices are costly to hold (one factorisation per grid position of a
+    large mesh) sets ``windowed_motion``: its resolved motion then steps window by window
+    (:mod:`~feedtherm.models.windows`), with the operators weighted over each window's positions
+    (:class:`PositionWindow`, which :meth:`boundary_basis` and :meth:`window_conductance` take).
     """
 
+    #: Whether the resolved motion steps this model window by window (:mod:`~feedtherm.models.windows`).
+    windowed_motion: bool = False
     system: FeedSystem
     n_nodes: int
     capacity: Operator
@@ -263,6 +294,10 @@ class ThermalModel(ABC):
     @abstractmethod
     def conductance(self, k: int) -> Operator:
         """Conduction in the parts and across every joint, moving group at position k [W/K]."""
+
+    def window_conductance(self, window: PositionWindow) -> Operator:
+        """:meth:`conductance` weighted over the positions of ``window``: what a windowed step steps with."""
+        return weighted_sum(window.weights, [self.conductance(k) for k in window.positions])
 
     def averaged_conductance(self) -> Operator:
         """The cycle average of :meth:`conductance` over the positions (:func:`cycle_weights`): what a
@@ -314,16 +349,16 @@ class ThermalModel(ABC):
     def boundary_basis(self, k: int | None) -> "BoundaryBasis":
         """Where each surface exchanges heat and each source's heat enters, at position k.
 
-        ``k = None`` gives the cycle average.  These depend on the geometry alone, so they are
+        ``k = None`` gives the cycle average, a :class:`PositionWindow` its positions' weighted sum.  These depend on the geometry alone, so they are
         built once per position; boundary conditions then weigh them by their coefficients
         and heats, which keeps re-evaluating coefficients (the nonlinear coupling) cheap.
         """
         cache = self.__dict__.setdefault("_boundary_bases", {})
         if k not in cache:
             system = self.system
-            if k is None:
-                w = cycle_weights(len(self.positions))
-                bases = [self.boundary_basis(j) for j in range(len(w))]
+            if k is None or isinstance(k, PositionWindow):
+                w = cycle_weights(len(self.positions)) if k is None else k.weights
+                bases = [self.boundary_basis(j) for j in (range(len(w)) if k is None else k.positions)]
                 cache[k] = BoundaryBasis(bases[0].surfaces, bases[0].sources,
                                          weighted_sum(w, [b.exposure for b in bases]),
                                          weighted_sum(w, [b.distribution for b in bases]), bases[0].film)

@@ -5,6 +5,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
+#: The moving group's motions a run may take (:attr:`ModelOptions.motion`).
+MOTIONS = ("resolved", "exact", "averaged")
+
 
 @dataclass(frozen=True)
 class ModelOptions:
@@ -29,7 +32,10 @@ class ModelOptions:
     steps_per_stroke: int = 20  # at least this many time steps per stroke
     standstill_step: float = 10.0  # [s] time step while the table stands still
     max_step: float = 30.0  # [s] upper bound of any step
-    motion: Literal["resolved", "averaged"] = "resolved"  # position over time, or cycle-averaged
+    # position over time ("resolved": window by window where the model takes windows, models/windows.py;
+    # "exact": grid position by grid position in every model), or cycle-averaged
+    motion: Literal["resolved", "exact", "averaged"] = "resolved"
+    window_step: float = 10.0  # [s] the longest a windowed step may take to sweep its window (models/windows.py)
     averaged_step: float = 10.0  # [s] time step of the cycle-averaged motion
     solver: Literal["auto", "direct", "cg"] = "auto"  # cached factors per position, or conjugate gradients
     # [bytes] what "auto"'s PARDISO factors of one run may hold; None: half the memory available

@@ -247,6 +247,8 @@ def run_summary(solution: Solution) -> dict:
         "time_step_s": info.get("time_step_s"),
         "steps": info.get("steps"),
         "solver": info.get("solver"),
+        "motion": info.get("motion"),
+        "motion_windows": info.get("motion_windows"),  # the windowed motion's windows (models/windows.py)
         "unknowns": info.get("unknowns"),
         "elongation_change_um": {"final": final["D_um"] - start_um, "steady": steady["D_um"] - start_um},
         "warnings": info.get("warnings", []),  # e.g. correlations used outside their range
@@ -268,6 +270,7 @@ def _common(solution: Solution, final: dict, energy) -> dict:
                      "heat_stored": energy.heat_stored, "residual": energy.residual},
         "ledger": ledger_summary(solution), "wall_time_s": info.get("wall_time_s"),
         "time_step_s": info.get("time_step_s"), "steps": info.get("steps"), "solver": info.get("solver"),
+        "motion": info.get("motion"), "motion_windows": info.get("motion_windows"),
         "unknowns": info.get("unknowns"), "warnings": info.get("warnings", []),
         "mesh": info.get("mesh_statistics"), "provenance": info.get("provenance", {}),
     }

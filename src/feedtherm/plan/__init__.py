@@ -19,7 +19,7 @@ from ..constants import RPM_PER_RAD_S
 from ..errors import ArgumentError, FeedthermError, ModelError
 from ..models.coupling import Coupling
 from ..models.integrator import Segment
-from ..models.options import ModelOptions
+from ..models.options import MOTIONS, ModelOptions
 from ..models.registry import ModelEntry, model_entry
 from ..system.load import LoadedSystem
 from ..system.measurements import MeasurementSet
@@ -30,7 +30,6 @@ from .profiles import FromReadings, Initial, Soaked, Uniform, cycle_profile, soa
 
 MESHES = ("coarse", "medium", "fine")
 SOLVERS = ("auto", "direct", "cg")
-MOTIONS = ("resolved", "averaged")
 STARTS = ("initial", "steady")
 
 
@@ -252,7 +251,7 @@ def run_cost(plan: RunPlan) -> RunCost:
     system = plan.loaded.system
     stroke = _stroke(system)
     steps = {motion: estimated_steps(stroke, plan.segments, replace(plan.options, motion=motion))
-             for motion in MOTIONS}
+             for motion in ("resolved", "averaged")}
     seconds = {key: {motion: n * per_step for motion, n in steps.items()} for key, per_step in SECONDS_PER_STEP.items()}
     moving = [seg.speed for seg in plan.segments if seg.speed > 0.0]
     cycle = 2.0 * stroke / min(moving) if moving else None  # the slowest cycle decides
@@ -375,7 +374,7 @@ def _check_arguments(model, duration, sample_interval, motion, mesh, solver, sta
     if duration is not None and not duration > 0:
         raise ArgumentError("duration", f"must be positive, got {duration!r} s")
     if motion not in (None, *MOTIONS):
-        raise ArgumentError("motion", f"must be resolved or averaged, got {motion!r}")
+        raise ArgumentError("motion", f"must be resolved, exact or averaged, got {motion!r}")
     if mesh not in (None, *MESHES):
         raise ArgumentError("mesh", f"must be one of {', '.join(MESHES)}, got {mesh!r}")
     if solver not in (None, *SOLVERS):

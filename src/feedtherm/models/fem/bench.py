@@ -84,6 +84,9 @@ class FemDiscretization(ThermalModel):
     ``part_names``, ``moving_part`` (one flag per part).
     """
 
+    #: a factor per grid position is what holds an FE run's memory: the resolved motion steps by windows
+    windowed_motion = True
+
     def __init__(self, system: FeedSystem, density: str = "coarse", *, axial_cells: int = 100,
                  min_positions: int = 20, lumped_contact: bool = True, use_cache: bool = True,
                  conductivity_factor: dict[str, float] | None = None):

@@ -17,7 +17,8 @@ import numpy as np
 from ...boundary import BoundaryConditions
 from ...system.schema import FeedSystem
 from ...constants import ELONGATION_PROBE
-from ..interface import AmbientCoupling, HeatInput, ThermalModel, affine_value, cycle_weights, source_powers
+from ..interface import (AmbientCoupling, HeatInput, PositionWindow, ThermalModel, affine_value, cycle_weights,
+                         source_powers)
 from .basis import Basis
 from .projection import Projection, project
 
@@ -38,6 +39,9 @@ def _shared(projection: Projection, name: str, compute: Callable[[], np.ndarray]
 
 class ProjectedModel(ThermalModel):
     """``full`` projected onto ``basis``; :meth:`from_projection` makes one of a projection alone."""
+
+    #: stepped as its full model is, so that the two answer alike (the FE model's resolved motion is windowed)
+    windowed_motion = True
 
     def __init__(self, full: ThermalModel, basis: Basis):
         self._setup(project(full, basis), full.system, full=full)
@@ -107,6 +111,8 @@ class ProjectedModel(ThermalModel):
     def _at(self, name: str, k: int | None) -> np.ndarray:
         """Array ``name`` of the projection (positions first) at position k, or its cycle average."""
         values = getattr(self.projection, name)
+        if isinstance(k, PositionWindow):
+            return np.tensordot(k.weights, values[k.first:k.last + 1], axes=1)
         if k is not None:
             return values[k]
         return _shared(self.projection, name, lambda: np.tensordot(self._weights, values, axes=1))
@@ -180,7 +186,8 @@ class ProjectedModel(ThermalModel):
         if k is None:
             return matrix
         moving = self.projection.moving_surfaces
-        return matrix + np.tensordot(h[moving], self.projection.exposure_change[k], axes=1)
+        change = self._at("exposure_change", k) if isinstance(k, PositionWindow) else self.projection.exposure_change[k]
+        return matrix + np.tensordot(h[moving], change, axes=1)
 
     def heat_vector(self, bc: BoundaryConditions, k: int | None) -> np.ndarray:
         return source_powers(bc, self._sources) @ self._at("entries", k)
