@@ -1,0 +1,656 @@
+"""The site's generated reference: the command line from its argparse parser, the description's
+keys from its pydantic schema, the public API from ``feedtherm.__all__``.
+
+Each part is enumerated by a plain function that returns data (:func:`cli_commands`,
+:func:`description_sections`, :func:`api_entries`) and written as reStructuredText by another
+(:func:`cli_rst`, :func:`description_rst`, :func:`api_rst`), so that the tests
+(tests/docs/test_docs_reference.py) read what the pages hold without building the site.  The
+directives ``feedtherm-cli``, ``feedtherm-description-keys`` and ``feedtherm-api`` put that text
+into a page (docs/reference/).
+"""
+
+from __future__ import annotations
+
+import argparse
+import ast
+import inspect
+import json
+import re
+import textwrap
+import types
+import typing
+from dataclasses import dataclass, field
+from typing import Any
+
+import annotated_types
+from pydantic import BaseModel
+from pydantic.fields import FieldInfo
+from pydantic_core import PydanticUndefined
+
+# --------------------------------------------------------------------------- reStructuredText helpers
+
+# code in plain text: ``x`` or `x`, and command-line options (--model), which typography would
+# otherwise turn into dashes
+_LITERAL = re.compile(r"``.+?``|`[^`]+`|(?<![\w-])--?[A-Za-z][\w-]*")
+
+
+def rst_text(text: str) -> str:
+    """Plain text (a help string, a source comment) as reStructuredText that reads the same.
+
+    ```x```, ``x`` (code, as the help strings and comments write it) and options (``--model``)
+    become literals; the characters that would start markup elsewhere (``*``, ``|``, ``_``,
+    ``\\``) are escaped.
+    """
+    out, end = [], 0
+    for match in _LITERAL.finditer(text):
+        out.append(_escape(text[end:match.start()]))
+        out.append(_literal(match.group(0).strip("`")))
+        end = match.end()
+    out.append(_escape(text[end:]))
+    return "".join(out)
+
+
+def _escape(text: str) -> str:
+    return re.sub(r"([\\*|_`<>\[\]])", r"\\\1", text)
+
+
+def _literal(text: str) -> str:
+    """``text`` as an inline literal, wherever it stands (a literal needs spaces or punctuation
+    around it: ``:role:`` escapes make that hold inside words too)."""
+    text = text.replace("`", "'")
+    return f"\\ ``{text}``\\ " if text.strip() == text and text else f":literal:`{text}`"
+
+
+def _heading(title: str, level: str) -> list[str]:
+    return [title, level * max(len(title), 4), ""]
+
+
+def _indent(text: str, by: str = "   ") -> list[str]:
+    return [by + line if line.strip() else "" for line in text.splitlines()]
+
+
+# --------------------------------------------------------------------------- the command line
+
+
+@dataclass(frozen=True)
+class Option:
+    """One argument of a command, as ``feedtherm COMMAND -h`` lists it."""
+
+    names: tuple[str, ...]  # "--model", or a positional's name
+    invocation: str  # "--model MODEL", "system"
+    help: str
+    default: Any = None  # None: none worth stating
+    choices: tuple[str, ...] = ()
+    required: bool = False
+    exclusive_with: tuple[str, ...] = ()  # the other options of its mutually exclusive group
+
+
+@dataclass(frozen=True)
+class Command:
+    """A command of ``feedtherm`` (the program itself has the name ``""``)."""
+
+    name: str
+    help: str
+    usage: str
+    options: tuple[Option, ...]
+
+    @property
+    def program(self) -> str:
+        return f"feedtherm {self.name}".strip()
+
+
+def _subcommands(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            return dict(action.choices)
+    return {}
+
+
+def _command_help(parser: argparse.ArgumentParser) -> dict[str, str]:
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            return {choice.dest: choice.help or "" for choice in action._choices_actions}
+    return {}
+
+
+def _options(parser: argparse.ArgumentParser) -> tuple[Option, ...]:
+    formatter = parser._get_formatter()
+    exclusive = {}
+    for group in parser._mutually_exclusive_groups:
+        names = [a.option_strings[-1] if a.option_strings else a.dest for a in group._group_actions]
+        for action, name in zip(group._group_actions, names):
+            exclusive[id(action)] = tuple(n for n in names if n != name)
+    options = []
+    for action in parser._actions:
+        if isinstance(action, (argparse._HelpAction, argparse._SubParsersAction)) or action.help == argparse.SUPPRESS:
+            continue
+        default = action.default
+        if default in (None, argparse.SUPPRESS) or isinstance(action, (argparse._StoreTrueAction,
+                                                                       argparse._VersionAction)):
+            default = None
+        options.append(Option(
+            names=tuple(action.option_strings) or (action.dest,),
+            invocation=formatter._format_action_invocation(action),
+            help=formatter._expand_help(action) if action.help else "",
+            default=default,
+            choices=tuple(str(c) for c in action.choices) if action.choices else (),
+            required=bool(action.required) and bool(action.option_strings),
+            exclusive_with=exclusive.get(id(action), ()),
+        ))
+    return tuple(options)
+
+
+def cli_commands(parser: argparse.ArgumentParser | None = None) -> list[Command]:
+    """The program and each of its commands, in the parser's order, with every option."""
+    if parser is None:
+        from feedtherm.cli import build_parser
+
+        parser = build_parser()
+    helps = _command_help(parser)
+    commands = [Command("", parser.description or "", parser.format_usage().strip(), _options(parser))]
+    for name, sub in _subcommands(parser).items():
+        commands.append(Command(name, helps.get(name, ""), sub.format_usage().strip(), _options(sub)))
+    return commands
+
+
+def _usage(text: str) -> str:
+    return " ".join(text.removeprefix("usage:").split())
+
+
+def cli_rst(commands: list[Command] | None = None) -> str:
+    """The command-line reference: a section per command, an ``option`` entry per argument."""
+    commands = cli_commands() if commands is None else commands
+    lines: list[str] = []
+    for command in commands:
+        title = command.program
+        lines += [f".. _cli-{command.name or 'feedtherm'}:", "", *_heading(f"``{title}``", "-")]
+        if command.help:
+            lines += [rst_text(_sentence(command.help)), ""]
+        lines += ["::", "", *_indent(_wrap_usage(_usage(command.usage))), ""]
+        if not command.name:
+            lines += ["Every command also takes ``-h``/``--help``: its usage and options, as below.", ""]
+        if not command.options:
+            lines += ["The command takes no options.", ""]
+            continue
+        lines += [f".. program:: {title}", ""]
+        for option in command.options:
+            lines += [f".. option:: {option.invocation}", ""]
+            lines += _indent(_option_body(option)) + [""]
+    return "\n".join(lines)
+
+
+def _sentence(text: str) -> str:
+    """``text`` ending as a sentence (its first word may be a value, ``physics (default): …``, so
+    its case stays)."""
+    text = text.strip()
+    return text + ("" if text.endswith((".", ")")) else ".")
+
+
+def _wrap_usage(usage: str) -> str:
+    return "\n".join(textwrap.wrap(usage, 96, subsequent_indent="    ", break_on_hyphens=False, break_long_words=False))
+
+
+def _option_body(option: Option) -> str:
+    parts = [rst_text(_sentence(option.help)) if option.help else ""]
+    facts = []
+    if option.required:
+        facts.append("Required.")
+    if option.choices:
+        facts.append("Choices: " + ", ".join(_literal(c) for c in option.choices) + ".")
+    if option.default is not None and "default" not in option.help.lower():
+        facts.append(f"Default: {_literal(str(option.default))}.")
+    if option.exclusive_with:
+        facts.append("Not with " + ", ".join(_literal(n) for n in option.exclusive_with) + ".")
+    if facts:
+        parts.append(" ".join(facts))
+    return "\n\n".join(p for p in parts if p)
+
+
+# --------------------------------------------------------------------------- the description's keys
+
+
+@dataclass(frozen=True)
+class Key:
+    """One key of a description, at its dotted path (``<name>``: any name; ``[]``: any item)."""
+
+    path: str
+    type: str
+    unit: str  # the SI unit the value is stored in, "" where it has none
+    range: str
+    default: str
+    description: str
+
+
+@dataclass
+class Section:
+    """The keys of one table of a description (a pydantic model at a path)."""
+
+    path: str  # "" for the top level
+    title: str
+    doc: str
+    keys: list[Key] = field(default_factory=list)
+
+
+def _plain(annotation) -> tuple[Any, list]:
+    """``annotation`` without ``Annotated`` (its metadata returned beside it) and without ``None``."""
+    metadata: list = []
+    while typing.get_origin(annotation) is typing.Annotated:
+        metadata += list(annotation.__metadata__)
+        annotation = annotation.__origin__
+    if _is_union(annotation):
+        args = [a for a in typing.get_args(annotation) if a is not type(None)]
+        if len(args) == 1:
+            inner, more = _plain(args[0])
+            return inner, metadata + more
+    return annotation, metadata
+
+
+def _is_union(annotation) -> bool:
+    return typing.get_origin(annotation) in (typing.Union, types.UnionType)
+
+
+def _optional(annotation) -> bool:
+    return _is_union(annotation) and type(None) in typing.get_args(annotation)
+
+
+def _is_model(annotation) -> bool:
+    return isinstance(annotation, type) and issubclass(annotation, BaseModel)
+
+
+def _alternatives(annotation) -> list:
+    """The members of a union (``None`` left out), each without its ``Annotated``."""
+    annotation, _ = _plain(annotation)
+    if _is_union(annotation):
+        return [_plain(a)[0] if typing.get_origin(a) is typing.Annotated else a
+                for a in typing.get_args(annotation) if a is not type(None)]
+    return [annotation]
+
+
+def _si_unit(metadata: list):
+    from feedtherm.system.quantities import SIUnit
+
+    return next((m for m in metadata if isinstance(m, SIUnit)), None)
+
+
+def _constraints(metadata: list) -> list:
+    found = []
+    for item in metadata:
+        if isinstance(item, FieldInfo):
+            found += _constraints(item.metadata)
+        else:
+            found.append(item)
+    return found
+
+
+def _type_text(annotation) -> str:
+    """A value's type in words: ``quantity``, ``"dual" or "single"``, ``array of 3 quantities`` …"""
+    annotation, metadata = _plain(annotation)
+    if _si_unit(metadata) is not None:
+        return "quantity" if _si_unit(metadata).unit else "number"
+    origin = typing.get_origin(annotation)
+    if origin is typing.Literal:
+        return " or ".join(json.dumps(v) for v in typing.get_args(annotation))
+    if _is_union(annotation):
+        texts = [_type_text(a) for a in typing.get_args(annotation) if a is not type(None)]
+        return " or ".join(dict.fromkeys(texts))  # the members of a union of tables: "table"
+    if origin is tuple:
+        args = typing.get_args(annotation)
+        if len(args) == 2 and args[1] is Ellipsis:
+            return f"array of {_plural(args[0])}"
+        if len({repr(a) for a in args}) == 1:
+            return f"array of {len(args)} {_plural(args[0])}"
+        return "array of " + ", ".join(_type_text(a) for a in args)
+    if origin is list:
+        return f"array of {_plural(typing.get_args(annotation)[0])}"
+    if origin is dict:
+        return f"table of {_plural(typing.get_args(annotation)[1])} by name"
+    if _is_model(annotation):
+        return "table"
+    return {bool: "boolean", int: "integer", float: "number", str: "string"}.get(annotation, str(annotation))
+
+
+def _plural(annotation) -> str:
+    text = _type_text(annotation)
+    if " or " in text or text.startswith('"'):
+        return f"({text})"
+    return {"quantity": "quantities", "boolean": "booleans", "integer": "integers", "number": "numbers",
+            "string": "strings", "table": "tables"}.get(text, text)
+
+
+def _unit_of(annotation) -> str:
+    """The SI unit of a quantity, of a tuple's or a list's quantities, or of a union's."""
+    annotation, metadata = _plain(annotation)
+    unit = _si_unit(metadata)
+    if unit is not None:
+        return unit.unit
+    for arg in typing.get_args(annotation):
+        if arg is not Ellipsis and (found := _unit_of(arg)):
+            return found
+    return ""
+
+
+def _range_text(annotation, metadata: list) -> str:
+    """What a value must satisfy, from the field's constraints and its quantity's rules."""
+    inner, more = _plain(annotation)
+    metadata = [*metadata, *more]
+    rules = []
+    unit = _si_unit(metadata)
+    if unit is None and (typing.get_origin(inner) in (tuple, list, dict) or _is_union(inner)):
+        unit = next((u for a in typing.get_args(inner) if a is not Ellipsis
+                     for u in [_si_unit(_plain(a)[1])] if u is not None), None)
+    if unit is not None:
+        rules.append(_quantity_range(unit))
+    for item in _constraints(metadata):
+        for attribute, symbol in (("gt", ">"), ("ge", "≥"), ("lt", "<"), ("le", "≤")):
+            if isinstance(item, getattr(annotated_types, attribute.capitalize())):
+                rules.append(f"{symbol} {getattr(item, attribute):g}")
+        if isinstance(item, annotated_types.MinLen) and item.min_length:
+            if inner is str:
+                rules.append("not empty")
+            else:
+                rules.append(f"at least {item.min_length} item{'s' if item.min_length > 1 else ''}")
+        if isinstance(item, annotated_types.MaxLen):
+            rules.append(f"at most {item.max_length} items")
+        if getattr(item, "pattern", None):
+            rules.append(f"matches ``{item.pattern}``")
+    return "; ".join(rules)
+
+
+def _quantity_range(unit) -> str:
+    """A quantity's rules in words: its sign, its smallest size, its :class:`Limit` in the unit the
+    limit is shown in, with the limit's reason."""
+    from feedtherm.system.quantities import registry
+
+    limit = unit.limit
+    sign = {"positive": "above 0", "nonnegative": "0 or more"}.get(unit.sign, "")
+    size = f"nonzero sizes at least {unit.minimum * 1e6:g} µm" if unit.minimum is not None else ""
+    if limit is None:
+        return ", ".join(part for part in (sign, size) if part)
+    low, high = (float(registry().Quantity(x, limit.si).to(limit.unit).magnitude) for x in (limit.low, limit.high))
+    shown = f" {limit.unit}" if limit.unit else ""
+    if limit.magnitude:
+        span = f"|value| ≤ {high:g}{shown}"
+    elif limit.low == 0.0 and sign:
+        span = f"{sign}, up to {high:g}{shown}"
+        sign = ""
+    else:
+        span = f"{low:g} to {high:g}{shown}"
+        sign = ""  # a lower limit above 0 says the sign (an absolute temperature's)
+    return ", ".join(part for part in (sign, size, span) if part) + f" ({limit.reason})"
+
+
+def _default_text(info: FieldInfo, unit: str) -> str:
+    if info.default_factory is not None:
+        value = info.default_factory()
+    elif info.default is PydanticUndefined:
+        return "required"
+    else:
+        value = info.default
+    if value is None:
+        return "none (left out)"
+    if isinstance(value, BaseModel):
+        return "its keys' defaults"
+    if isinstance(value, bool):
+        return json.dumps(value)
+    if isinstance(value, float) and unit:
+        return f"{value:g} {unit}"
+    if isinstance(value, (int, float)):
+        return f"{value:g}"
+    return json.dumps(value, ensure_ascii=False)
+
+
+def _defining_class(model: type[BaseModel], name: str) -> type:
+    for cls in model.__mro__:
+        if name in cls.__dict__.get("__annotations__", {}):
+            return cls
+    return model
+
+
+_COMMENTS: dict[type, dict[str, str]] = {}
+
+
+def field_comments(cls: type) -> dict[str, str]:
+    """What the source says of each field of ``cls``: the ``#`` comment block right above it and
+    the comment at its line's end (the schema documents its fields so)."""
+    if cls in _COMMENTS:
+        return _COMMENTS[cls]
+    try:
+        lines, first = inspect.getsourcelines(cls)
+    except (OSError, TypeError):
+        return {}
+    source = textwrap.dedent("".join(lines))
+    body = source.splitlines()
+    found: dict[str, str] = {}
+    for node in ast.parse(source).body[0].body:
+        if not (isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name)):
+            continue
+        above = []
+        row = node.lineno - 2
+        while row >= 0 and body[row].strip().startswith("#"):
+            above.insert(0, body[row].strip().lstrip("#").removeprefix(":").strip())
+            row -= 1
+        trailing = _trailing_comment(body[node.end_lineno - 1])
+        text = " — ".join(part for part in (" ".join(above), trailing) if part)
+        if text:
+            found[node.target.id] = text
+    _COMMENTS[cls] = found
+    return found
+
+
+def _trailing_comment(line: str) -> str:
+    """The comment at the end of a line of code (a ``#`` outside strings)."""
+    import io
+    import tokenize
+
+    try:
+        for token in tokenize.generate_tokens(io.StringIO(line.strip() + "\n").readline):
+            if token.type == tokenize.COMMENT:
+                return token.string.lstrip("#").strip()
+    except (tokenize.TokenError, IndentationError, SyntaxError):
+        return ""
+    return ""
+
+
+def _description(model: type[BaseModel], name: str, info: FieldInfo) -> str:
+    if info.description:
+        return info.description
+    return field_comments(_defining_class(model, name)).get(name, "")
+
+
+def _doc(model: type) -> str:
+    doc = model.__dict__.get("__doc__")
+    return inspect.cleandoc(doc) if doc else ""
+
+
+def _child_path(prefix: str, name: str) -> str:
+    return f"{prefix}.{name}" if prefix else name
+
+
+def description_sections(root: type[BaseModel] | None = None) -> list[Section]:
+    """Every table of a description, depth first, each with every key it takes."""
+    if root is None:
+        from feedtherm.system.schema import FeedSystem
+
+        root = FeedSystem
+    sections: list[Section] = []
+    _walk(root, "", "The top level", sections)
+    return sections
+
+
+def _walk(model: type[BaseModel], path: str, title: str, sections: list[Section],
+          fields: list[str] | None = None) -> None:
+    section = Section(path, title, _doc(model))
+    sections.append(section)
+    later: list[tuple] = []
+    for name, info in model.model_fields.items():
+        if fields is not None and name not in fields:
+            continue
+        key_path = _child_path(path, name)
+        annotation = info.annotation
+        if info.metadata:
+            annotation = typing.Annotated[(annotation, *info.metadata)]
+        unit = _unit_of(annotation)
+        section.keys.append(Key(key_path, _type_text(annotation), unit, _range_text(annotation, []),
+                                _default_text(info, unit), _description(model, name, info)))
+        later += _nested(annotation, key_path)
+    for child, child_path, child_title in later:
+        _walk_union_or_model(child, child_path, child_title, sections)
+
+
+def _nested(annotation, path: str) -> list[tuple]:
+    """The tables a key holds: a model, a table of models by name, an array of models."""
+    inner, _ = _plain(annotation)
+    origin = typing.get_origin(inner)
+    if origin is dict:
+        return _nested(typing.get_args(inner)[1], f"{path}.<name>")
+    if origin is list:
+        return _nested(typing.get_args(inner)[0], f"{path}[]")
+    models = [a for a in _alternatives(inner) if _is_model(a)]
+    if len(models) == 1:
+        return [(models[0], path, path)]
+    if models:
+        return [(inner, path, path)]
+    return []
+
+
+def _discriminator(members: list[type[BaseModel]]) -> str | None:
+    for name in members[0].model_fields:
+        if all(typing.get_origin(m.model_fields.get(name, FieldInfo()).annotation) is typing.Literal
+               for m in members):
+            return name
+    return None
+
+
+def _walk_union_or_model(annotation, path: str, title: str, sections: list[Section]) -> None:
+    if _is_model(annotation):
+        _walk(annotation, path, title, sections)
+        return
+    members = [a for a in _alternatives(annotation) if _is_model(a)]
+    tag = _discriminator(members)
+    # the keys every member takes from one base class are listed once, before the members' own
+    common = [name for name in members[0].model_fields
+              if name != tag and all(name in m.model_fields for m in members)
+              and len({_defining_class(m, name) for m in members}) == 1]
+    if common:
+        base = _defining_class(members[0], common[0])
+        _walk(members[0], path, f"{path} (every {tag})", sections, fields=common)
+        sections[-1].doc = _doc(base)
+    for member in members:
+        value = typing.get_args(member.model_fields[tag].annotation)[0] if tag else member.__name__
+        own = [name for name in member.model_fields if name not in common]
+        _walk(member, path, f"{path} ({tag} = {json.dumps(value)})" if tag else path, sections, fields=own)
+
+
+def description_keys(sections: list[Section] | None = None) -> list[str]:
+    """Every key's dotted path, once each, in the order of the reference."""
+    sections = description_sections() if sections is None else sections
+    return list(dict.fromkeys(key.path for section in sections for key in section.keys))
+
+
+def description_rst(sections: list[Section] | None = None) -> str:
+    """The description's reference: a section per table, an entry per key."""
+    sections = description_sections() if sections is None else sections
+    lines: list[str] = []
+    for section in sections:
+        label = "desc-" + (re.sub(r"[^a-z0-9]+", "-", section.title.lower()).strip("-") or "top")
+        lines += [f".. _{label}:", "", *_heading(f"``{section.title}``" if section.path else section.title, "-")]
+        if section.doc:
+            lines += [section.doc, ""]
+        for key in section.keys:
+            lines += [f"``{key.path}``", *_indent(_key_body(key)), ""]
+    return "\n".join(lines)
+
+
+#: Defaults that are words, not values.
+_NO_VALUE = ("required", "none (left out)", "its keys' defaults")
+
+
+def _key_body(key: Key) -> str:
+    # the values a key takes (its choices, its default) as literals: typography leaves them alone
+    facts = ["".join(_literal(part) if part.startswith('"') else _escape(part)
+                     for part in re.split(r'("[^"]*")', key.type) if part)]
+    if key.unit:
+        facts.append(f"in {_literal(key.unit)}")
+    if key.range:
+        facts.append(rst_text(key.range))
+    facts.append(f"default: *{key.default}*" if key.default in _NO_VALUE else f"default: {_literal(key.default)}")
+    body = " · ".join(facts)
+    if key.description:
+        body += "\n\n" + rst_text(key.description)
+    return body
+
+
+# --------------------------------------------------------------------------- the Python API
+
+
+@dataclass(frozen=True)
+class ApiEntry:
+    """A public name of ``feedtherm`` and the autodoc directive that documents it."""
+
+    name: str
+    directive: str
+    target: str
+
+
+def api_entries() -> list[ApiEntry]:
+    """Every name of ``feedtherm.__all__`` but the version, as autodoc documents it."""
+    import feedtherm
+
+    entries = []
+    for name in feedtherm.__all__:
+        if name == "__version__":
+            continue
+        value = getattr(feedtherm, name)
+        if isinstance(value, types.ModuleType):  # ``simulate``: the callable module runs its function
+            entries.append(ApiEntry(name, "autofunction", f"{value.__name__}.{name}"))
+        elif isinstance(value, type) and issubclass(value, BaseException):
+            entries.append(ApiEntry(name, "autoexception", f"feedtherm.{name}"))
+        elif isinstance(value, type):
+            entries.append(ApiEntry(name, "autoclass", f"feedtherm.{name}"))
+        else:
+            entries.append(ApiEntry(name, "autofunction", f"feedtherm.{name}"))
+    return entries
+
+
+def api_rst(entries: list[ApiEntry] | None = None) -> str:
+    entries = api_entries() if entries is None else entries
+    lines: list[str] = []
+    for kind, title in (("autofunction", "Functions"), ("autoclass", "Types"), ("autoexception", "Errors")):
+        chosen = [e for e in entries if e.directive == kind]
+        if not chosen:
+            continue
+        lines += _heading(title, "-")
+        for entry in chosen:
+            lines += [f".. {entry.directive}:: {entry.target}"]
+            if kind != "autofunction":
+                lines += ["   :members:", "   :show-inheritance:"]
+            lines += [""]
+    return "\n".join(lines)
+
+
+# --------------------------------------------------------------------------- the Sphinx extension
+
+
+def setup(app):
+    from docutils import nodes
+    from docutils.statemachine import StringList
+    from sphinx.util.docutils import SphinxDirective
+    from sphinx.util.nodes import nested_parse_with_titles
+
+    def directive(make_text):
+        class Generated(SphinxDirective):
+            has_content = False
+
+            def run(self):
+                container = nodes.container()
+                text = make_text()
+                nested_parse_with_titles(self.state, StringList(text.splitlines(), source=self.get_source_info()[0]),
+                                         container)
+                return container.children
+
+        return Generated
+
+    app.add_directive("feedtherm-cli", directive(cli_rst))
+    app.add_directive("feedtherm-description-keys", directive(description_rst))
+    app.add_directive("feedtherm-api", directive(api_rst))
+    return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}
