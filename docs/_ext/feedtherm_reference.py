@@ -228,6 +228,7 @@ class Section:
     path: str  # "" for the top level
     title: str
     doc: str
+    model: type[BaseModel]
     keys: list[Key] = field(default_factory=list)
 
 
@@ -479,7 +480,7 @@ def description_sections(root: type[BaseModel] | None = None) -> list[Section]:
 
 def _walk(model: type[BaseModel], path: str, title: str, sections: list[Section],
           fields: list[str] | None = None) -> None:
-    section = Section(path, title, _doc(model))
+    section = Section(path, title, _doc(model), model)
     sections.append(section)
     later: list[tuple] = []
     for name, info in model.model_fields.items():
@@ -631,26 +632,59 @@ def api_rst(entries: list[ApiEntry] | None = None) -> str:
 # --------------------------------------------------------------------------- the Sphinx extension
 
 
+def _source_files(*objects) -> set[str]:
+    """The files that define ``objects`` (modules, classes) and this extension: a page generated
+    from them is read again when one changes (an incremental build would otherwise keep it)."""
+    files = {__file__}
+    for obj in objects:
+        try:
+            files.add(inspect.getsourcefile(obj))
+        except TypeError:
+            continue
+    return {f for f in files if f}
+
+
+def _cli_sources() -> set[str]:
+    import feedtherm.cli
+
+    return _source_files(feedtherm.cli)
+
+
+def _description_sources() -> set[str]:
+    from feedtherm.system import quantities
+
+    return _source_files(quantities, *(cls for section in description_sections() for cls in section.model.__mro__
+                                       if cls.__module__.startswith("feedtherm.")))
+
+
+def _api_sources() -> set[str]:
+    import feedtherm
+
+    return _source_files(feedtherm)
+
+
 def setup(app):
     from docutils import nodes
     from docutils.statemachine import StringList
     from sphinx.util.docutils import SphinxDirective
     from sphinx.util.nodes import nested_parse_with_titles
 
-    def directive(make_text):
+    def directive(make_text, sources):
         class Generated(SphinxDirective):
             has_content = False
 
             def run(self):
                 container = nodes.container()
                 text = make_text()
+                for path in sorted(sources()):
+                    self.env.note_dependency(path)
                 nested_parse_with_titles(self.state, StringList(text.splitlines(), source=self.get_source_info()[0]),
                                          container)
                 return container.children
 
         return Generated
 
-    app.add_directive("feedtherm-cli", directive(cli_rst))
-    app.add_directive("feedtherm-description-keys", directive(description_rst))
-    app.add_directive("feedtherm-api", directive(api_rst))
+    app.add_directive("feedtherm-cli", directive(cli_rst, _cli_sources))
+    app.add_directive("feedtherm-description-keys", directive(description_rst, _description_sources))
+    app.add_directive("feedtherm-api", directive(api_rst, _api_sources))
     return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}
