@@ -40,9 +40,7 @@ source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
 # examples/ are plain scripts the tests run (linked, not pages); tutorial/ is the tutorials' data;
 # sphinx-gallery writes the tutorials' pages from tutorials/ into auto_tutorials/.
-exclude_patterns = ["_build", "examples", "tutorial", "tutorials", "auto_tutorials/*.ipynb",
-                    "auto_tutorials/*.py", "auto_tutorials/*.zip", "auto_tutorials/*.md5",
-                    "auto_tutorials/*.json", "**/sg_execution_times.rst", "sg_execution_times.rst"]
+exclude_patterns = ["_build", "examples", "tutorial", "tutorials"]
 templates_path: list[str] = []
 
 # --------------------------------------------------------------------------- Markdown (MyST)

@@ -549,17 +549,31 @@ def description_keys(sections: list[Section] | None = None) -> list[str]:
 
 
 def description_rst(sections: list[Section] | None = None) -> str:
-    """The description's reference: a section per table, an entry per key."""
+    """The description's reference: a section per table, an entry per key; a key that holds tables
+    links to their sections."""
     sections = description_sections() if sections is None else sections
+    labels = [_label(section) for section in sections]
     lines: list[str] = []
-    for section in sections:
-        label = "desc-" + (re.sub(r"[^a-z0-9]+", "-", section.title.lower()).strip("-") or "top")
+    for section, label in zip(sections, labels):
         lines += [f".. _{label}:", "", *_heading(f"``{section.title}``" if section.path else section.title, "-")]
         if section.doc:
             lines += [section.doc, ""]
         for key in section.keys:
-            lines += [f"``{key.path}``", *_indent(_key_body(key)), ""]
+            tables = [f":ref:`{_escape(_link_text(other))} <{other_label}>`"
+                      for other, other_label in zip(sections, labels)
+                      if other.path in (key.path, f"{key.path}.<name>", f"{key.path}[]")]
+            body = _key_body(key) + ("\n\nIts keys: " + ", ".join(tables) + "." if tables else "")
+            lines += [f"``{key.path}``", *_indent(body), ""]
     return "\n".join(lines)
+
+
+def _link_text(section: Section) -> str:
+    """A section's title, or only what tells a kind of table from the others (``model = "motor"``)."""
+    return section.title[len(section.path) + 2:-1] if section.title.endswith(")") else section.title
+
+
+def _label(section: Section) -> str:
+    return "desc-" + (re.sub(r"[^a-z0-9]+", "-", section.title.lower()).strip("-") or "top")
 
 
 #: Defaults that are words, not values.
