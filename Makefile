@@ -61,7 +61,8 @@ test: $(STAMP) setup-test
 	$(BIN)/python -m pytest -n $(TEST_WORKERS) --dist loadscope --durations=30
 
 # The documentation site (docs/conf.py) into docs/_build/html, every warning an error; the tutorials
-# (docs/tutorials/plot_*.py) run as it builds, their figures drawn by that run.
+# (docs/tutorials/plot_*.py) run as it builds, their figures drawn by that run, with the venv's
+# `feedtherm` first on the PATH for the commands they run.
 docs: $(STAMP)
 	PATH="$(CURDIR)/$(BIN):$$PATH" $(BIN)/sphinx-build -W --keep-going -b html docs docs/_build/html
 
