@@ -103,12 +103,15 @@ def test_a_tutorial_renders(served, tmp_path):
     scripts = sorted((DOCS / "tutorials").glob("plot_*.py"))
     assert scripts, "docs/tutorials holds no plot_*.py tutorial"
     script = scripts[0]
-    title = ast.get_docstring(ast.parse(script.read_text(encoding="utf-8"))).strip().splitlines()[0]
+    source = script.read_text(encoding="utf-8")
+    module = ast.parse(source)
+    title = ast.get_docstring(module).strip().splitlines()[0]
+    first_code = ast.get_source_segment(source, module.body[1]).splitlines()[0]  # after the docstring
     run = chromium(f"{served}auto_tutorials/{script.stem}.html", tmp_path / "profile")
     assert run.returncode == 0, run.stderr[-2000:]
     text = text_of(run.stdout)
     assert title in text
-    assert "import feedtherm" in text  # the script's code, highlighted
+    assert "".join(first_code.split()) in "".join(text.split())  # the code, split into highlighted tokens
     assert f"Download Python source code: {script.name}" in text
     assert script_errors(run.stderr) == []
 
@@ -152,3 +155,11 @@ def test_the_built_reference_documents_every_public_name(site):
     for name in feedtherm.__all__:
         if name != "__version__":
             assert ("feedtherm.simulate.simulate" if name == "simulate" else f"feedtherm.{name}") in anchors, name
+
+
+def test_a_script_error_is_seen(tmp_path):
+    """The pages' check for script errors is not vacuous: a page that throws shows up."""
+    page = tmp_path / "broken.html"
+    page.write_text("<!DOCTYPE html><p>x</p><script>throw new Error('broken on purpose')</script>", encoding="utf-8")
+    run = chromium(page.as_uri(), tmp_path / "profile")
+    assert any("broken on purpose" in line for line in script_errors(run.stderr))
