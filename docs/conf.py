@@ -3,7 +3,7 @@
 The pages are Markdown (MyST); the tutorials are sphinx-gallery scripts, executed when the site
 builds (``-D plot_gallery=0`` skips that, as the site's tests do); the reference of the command
 line and of the description's keys is generated from the code by the local extension
-``_ext/feedtherm_reference.py``, the Python API by autodoc with numpydoc.
+``_ext/feedtherm_reference/``, the Python API by autodoc with numpydoc.
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """What the site's reference must hold, enumerated apart from the generator
-(docs/_ext/feedtherm_reference.py): every key of a description, by a short walk of the pydantic
+(docs/_ext/feedtherm_reference/): every key of a description, by a short walk of the pydantic
 schema, and every argument of every command, from the argparse parser.  The reference's tests
 (test_docs_reference.py) and the built site's (test_docs_site.py) compare the pages with these.
 """

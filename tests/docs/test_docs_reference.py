@@ -1,4 +1,4 @@
-"""The site's generated reference (docs/_ext/feedtherm_reference.py) holds every key of a
+"""The site's generated reference (docs/_ext/feedtherm_reference/) holds every key of a
 description and every option of every command.
 
 What the reference must hold is enumerated here on its own, by a short walk of the pydantic

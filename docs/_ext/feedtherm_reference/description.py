@@ -1,17 +1,11 @@
-"""The site's generated reference: the command line from its argparse parser, the description's
-keys from its pydantic schema, the public API from ``feedtherm.__all__``.
-
-Each part is enumerated by a plain function that returns data (:func:`cli_commands`,
-:func:`description_sections`, :func:`api_entries`) and written as reStructuredText by another
-(:func:`cli_rst`, :func:`description_rst`, :func:`api_rst`), so that the tests
-(tests/docs/test_docs_reference.py) read what the pages hold without building the site.  The
-directives ``feedtherm-cli``, ``feedtherm-description-keys`` and ``feedtherm-api`` put that text
-into a page (docs/reference/).
-"""
+"""The description's reference, from the pydantic schema that validates every description: a
+section per table (a model at a dotted path; a union of models by its tag, ``model = "motor"``),
+an entry per key with its type, the SI unit it is stored in, its range (the quantity's rules,
+the field's constraints), its default and what the schema says of it (a field's description, or
+the comments beside it in the source)."""
 
 from __future__ import annotations
 
-import argparse
 import ast
 import inspect
 import json
@@ -27,186 +21,7 @@ from pydantic import BaseModel
 from pydantic.fields import FieldInfo
 from pydantic_core import PydanticUndefined
 
-# --------------------------------------------------------------------------- reStructuredText helpers
-
-# code in plain text: ``x`` or `x`, and command-line options (--model), which typography would
-# otherwise turn into dashes
-_LITERAL = re.compile(r"``.+?``|`[^`]+`|(?<![\w-])--?[A-Za-z][\w-]*")
-
-
-def rst_text(text: str) -> str:
-    """Plain text (a help string, a source comment) as reStructuredText that reads the same.
-
-    ```x```, ``x`` (code, as the help strings and comments write it) and options (``--model``)
-    become literals; the characters that would start markup elsewhere (``*``, ``|``, ``_``,
-    ``\\``) are escaped.
-    """
-    out, end = [], 0
-    for match in _LITERAL.finditer(text):
-        out.append(_escape(text[end:match.start()]))
-        out.append(_literal(match.group(0).strip("`")))
-        end = match.end()
-    out.append(_escape(text[end:]))
-    return "".join(out)
-
-
-def _escape(text: str) -> str:
-    return re.sub(r"([\\*|_`<>\[\]])", r"\\\1", text)
-
-
-def _literal(text: str) -> str:
-    """``text`` as an inline literal, wherever it stands (a literal needs spaces or punctuation
-    around it: ``:role:`` escapes make that hold inside words too)."""
-    text = text.replace("`", "'")
-    return f"\\ ``{text}``\\ " if text.strip() == text and text else f":literal:`{text}`"
-
-
-def _heading(title: str, level: str) -> list[str]:
-    return [title, level * max(len(title), 4), ""]
-
-
-def _indent(text: str, by: str = "   ") -> list[str]:
-    return [by + line if line.strip() else "" for line in text.splitlines()]
-
-
-# --------------------------------------------------------------------------- the command line
-
-
-@dataclass(frozen=True)
-class Option:
-    """One argument of a command, as ``feedtherm COMMAND -h`` lists it."""
-
-    names: tuple[str, ...]  # "--model", or a positional's name
-    invocation: str  # "--model MODEL", "system"
-    help: str
-    default: Any = None  # None: none worth stating
-    choices: tuple[str, ...] = ()
-    required: bool = False
-    exclusive_with: tuple[str, ...] = ()  # the other options of its mutually exclusive group
-
-
-@dataclass(frozen=True)
-class Command:
-    """A command of ``feedtherm`` (the program itself has the name ``""``)."""
-
-    name: str
-    help: str
-    usage: str
-    options: tuple[Option, ...]
-
-    @property
-    def program(self) -> str:
-        return f"feedtherm {self.name}".strip()
-
-
-def _subcommands(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
-    for action in parser._actions:
-        if isinstance(action, argparse._SubParsersAction):
-            return dict(action.choices)
-    return {}
-
-
-def _command_help(parser: argparse.ArgumentParser) -> dict[str, str]:
-    for action in parser._actions:
-        if isinstance(action, argparse._SubParsersAction):
-            return {choice.dest: choice.help or "" for choice in action._choices_actions}
-    return {}
-
-
-def _options(parser: argparse.ArgumentParser) -> tuple[Option, ...]:
-    formatter = parser._get_formatter()
-    exclusive = {}
-    for group in parser._mutually_exclusive_groups:
-        names = [a.option_strings[-1] if a.option_strings else a.dest for a in group._group_actions]
-        for action, name in zip(group._group_actions, names):
-            exclusive[id(action)] = tuple(n for n in names if n != name)
-    options = []
-    for action in parser._actions:
-        if isinstance(action, (argparse._HelpAction, argparse._SubParsersAction)) or action.help == argparse.SUPPRESS:
-            continue
-        default = action.default
-        if default in (None, argparse.SUPPRESS) or isinstance(action, (argparse._StoreTrueAction,
-                                                                       argparse._VersionAction)):
-            default = None
-        options.append(Option(
-            names=tuple(action.option_strings) or (action.dest,),
-            invocation=formatter._format_action_invocation(action),
-            help=formatter._expand_help(action) if action.help else "",
-            default=default,
-            choices=tuple(str(c) for c in action.choices) if action.choices else (),
-            required=bool(action.required) and bool(action.option_strings),
-            exclusive_with=exclusive.get(id(action), ()),
-        ))
-    return tuple(options)
-
-
-def cli_commands(parser: argparse.ArgumentParser | None = None) -> list[Command]:
-    """The program and each of its commands, in the parser's order, with every option."""
-    if parser is None:
-        from feedtherm.cli import build_parser
-
-        parser = build_parser()
-    helps = _command_help(parser)
-    commands = [Command("", parser.description or "", parser.format_usage().strip(), _options(parser))]
-    for name, sub in _subcommands(parser).items():
-        commands.append(Command(name, helps.get(name, ""), sub.format_usage().strip(), _options(sub)))
-    return commands
-
-
-def _usage(text: str) -> str:
-    return " ".join(text.removeprefix("usage:").split())
-
-
-def cli_rst(commands: list[Command] | None = None) -> str:
-    """The command-line reference: a section per command, an ``option`` entry per argument."""
-    commands = cli_commands() if commands is None else commands
-    lines: list[str] = []
-    for command in commands:
-        title = command.program
-        lines += [f".. _cli-{command.name or 'feedtherm'}:", "", *_heading(f"``{title}``", "-")]
-        if command.help:
-            lines += [rst_text(_sentence(command.help)), ""]
-        lines += ["::", "", *_indent(_wrap_usage(_usage(command.usage))), ""]
-        if not command.name:
-            lines += ["Every command also takes ``-h``/``--help``: its usage and options, as below.", ""]
-        if not command.options:
-            lines += ["The command takes no options.", ""]
-            continue
-        lines += [f".. program:: {title}", ""]
-        for option in command.options:
-            lines += [f".. option:: {option.invocation}", ""]
-            lines += _indent(_option_body(option)) + [""]
-    return "\n".join(lines)
-
-
-def _sentence(text: str) -> str:
-    """``text`` ending as a sentence (its first word may be a value, ``physics (default): …``, so
-    its case stays)."""
-    text = text.strip()
-    return text + ("" if text.endswith((".", ")")) else ".")
-
-
-def _wrap_usage(usage: str) -> str:
-    return "\n".join(textwrap.wrap(usage, 96, subsequent_indent="    ", break_on_hyphens=False, break_long_words=False))
-
-
-def _option_body(option: Option) -> str:
-    parts = [rst_text(_sentence(option.help)) if option.help else ""]
-    facts = []
-    if option.required:
-        facts.append("Required.")
-    if option.choices:
-        facts.append("Choices: " + ", ".join(_literal(c) for c in option.choices) + ".")
-    if option.default is not None and "default" not in option.help.lower():
-        facts.append(f"Default: {_literal(str(option.default))}.")
-    if option.exclusive_with:
-        facts.append("Not with " + ", ".join(_literal(n) for n in option.exclusive_with) + ".")
-    if facts:
-        parts.append(" ".join(facts))
-    return "\n\n".join(p for p in parts if p)
-
-
-# --------------------------------------------------------------------------- the description's keys
+from .rst import escape, heading, indent, literal, rst_text
 
 
 @dataclass(frozen=True)
@@ -248,10 +63,6 @@ def _plain(annotation) -> tuple[Any, list]:
 
 def _is_union(annotation) -> bool:
     return typing.get_origin(annotation) in (typing.Union, types.UnionType)
-
-
-def _optional(annotation) -> bool:
-    return _is_union(annotation) and type(None) in typing.get_args(annotation)
 
 
 def _is_model(annotation) -> bool:
@@ -416,7 +227,7 @@ def field_comments(cls: type) -> dict[str, str]:
     if cls in _COMMENTS:
         return _COMMENTS[cls]
     try:
-        lines, first = inspect.getsourcelines(cls)
+        lines, _ = inspect.getsourcelines(cls)
     except (OSError, TypeError):
         return {}
     source = textwrap.dedent("".join(lines))
@@ -542,12 +353,6 @@ def _walk_union_or_model(annotation, path: str, title: str, sections: list[Secti
         _walk(member, path, f"{path} ({tag} = {json.dumps(value)})" if tag else path, sections, fields=own)
 
 
-def description_keys(sections: list[Section] | None = None) -> list[str]:
-    """Every key's dotted path, once each, in the order of the reference."""
-    sections = description_sections() if sections is None else sections
-    return list(dict.fromkeys(key.path for section in sections for key in section.keys))
-
-
 def description_rst(sections: list[Section] | None = None) -> str:
     """The description's reference: a section per table, an entry per key; a key that holds tables
     links to their sections."""
@@ -555,15 +360,15 @@ def description_rst(sections: list[Section] | None = None) -> str:
     labels = [_label(section) for section in sections]
     lines: list[str] = []
     for section, label in zip(sections, labels):
-        lines += [f".. _{label}:", "", *_heading(f"``{section.title}``" if section.path else section.title, "-")]
+        lines += [f".. _{label}:", "", *heading(f"``{section.title}``" if section.path else section.title, "-")]
         if section.doc:
             lines += [section.doc, ""]
         for key in section.keys:
-            tables = [f":ref:`{_escape(_link_text(other))} <{other_label}>`"
+            tables = [f":ref:`{escape(_link_text(other))} <{other_label}>`"
                       for other, other_label in zip(sections, labels)
                       if other.path in (key.path, f"{key.path}.<name>", f"{key.path}[]")]
             body = _key_body(key) + ("\n\nIts keys: " + ", ".join(tables) + "." if tables else "")
-            lines += [f"``{key.path}``", *_indent(body), ""]
+            lines += [f"``{key.path}``", *indent(body), ""]
     return "\n".join(lines)
 
 
@@ -582,123 +387,14 @@ _NO_VALUE = ("required", "none (left out)", "its keys' defaults")
 
 def _key_body(key: Key) -> str:
     # the values a key takes (its choices, its default) as literals: typography leaves them alone
-    facts = ["".join(_literal(part) if part.startswith('"') else _escape(part)
+    facts = ["".join(literal(part) if part.startswith('"') else escape(part)
                      for part in re.split(r'("[^"]*")', key.type) if part)]
     if key.unit:
-        facts.append(f"in {_literal(key.unit)}")
+        facts.append(f"in {literal(key.unit)}")
     if key.range:
         facts.append(rst_text(key.range))
-    facts.append(f"default: *{key.default}*" if key.default in _NO_VALUE else f"default: {_literal(key.default)}")
+    facts.append(f"default: *{key.default}*" if key.default in _NO_VALUE else f"default: {literal(key.default)}")
     body = " · ".join(facts)
     if key.description:
         body += "\n\n" + rst_text(key.description)
     return body
-
-
-# --------------------------------------------------------------------------- the Python API
-
-
-@dataclass(frozen=True)
-class ApiEntry:
-    """A public name of ``feedtherm`` and the autodoc directive that documents it."""
-
-    name: str
-    directive: str
-    target: str
-
-
-def api_entries() -> list[ApiEntry]:
-    """Every name of ``feedtherm.__all__`` but the version, as autodoc documents it."""
-    import feedtherm
-
-    entries = []
-    for name in feedtherm.__all__:
-        if name == "__version__":
-            continue
-        value = getattr(feedtherm, name)
-        if isinstance(value, types.ModuleType):  # ``simulate``: the callable module runs its function
-            entries.append(ApiEntry(name, "autofunction", f"{value.__name__}.{name}"))
-        elif isinstance(value, type) and issubclass(value, BaseException):
-            entries.append(ApiEntry(name, "autoexception", f"feedtherm.{name}"))
-        elif isinstance(value, type):
-            entries.append(ApiEntry(name, "autoclass", f"feedtherm.{name}"))
-        else:
-            entries.append(ApiEntry(name, "autofunction", f"feedtherm.{name}"))
-    return entries
-
-
-def api_rst(entries: list[ApiEntry] | None = None) -> str:
-    entries = api_entries() if entries is None else entries
-    lines: list[str] = []
-    for kind, title in (("autofunction", "Functions"), ("autoclass", "Types"), ("autoexception", "Errors")):
-        chosen = [e for e in entries if e.directive == kind]
-        if not chosen:
-            continue
-        lines += _heading(title, "-")
-        for entry in chosen:
-            lines += [f".. {entry.directive}:: {entry.target}"]
-            if kind != "autofunction":
-                lines += ["   :members:", "   :show-inheritance:"]
-            lines += [""]
-    return "\n".join(lines)
-
-
-# --------------------------------------------------------------------------- the Sphinx extension
-
-
-def _source_files(*objects) -> set[str]:
-    """The files that define ``objects`` (modules, classes) and this extension: a page generated
-    from them is read again when one changes (an incremental build would otherwise keep it)."""
-    files = {__file__}
-    for obj in objects:
-        try:
-            files.add(inspect.getsourcefile(obj))
-        except TypeError:
-            continue
-    return {f for f in files if f}
-
-
-def _cli_sources() -> set[str]:
-    import feedtherm.cli
-
-    return _source_files(feedtherm.cli)
-
-
-def _description_sources() -> set[str]:
-    from feedtherm.system import quantities
-
-    return _source_files(quantities, *(cls for section in description_sections() for cls in section.model.__mro__
-                                       if cls.__module__.startswith("feedtherm.")))
-
-
-def _api_sources() -> set[str]:
-    import feedtherm
-
-    return _source_files(feedtherm)
-
-
-def setup(app):
-    from docutils import nodes
-    from docutils.statemachine import StringList
-    from sphinx.util.docutils import SphinxDirective
-    from sphinx.util.nodes import nested_parse_with_titles
-
-    def directive(make_text, sources):
-        class Generated(SphinxDirective):
-            has_content = False
-
-            def run(self):
-                container = nodes.container()
-                text = make_text()
-                for path in sorted(sources()):
-                    self.env.note_dependency(path)
-                nested_parse_with_titles(self.state, StringList(text.splitlines(), source=self.get_source_info()[0]),
-                                         container)
-                return container.children
-
-        return Generated
-
-    app.add_directive("feedtherm-cli", directive(cli_rst, _cli_sources))
-    app.add_directive("feedtherm-description-keys", directive(description_rst, _description_sources))
-    app.add_directive("feedtherm-api", directive(api_rst, _api_sources))
-    return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}
