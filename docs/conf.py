@@ -30,7 +30,6 @@ extensions = [
     "myst_parser",
     "numpydoc",
     "sphinx.ext.autodoc",
-    "sphinx.ext.autosummary",
     "sphinx.ext.mathjax",
     "sphinx_gallery.gen_gallery",
     "feedtherm_reference",
@@ -38,7 +37,7 @@ extensions = [
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
-# examples/ are plain scripts the tests run (linked, not pages); tutorial/ is the tutorials' data;
+# examples/ are plain scripts the tests run, not pages; tutorial/ is the tutorials' data;
 # sphinx-gallery writes the tutorials' pages from tutorials/ into auto_tutorials/.
 exclude_patterns = ["_build", "examples", "tutorial", "tutorials"]
 templates_path: list[str] = []
@@ -53,7 +52,6 @@ myst_heading_anchors = 3
 
 autodoc_typehints = "none"  # numpydoc's Parameters sections state the types, with units
 autodoc_member_order = "bysource"
-autosummary_generate = False
 numpydoc_show_class_members = False  # the classes' members are documented by autodoc below them
 numpydoc_xref_param_type = False
 # Warnings (errors under -W) for the public objects' docstrings: each has a summary, documents
