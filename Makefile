@@ -5,12 +5,12 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: setup setup-test validate uncertainty test bench fuzz clean
+.PHONY: setup setup-test validate uncertainty test docs bench fuzz clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/pip install --quiet --upgrade pip
-	$(BIN)/pip install --quiet -e ".[test]"
+	$(BIN)/pip install --quiet -e ".[test,docs]"
 	touch $(STAMP)
 
 setup: $(STAMP)
@@ -60,8 +60,14 @@ test: $(STAMP) setup-test
 	$(BIN)/python -m compileall -q src >/dev/null
 	$(BIN)/python -m pytest -n $(TEST_WORKERS) --dist loadscope --durations=30
 
+# The documentation site (docs/conf.py) into docs/_build/html, every warning an error; the tutorials
+# (docs/tutorials/plot_*.py) run as it builds, their figures drawn by that run, with the venv's
+# `feedtherm` first on the PATH for the commands they run.
+docs: $(STAMP)
+	PATH="$(CURDIR)/$(BIN):$$PATH" $(BIN)/sphinx-build -W --keep-going -b html docs docs/_build/html
+
 clean:
-	rm -rf $(VENV) build src/*.egg-info
+	rm -rf $(VENV) build src/*.egg-info docs/_build docs/auto_tutorials
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_fast.py

@@ -64,12 +64,13 @@ def _work_unit(nodeid: str) -> str:
 
 def _rank(unit: str) -> int:
     """The longest units first, the many short unit tests last to fill the workers' ends: the Dask
-    modules, then the FE verification cases and the validation, then the rest of the integration tests."""
+    modules, then the FE verification cases and the validation, then the rest of the integration tests
+    and the documentation site's (tests/docs: it builds the site)."""
     if unit == "dask_cluster":
         return 0
     if unit.startswith(("tests/verification/", "tests/validation/")):
         return 1
-    return 2 if unit.startswith("tests/integration/") else 3
+    return 2 if unit.startswith(("tests/integration/", "tests/docs/")) else 3
 
 
 @pytest.hookimpl(optionalhook=True, tryfirst=True)  # before pytest-xdist's own

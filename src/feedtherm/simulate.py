@@ -68,6 +68,8 @@ def simulate(loaded: LoadedSystem | str, *, condition: str | None = None, cycle:
         screw at the relative speed, so that the table speed is unchanged.
     sample_interval : float
         Interval of the output series [s].
+    progress : callable, optional
+        Called with the fraction of the run done, from 0 to 1.
     motion : {"resolved", "exact", "averaged"}, optional
         Position over time (default; the FE and reduced models step it window by window,
         :mod:`feedtherm.models.windows`), ``"exact"`` grid position by grid position in every model
@@ -77,6 +79,9 @@ def simulate(loaded: LoadedSystem | str, *, condition: str | None = None, cycle:
     start : {"initial", "steady"}
         Start from the initial temperature (default), or from the cycle-averaged steady state
         of the first operating point (to study the periodic steady state directly).
+    options : ModelOptions, optional
+        The models' discretisation and time stepping (:class:`feedtherm.models.options.ModelOptions`;
+        default its defaults); ``motion``, ``mesh`` and ``solver``, where given, take precedence.
     solver : {"auto", "direct", "cg"}, optional
         Linear solver of the time steps (default: ``options.solver``, "auto").
     allow_overload : bool

@@ -132,6 +132,55 @@ class Prediction:
 
 @dataclass
 class CalibrationResult:
+    """What a calibration found: the fitted parameters, how well the data determine them, the
+    fit's residuals, the predictions of the conditions it did not fit, and the calibrated
+    description.
+
+    Attributes
+    ----------
+    parameters : list of FitParameter
+        The parameters fitted, with the description paths each sets and its bounds.
+    fitted : ndarray
+        The fitted value of each parameter, in SI units (a factor for a ``"scale"`` parameter).
+    standard_errors : ndarray
+        The standard error of each fitted value, in its unit.
+    correlation : ndarray
+        The fitted values' correlation matrix.
+    identifiable : list of str
+        Per parameter, ``""`` when the data determine it, else the reason they do not.
+    at_bound : list of str
+        Per parameter, ``"lower"`` or ``"upper"`` where the data push it against a declared bound,
+        else ``""``.
+    fit_conditions : list of str
+        The conditions (or tests) fitted.
+    residuals : list of Prediction
+        The fitted conditions' values, simulated after the fit beside the measured ones.
+    held_out : list of Prediction
+        The measured conditions not fitted, predicted by the calibrated model, with their 95 %
+        prediction intervals.
+    cost : float
+        Half the sum of the squared weighted residuals at the fitted values.
+    model_runs : int
+        The model runs the fit took.
+    wall_time_s : float
+        The fit's wall time [s].
+    measurement_source : str
+        Where the measurements came from.
+    calibrated : LoadedSystem
+        The description with the fitted values, to simulate.
+    status : str
+        The least-squares solver's message at its end.
+    excluded : list of Prediction
+        Measured values of the fitted conditions that the consistency check flags, left out of
+        the fit (each with its flag).
+    motor_duty : dict
+        Condition -> motor -> its torque over its declared continuous torque at the fitted values.
+    series_fit, series_held_out : list of TransientComparison
+        The measured series of the fitted and of the held-out conditions against the calibrated runs.
+    model, mesh : str
+        The model the runs took and its FE mesh (``None``: the model takes none).
+    """
+
     parameters: list[FitParameter]
     fitted: np.ndarray
     standard_errors: np.ndarray
@@ -148,7 +197,6 @@ class CalibrationResult:
     calibrated: LoadedSystem
     status: str = ""
     excluded: list[Prediction] = field(default_factory=list)  # flagged values left out of the fit
-    extra: dict = field(default_factory=dict)
     # condition -> motor -> torque over its declared continuous torque, at the fitted values (> 1:
     # the motor could not run there, so the fitted preloads are implausible)
     motor_duty: dict[str, dict[str, float]] = field(default_factory=dict)

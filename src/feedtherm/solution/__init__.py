@@ -25,7 +25,17 @@ ENERGY_FLOOR_J = 1.0  # [J] smallest energy scale of the balance
 
 @dataclass(frozen=True)
 class EnergyBalance:
-    """Heat in, lost and stored over a run [J], computed apart from the solver's matrices."""
+    """Heat in, lost and stored over a run [J], computed apart from the solver's matrices.
+
+    Attributes
+    ----------
+    heat_in : float
+        Heat the sources put in [J].
+    heat_lost : float
+        Heat lost to the surroundings [J].
+    heat_stored : float
+        Heat stored in the parts [J].
+    """
 
     heat_in: float
     heat_lost: float
@@ -33,12 +43,12 @@ class EnergyBalance:
 
     @property
     def residual(self) -> float:
-        """in − lost − stored [J]."""
+        """In − lost − stored [J]."""
         return self.heat_in - self.heat_lost - self.heat_stored
 
     @property
     def relative_error(self) -> float:
-        """residual / max(in, |lost| + |stored|, 1 J).
+        """``residual / max(in, |lost| + |stored|, 1 J)``.
 
         The 1 J floor keeps a run with (almost) no heat — a standstill at ambient — from
         dividing round-off by round-off.
@@ -306,7 +316,18 @@ class Solution:
         return (self.elongation - self.elongation[0]) * 1e6
 
     def summary_values(self, which: str = "final") -> dict[str, float]:
-        """``final`` or ``steady`` values in °C and µm, keyed by sensor name, and D_um."""
+        """``final`` or ``steady`` values in °C and µm, keyed by sensor name, and D_um.
+
+        Parameters
+        ----------
+        which : {"final", "steady"}
+            The mean over the last full cycle, or the cycle-averaged steady state.
+
+        Returns
+        -------
+        dict
+            Sensor name -> temperature [°C], and ``"D_um"`` -> the elongation D [µm].
+        """
         values = self.final if which == "final" else self.steady
         out = {name: value - KELVIN_OFFSET for name, value in values.items() if name != ELONGATION_PROBE}
         out["D_um"] = values[ELONGATION_PROBE] * 1e6

@@ -30,7 +30,21 @@ if TYPE_CHECKING:  # pragma: no cover
 
 @dataclass(frozen=True)
 class LoadedSystem:
-    """A validated description with where it came from and the hash of its content."""
+    """A validated description with where it came from and the hash of its content.
+
+    Attributes
+    ----------
+    system : FeedSystem
+        The validated description (docs/system-description.md), every value in SI units.
+    origin : str
+        The file's path, or ``"bundled:<bench name>"``.
+    sha256 : str
+        The hash of the resolved description (canonical JSON of the validated data).
+    derived_joint_areas : tuple of int
+        The joints whose area the geometry gave (none was stated).
+    overlay : Overlay or None
+        The printed values its runs lay over the physics (the mode ``ft.load`` was given).
+    """
 
     system: FeedSystem
     origin: str  # file path or "bundled:<bench name>"

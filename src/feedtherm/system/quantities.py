@@ -127,6 +127,8 @@ ANGLE_LIMIT = Limit(0.0, math.pi / 2.0, "rad", "deg",
 SIZE_MINIMUM = 1e-6
 SIZE_MINIMUM_REASON = ("no part, bore or feature of a feed drive is made smaller and no mesh resolves it; two solids "
                        "closer than this touch for check (system/topology.py)")
+#: A share of a whole (a source's heat into one of its parts).
+FRACTION_LIMIT = Limit(0.0, 1.0, "", "", "a share of the whole")
 #: Factors on a model's heat or coefficient (set by calibration and perturbation studies).
 FACTOR_LIMIT = Limit(0.01, 100.0, "", "", "a model off by more than a hundred either way is another model, not a "
                      "correction of it")
@@ -262,23 +264,30 @@ def _typo(number: float, unit: str, limit: Limit) -> str:
 
 @dataclass(frozen=True)
 class SIUnit:
-    """Marks a quantity field with the SI unit its value is stored in (see :func:`same_dimension`)."""
+    """Marks a quantity field with the SI unit its value is stored in (see :func:`same_dimension`),
+    and the rules its validator applies: ``sign``, ``limit`` and, for sizes, the smallest nonzero
+    ``minimum`` [``unit``] (the reference of the description's keys shows them)."""
 
     unit: str
+    sign: str = "any"
+    limit: Limit | None = None
+    minimum: float | None = None
 
 
 def _quantity(si_unit: str, sign: str = "any", limit: Limit | None = None, hint: str | None = None):
     return Annotated[float, BeforeValidator(lambda v: to_si(v, si_unit, sign=sign, limit=limit, hint=hint)),
-                     SIUnit(si_unit)]
+                     SIUnit(si_unit, sign, limit)]
 
 
 # Annotated float types: SI value after validation.  "Pos" = strictly positive.
 Length = _quantity("m", limit=LENGTH_LIMIT)
 #: A size (a box's edge, a cylinder's length or diameter, a hole's, a convection length, a lead, a
 #: bearing's bore): positive, and at least :data:`SIZE_MINIMUM`.
-PosLength = Annotated[float, BeforeValidator(lambda v: _size(v, "positive")), SIUnit("m")]
+PosLength = Annotated[float, BeforeValidator(lambda v: _size(v, "positive")),
+                      SIUnit("m", "positive", LENGTH_LIMIT, SIZE_MINIMUM)]
 #: A size that may be 0 for "none" (a solid cylinder's inner diameter), else at least SIZE_MINIMUM.
-NonNegLength = Annotated[float, BeforeValidator(lambda v: _size(v, "nonnegative")), SIUnit("m")]
+NonNegLength = Annotated[float, BeforeValidator(lambda v: _size(v, "nonnegative")),
+                         SIUnit("m", "nonnegative", LENGTH_LIMIT, SIZE_MINIMUM)]
 #: A positive length that is no size: a displacement's spread (a displacement sensor resolves far
 #: below SIZE_MINIMUM).
 PosDisplacement = _quantity("m", "positive", LENGTH_LIMIT)
@@ -310,7 +319,7 @@ PosKinematicViscosity = _quantity("m^2/s", "positive", KINEMATIC_VISCOSITY_LIMIT
 PosDynamicViscosity = _quantity("Pa*s", "positive", DYNAMIC_VISCOSITY_LIMIT)
 PosPressureViscosityCoefficient = _quantity("1/Pa", "positive", PRESSURE_VISCOSITY_LIMIT)  # Barus alpha of a lubricant
 PosMass = _quantity("kg", "positive", MASS_LIMIT)
-Fraction = Annotated[float, BeforeValidator(lambda v: _fraction(v)), SIUnit("")]
+Fraction = Annotated[float, BeforeValidator(lambda v: _fraction(v)), SIUnit("", "nonnegative", FRACTION_LIMIT)]
 PosDimensionless = _quantity("", "positive")
 NonNegAngle = _quantity("rad", "nonnegative", ANGLE_LIMIT)
 #: A factor on a model's heat or coefficient (``heat_factor``, ``chtc_factor``).
@@ -328,7 +337,7 @@ def _size(value: object, sign: str) -> float:
 
 def _fraction(value: object) -> float:
     number = to_si(value, "")
-    if not 0.0 <= number <= 1.0:
+    if FRACTION_LIMIT.violated_by(number):
         raise ValueError(f"must lie between 0 and 1, got {value!r}")
     return number
 

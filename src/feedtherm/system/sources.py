@@ -302,7 +302,7 @@ MotorLosses = Annotated[Union[DatasheetMotorLosses, RatedMotorLosses], Field(dis
 class MotorSource(_Source):
     """A servo motor's heat at the torque its shaft needs: ``efficiency`` or ``losses``.
 
-    ``efficiency``: loss P(1/eta - 1) driving, |P|(1 - eta) braking (proportional to the shaft
+    ``efficiency``: loss ``P (1/eta - 1)`` driving, ``|P| (1 - eta)`` braking (proportional to the shaft
     power).  ``losses``: copper loss from the torque plus the no-load loss from the speed, driving
     or braking alike (physics/servo_motor.py).
     """
@@ -412,7 +412,7 @@ class SlidingScrewSource(_Source):
 
 
 class BallScrewSource(_Source):
-    """Rolling friction of a ball screw–nut pair at the relative speed |n_screw − n_nut|.
+    """Rolling friction of a ball screw–nut pair at the relative speed ``|n_screw − n_nut|``.
 
     Every loaded ball touches the screw's and the nut's groove; each contact adds Heathcote's
     differential sliding, elastic hysteresis and EHL rolling resistance (the paper's Eqs. 1–12,

@@ -83,6 +83,38 @@ class StrokeResult:
 
 @dataclass(frozen=True)
 class StudyResult:
+    """A compensation study's laws, each judged on cycles and machines it was not fitted on.
+
+    Attributes
+    ----------
+    settings : StudySettings
+        How the study's cycles were made and run.
+    candidates : dict
+        The candidate sensors by name: where a machine can carry one.
+    sets : dict
+        The cycles of each set (``"train"``, ``"validation"``, ``"test"``, ``"out_of_range"``) read
+        through the sensors.
+    curves : dict
+        Law kind -> the laws on the greedy sensor sets for K = 1, 2, …: the error against the
+        number of sensors.
+    chosen : dict
+        Law kind -> the law asked for (K greedy sensors, or the sensors named).
+    declared : dict
+        Law kind -> the law on the description's own sensors.
+    request : int or tuple of str
+        The sensors asked for: a count K, or candidate names.
+    noise : SensorNoise or None
+        The sensors' noise the sets were read with.
+    stroke : dict
+        Law kind -> the laws along the stroke, E(x, t).
+    out_of_range : dict
+        Law kind (or ``"best"``) -> ``"d"`` or ``"stroke"`` -> out-of-range case -> residuals.
+    drift_tests : list of DriftJudgement
+        Each law asked for on the description's drift tests, as ISO 230-3 judges it.
+    offsets : dict
+        Each candidate's declared offset [K]: what the laws' conditioning prices it at.
+    """
+
     settings: StudySettings
     candidates: dict[str, Candidate]
     sets: dict[str, CycleSet]
@@ -101,7 +133,18 @@ class StudyResult:
     offsets: dict[str, float] = field(default_factory=dict)
 
     def best(self, max_sensors: int = 3) -> LawResult:
-        """The law with the smallest validation RMS among the curves' laws of at most ``max_sensors`` sensors."""
+        """The law with the smallest validation RMS among the curves' laws of at most ``max_sensors`` sensors.
+
+        Parameters
+        ----------
+        max_sensors : int
+            The most sensors the law may read.
+
+        Returns
+        -------
+        LawResult
+            That law, with its sensors and its errors on the held-out cycles.
+        """
         pool = [r for curve in self.curves.values() for r in curve if r.k <= max_sensors]
         return min(pool, key=lambda r: r.validation.rms)
 
