@@ -24,8 +24,10 @@ would on a real machine.
 # Where the files go
 # ------------------
 #
-# The commands write into the folder they run in.  Here that is a scratch folder; on your machine,
-# a folder of your own.  The log is read from beside this script.
+# The commands write into the folder they run in: here a scratch folder, ``work``, on your machine
+# a folder of your own.  ``feedtherm(...)`` runs each command there, as a shell in that folder
+# would; the script reads what they wrote from there too.  The log is read from beside this
+# script.
 
 import json
 import os
@@ -41,13 +43,17 @@ from feedtherm.cli import main
 
 LOG = Path("my_axis_drift.csv").resolve()
 work = Path(tempfile.mkdtemp(prefix="my_axis-"))
-os.chdir(work)
 
 
 def feedtherm(command: str) -> None:
-    """Run ``feedtherm COMMAND`` in this process, as a shell would, and stop on a failure."""
+    """Run ``feedtherm COMMAND`` in this process from ``work``, as a shell there would."""
     print(f"$ feedtherm {command}", flush=True)
-    status = main(shlex.split(command))
+    here = os.getcwd()
+    os.chdir(work)
+    try:
+        status = main(shlex.split(command))
+    finally:
+        os.chdir(here)
     if status != 0:
         raise SystemExit(f"feedtherm {command}: exit status {status}")
 
@@ -141,13 +147,13 @@ source = "the axis's ISO 230-3 drift tests, as run and logged"
 reason = "What the axis ran in its thermal tests, from the test log; the calibration bounds are catalogue ranges, chosen before fitting."
 """
 
-with open("my_axis/description.toml", "a", encoding="utf-8") as description:
+with open(work / "my_axis" / "description.toml", "a", encoding="utf-8") as description:
     description.write(DECLARATIONS)
 
 # %%
 # Then bring your log beside it (here, the synthetic one) and check the two together.
 
-shutil.copy(LOG, "my_axis/drift.csv")
+shutil.copy(LOG, work / "my_axis" / "drift.csv")
 feedtherm("check my_axis/description.toml")
 
 # %%
@@ -158,7 +164,7 @@ feedtherm("check my_axis/description.toml")
 # line naming the file and the line.  An interferometer's own export converts to it with one row
 # per reading (docs/tests.md).
 
-log = pd.read_csv("my_axis/drift.csv", comment="#")
+log = pd.read_csv(work / "my_axis" / "drift.csv", comment="#")
 print(log.head(8).to_string(index=False))
 
 # %%
@@ -176,7 +182,7 @@ feedtherm("run my_axis/description.toml --test drift --motion averaged --no-plot
 # The simulated sensors and D against the log (the dots): the run starts where the sensors were
 # and follows the logged air, so what departs from the log is the model's own.
 
-run = pd.read_csv("out/my_axis_drift/sensors.csv")
+run = pd.read_csv(work / "out" / "my_axis_drift" / "sensors.csv")
 logged = log[log["test"] == "drift"]
 temperatures = [c for c in run.columns if c.startswith("T")]
 fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
@@ -204,7 +210,7 @@ fig.tight_layout()
 
 feedtherm("validate my_axis/description.toml --motion averaged --out out/my_axis_validation")
 
-iso = pd.read_csv("out/my_axis_validation/iso230_3.csv")
+iso = pd.read_csv(work / "out" / "my_axis_validation" / "iso230_3.csv")
 largest = iso[iso["figure"] == "largest drift"]
 print(largest[["test", "quantity", "measured_um", "simulated_um", "rms_deviation_um"]].to_string(index=False))
 
@@ -214,7 +220,7 @@ print(largest[["test", "quantity", "measured_um", "simulated_um", "rms_deviation
 # test), ``drift_fast`` 104 µm against 81 µm (19 µm RMS).  The machine's nut and bearings are not
 # the catalogue's.  ``iso230_3_drift.csv`` holds the drifts over time, measured and simulated:
 
-drifts = pd.read_csv("out/my_axis_validation/iso230_3_drift.csv")
+drifts = pd.read_csv(work / "out" / "my_axis_validation" / "iso230_3_drift.csv")
 fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
 for ax, (test, rows) in zip(axes, drifts.groupby("test")):
     for target, at in rows.groupby("target_mm"):
@@ -237,7 +243,7 @@ fig.tight_layout()
 feedtherm("calibrate my_axis/description.toml --fit drift_fast --params nut_torque,bearing_preload,chtc_screw "
           "--workers 1 --out out/my_axis_calibration")
 
-calibration = json.loads(Path("out/my_axis_calibration/calibration.json").read_text())
+calibration = json.loads((work / "out" / "my_axis_calibration" / "calibration.json").read_text())
 for name, parameter in calibration["parameters"].items():
     print(f"{name}: {parameter['original']:.4g} -> {parameter['fitted']:.4g} (standard error {parameter['standard_error']:.2g})")
 
@@ -290,7 +296,7 @@ feedtherm("compensate out/my_axis_calibration/calibrated.toml --sensors declared
 # Here the lagged law leaves at most 8 µm of drift at any target of either test, where the axis
 # drifted by 77 and 99 µm uncompensated.
 
-summary = json.loads(Path("out/my_axis_compensation/compensation.json").read_text())
+summary = json.loads((work / "out" / "my_axis_compensation" / "compensation.json").read_text())
 fig, axes = plt.subplots(1, len(summary["drift_tests"]), figsize=(10, 3.5), sharey=True)
 for ax, test in zip(axes, summary["drift_tests"]):
     targets = list(test["uncompensated"])
@@ -317,7 +323,7 @@ fig.tight_layout()
 
 feedtherm("correct out/my_axis_compensation/law.json my_axis/drift.csv --out out/my_axis_correction")
 
-correction = pd.read_csv("out/my_axis_correction/correction.csv")
+correction = pd.read_csv(work / "out" / "my_axis_correction" / "correction.csv")
 fig, axes = plt.subplots(1, 2, figsize=(10, 3.8), sharey=True)
 for ax, (test, rows) in zip(axes, correction.groupby("condition")):
     residual = rows["residual_um"]
