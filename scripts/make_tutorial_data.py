@@ -1,11 +1,11 @@
-"""Write the tutorial's SYNTHETIC drift-test log, docs/tutorial/my_axis_drift.csv (run once; committed).
+"""Write the tutorial's SYNTHETIC drift-test log, docs/tutorials/my_axis_drift.csv (run once; committed).
 
-docs/tutorial-your-machine.md starts a bench with ``feedtherm new my_axis`` and declares two drift
-tests on it; the log it then reads stands in for a real machine's.  It is made here, as
-scripts/make_ballscrew_drift_tests.py makes the ballscrew bench's:
+The tutorial docs/tutorials/plot_02_your_machine.py starts a bench with ``feedtherm new my_axis``
+and declares two drift tests on it; the log it then reads stands in for a real machine's.  It is
+made here, as scripts/make_ballscrew_drift_tests.py makes the ballscrew bench's:
 
 1. the machine: the template bench (``feedtherm new``) with the tutorial's declarations (its
-   ``toml`` block, read from the page itself, so the two cannot drift apart), and two values
+   ``DECLARATIONS`` text, read from the script itself, so the two cannot drift apart), and two values
    changed (:data:`TRUTH`): the ball nut's drag torque +24 %, the support pair's preload +30 %;
 2. the model: the FE model (coarse mesh, cycle-averaged motion), not the fast model the tutorial
    calibrates;
@@ -21,7 +21,7 @@ Usage (from the repository root; a few minutes)::
 
 from __future__ import annotations
 
-import re
+import ast
 import sys
 import tempfile
 from pathlib import Path
@@ -32,20 +32,21 @@ sys.path.insert(0, str(Path(__file__).parent))
 import make_ballscrew_drift_tests as drift  # noqa: E402  (the log's layout, noise and geometric errors)
 
 ROOT = Path(__file__).parents[1]
-TUTORIAL = ROOT / "docs" / "tutorial-your-machine.md"
-TARGET = ROOT / "docs" / "tutorial" / "my_axis_drift.csv"
+TUTORIAL = ROOT / "docs" / "tutorials" / "plot_02_your_machine.py"
+TARGET = ROOT / "docs" / "tutorials" / "my_axis_drift.csv"
 TRUTH = {"sources.ball_nut.torque": 0.36, "sources.front_bearing.axial_load": 2800.0}
 TESTS = ("drift", "drift_fast")
 SEED = 20261130
-APPEND = "# append to my_axis/description.toml"
+APPEND = "DECLARATIONS"
 
 
-def appended_toml(page: str) -> str:
-    """The tutorial's block to append to the description (its first line names it)."""
-    for block in re.findall(r"```toml\n(.*?)```", page, flags=re.S):
-        if block.startswith(APPEND):
-            return block
-    raise SystemExit(f"{TUTORIAL}: no ```toml block starting with {APPEND!r}")
+def appended_toml(script: str) -> str:
+    """The text the tutorial appends to the description: its module-level string ``DECLARATIONS``."""
+    for node in ast.parse(script).body:
+        if (isinstance(node, ast.Assign) and [getattr(t, "id", None) for t in node.targets] == [APPEND]
+                and isinstance(node.value, ast.Constant) and isinstance(node.value.value, str)):
+            return node.value.value
+    raise SystemExit(f"{TUTORIAL}: no module-level string {APPEND} = \"\"\"...\"\"\"")
 
 
 def room_air(test: str, times: np.ndarray) -> np.ndarray:
@@ -86,7 +87,7 @@ def truth(folder: Path):
 def log(model: str = "fem", mesh: str = "coarse") -> str:
     with tempfile.TemporaryDirectory() as folder:
         loaded = truth(Path(folder))
-        header = ("# SYNTHETIC drift-test log of the tutorial's axis (docs/tutorial-your-machine.md), not a measured "
+        header = ("# SYNTHETIC drift-test log of the tutorial's axis (docs/tutorials/plot_02_your_machine.py), not a measured "
                   "machine: written by\n# scripts/make_tutorial_data.py from the template bench with the tutorial's "
                   "tests and " + ", ".join(f"{k} = {v:g}" for k, v in TRUTH.items())
                   + f",\n# run with the {model} model ({mesh} mesh, cycle-averaged motion), a geometric error per "

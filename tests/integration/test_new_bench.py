@@ -95,3 +95,31 @@ def test_heat_reports_the_derived_and_exposed_areas(folder, capsys):
     ring = joints[("front_bearing", "front_housing")]  # pi 47 mm x 30 mm, the ring in its seat
     assert ring["area_m2"] == pytest.approx(math.pi * 47 * 30 * 1e-6, rel=1e-9)
     assert ring["conductance_W_per_K"] == pytest.approx(ring["area_m2"] / 1.25e-3)
+
+
+def uncommented_calibration(text: str) -> str:
+    """The description with its commented ``[calibration]`` block (up to the next section rule) uncommented."""
+    start = text.index("# [calibration]\n")
+    end = text.index("\n# ----", start)
+    block = "\n".join(line[2:] if line.startswith("# ") else line.lstrip("#") for line in text[start:end].splitlines())
+    return text[:start] + block + text[end:]
+
+
+def test_the_commented_calibration_block_declares_parameters_that_resolve(folder, tmp_path, capsys):
+    from feedtherm.analysis.calibration import resolve_parameters
+    from feedtherm.system.load import load_system
+
+    description = tmp_path / "description.toml"
+    description.write_text(uncommented_calibration((folder / "description.toml").read_text(encoding="utf-8")))
+    assert main(["check", str(description)]) == 0
+    out = capsys.readouterr().out
+    assert "no inconsistencies found" in out and "warning" not in out  # its provenance entry comes with it
+    loaded = load_system(str(description))
+    parameters = {p.name: p for p in resolve_parameters(loaded, list(loaded.system.calibration.parameters))}
+    assert set(parameters) == {"nut_torque", "bearing_preload", "chtc_screw"}
+    # each bound pair holds the template's own value (a value's, or a scale's factor 1): a fit can
+    # start where the description is
+    for p in parameters.values():
+        starts = p.originals if p.kind == "value" else [1.0]
+        assert all(p.lower <= start <= p.upper for start in starts), p
+    assert parameters["chtc_screw"].originals == [1.0]  # the factor is declared 1 when not written

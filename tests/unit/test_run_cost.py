@@ -18,7 +18,7 @@ def test_steps_and_times_of_the_paper_benchs_condition_I(paper):
     # (docs/fem-model.md: 6,480 steps of 1.67 s); averaged, 10 s steps: 1,080
     assert cost.steps == {"resolved": 6480, "averaged": 1080}
     assert cost.seconds[("fem", "fine")]["resolved"] == pytest.approx(6480 * SECONDS_PER_STEP[("fem", "fine")])
-    # its measured 281-287 s (docs/fem-model.md) within 10 %
+    # its measured 281-287 s (the PARDISO run of benchmarks/README.md, *Figures moved from the documentation*) within 10 %
     assert 0.9 * 281 <= cost.seconds[("fem", "fine")]["resolved"] <= 1.1 * 287
     # the cycle: 2 x 200 mm / 6 mm/s (200 mm per 1.667 s x 20 steps / 2) = 66.7 s, over 30 s
     assert cost.cycle_s == pytest.approx(66.67, abs=0.01)
