@@ -29,7 +29,7 @@ from ...errors import ModelError
 from ...system.geometry import bounds
 from ...system.schema import FeedSystem
 from ..fields import FieldMesh
-from ..interface import AffineParameter, HeatInput, ThermalModel
+from ..interface import AffineParameter, HeatInput, PositionWindow, ThermalModel, cycle_weights, weighted_sum
 from .conduction import cell_basis, conduction_matrix
 from .coupling import CONTACT_TOLERANCE, Contact, ContactQuadrature, interface_matrix, side_load, touching
 from .deformation import Deformation, elastic_constants
@@ -285,6 +285,24 @@ class FemDiscretization(ThermalModel):
                     G = G + self._joint_matrix(j, k)
             self._conductance[k] = G.tocsr()
         return self._conductance[k]
+
+    def window_conductance(self, window: PositionWindow) -> sp.csr_matrix:
+        """:meth:`conductance` weighted over ``window``'s positions, formed from the moving joints' matrices
+        alone: the positions' whole matrices (the fixed conduction again in each, 31 MB a position at the
+        fine mesh) are never built for a windowed run."""
+        return self._weighted_conductance(window.weights, window.positions)
+
+    def averaged_conductance(self) -> sp.csr_matrix:
+        """The cycle average of :meth:`conductance`, formed as :meth:`window_conductance` is."""
+        weights = cycle_weights(len(self.positions))
+        return self._weighted_conductance(weights, range(len(weights)))
+
+    def _weighted_conductance(self, weights, positions) -> sp.csr_matrix:
+        G = self.fixed
+        for j in self.joints:
+            if j.moves:
+                G = G + weighted_sum(weights, [self._joint_matrix(j, k) for k in positions])
+        return G.tocsr()
 
     def surface_area(self, name: str, k: int) -> tuple[np.ndarray, np.ndarray]:
         """Nodes and their exposed areas ``∫ N dA`` [m²] of surface ``name`` at position k."""
