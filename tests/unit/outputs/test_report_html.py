@@ -400,3 +400,25 @@ def test_an_uncertainty_study_becomes_the_section_after_compensation():
     assert "15 of 30 measured values lie inside the prior 5–95 % band" in section
     assert section.count("data:image/png;base64") == 1
     assert 'id="uncertainty"' not in render_report(synthetic_validation())
+
+
+def test_figures_are_palette_pngs_a_third_of_the_rgba_file(monkeypatch):
+    """The heat budget figure as matplotlib writes it (RGBA) and as the report embeds it: same pixels in
+    size, 256 colours at most, and every pixel within a few levels of the RGBA's (no banding)."""
+    import numpy as np
+    from PIL import Image
+
+    from feedtherm.outputs.report import figures
+
+    rgba = []
+    original = figures.compact_png
+    monkeypatch.setattr(figures, "compact_png", lambda png: rgba.append(png) or original(png))
+    budget = {"I": {"front_bearing": 5.0, "screw_nut": 6.0, "motor": 9.0}, "II": {"front_bearing": 18.6,
+                                                                                  "screw_nut": 6.0, "motor": 12.0}}
+    embedded = figures.heat_budget(budget)
+    with Image.open(io.BytesIO(rgba[0])) as before, Image.open(io.BytesIO(embedded)) as after:
+        assert before.mode == "RGBA" and after.mode == "P" and after.size == before.size
+        assert len(after.getcolors(maxcolors=256)) <= figures.PNG_COLOURS
+        difference = np.abs(np.asarray(before.convert("RGB"), dtype=int) - np.asarray(after.convert("RGB"), dtype=int))
+    assert len(embedded) < len(rgba[0]) / 2
+    assert np.percentile(difference, 99) <= 8 and difference.mean() < 1.0

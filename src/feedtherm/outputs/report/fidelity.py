@@ -145,7 +145,8 @@ def _flag_lines(validation: Validation) -> str:
     items = []
     for flag in validation.consistency.flags:
         row = by_key.get((flag.condition, flag.quantity))
-        deviation = f"; this model deviates by {row.deviation:+.1f} {UNIT_SYMBOLS[row.unit]}" if row else ""
+        deviation = (f"; the {data.runs_model(validation)} deviates by {row.deviation:+.1f} {UNIT_SYMBOLS[row.unit]}"
+                     if row else "")
         items.append(f"{flag.condition} {flag.quantity} (flagged): {flag.reason}{deviation}.")
     return heading("Flagged measurements") + bullets(items)
 

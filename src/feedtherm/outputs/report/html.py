@@ -192,7 +192,7 @@ body { margin: 0; color: var(--ink); background: #fff;
 main { max-width: 1100px; margin: 0 auto; padding: 24px 28px 60px; }
 body.with-contents { display: flex; align-items: flex-start; }
 body.with-contents main { flex: 1 1 auto; min-width: 0; margin: 0; }
-nav.contents { position: sticky; top: 0; flex: 0 0 230px; max-height: 100vh; overflow-y: auto;
+nav.contents { position: sticky; top: 0; flex: 0 0 230px; height: 100vh; overflow-y: auto;
                padding: 24px 12px 24px 18px; border-right: 1px solid var(--rule); background: var(--band);
                font-size: 13.5px; }
 nav.contents ol { margin: 6px 0 0; padding-left: 20px; }
@@ -202,7 +202,7 @@ nav.contents a:hover { text-decoration: underline; }
 section { scroll-margin-top: 8px; }
 @media (max-width: 900px) {
   body.with-contents { display: block; }
-  nav.contents { z-index: 1; max-height: 40vh; border-right: 0; border-bottom: 1px solid var(--rule);
+  nav.contents { z-index: 1; height: auto; max-height: 40vh; border-right: 0; border-bottom: 1px solid var(--rule);
                  padding: 8px 14px; }
   nav.contents ol { columns: 2; }
 }
