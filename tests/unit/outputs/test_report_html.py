@@ -264,6 +264,9 @@ def test_no_calibration_is_said_and_a_calibration_is_tabled(rendered):
     html = render_report(synthetic_validation(calibrated=[
         {"path": "sources.screw_nut.mu", "value": 0.1234567, "conditions": ["I", "III"]}]))
     assert '<th scope="row">sources.screw_nut.mu</th><td>0.1235</td><td>I, III</td>' in html
+    # a calibrated description validated: its runs, and every table of them, are the calibrated model's
+    assert "runs of the calibrated model" in html and "uncalibrated" not in html
+    assert 'data-model="calibrated model"' in html
 
 
 def test_without_single_drive_sensitivities_or_budget_those_sections_are_left_out():

@@ -123,7 +123,7 @@ def displacement_section(validation: Validation) -> str:
         temps = [rows[(c, q)].measured for q in validation.temperature_quantities if (c, q) in rows]
         mark = " (flagged)" if (c, ELONGATION_QUANTITY) in flagged else ""
         table_rows.append([c, number(float(np.mean(temps)) if temps else None, 2), number(d.simulated),
-                           Cell(f"{d.measured:.1f}{mark}", "num"), number(d.deviation, signed=True)]
+                           Cell(f"{number(d.measured)}{mark}", "num"), number(d.deviation, signed=True)]
                           + ([number(d.paper_simulated)] if with_reference else []))
     if table_rows:
         reference = validation.notes.reference_model or "the reference model"

@@ -61,13 +61,21 @@ def sensor_curves_section(validation: Validation) -> str:
     body = [paragraph(
         f"The {data.runs_model(validation)}'s sensor temperatures and the elongation D over time. The measured "
         f"final values are drawn as dashed lines in the colour of their sensor: the level a run should "
-        f"approach.{series} {', '.join(ambients) or 'The ambient'} (dotted grey) is the ambient.")]
+        f"approach.{series} {_ambient_words(ambients)}")]
     for condition, solution in validation.solutions.items():
         measured = {q: rows[(condition, q)].measured for q in validation.quantities if (condition, q) in rows}
         png = figures.sensor_curves(solution, condition, measured, validation.measured_equilibrium_min.get(condition))
         body.append(png_image(png, f"Sensor temperatures and elongation, condition {condition}",
                               caption=run_caption(validation, condition, solution)))
     return section("sensor-curves", "Sensor curves per condition", "".join(body))
+
+
+def _ambient_words(sensors: list[str]) -> str:
+    """The ambient sensors named ("<name> (dotted grey) is the ambient."), unless their name says it already."""
+    named = [s for s in sensors if s.lower() != "ambient"]
+    if not named:
+        return "The ambient sensor is drawn dotted grey."
+    return f"{', '.join(named)} (dotted grey) is the ambient."
 
 
 def run_caption(validation: Validation, condition: str, solution: Solution) -> str:
