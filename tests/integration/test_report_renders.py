@@ -150,8 +150,9 @@ def test_chromium_renders_the_tables_and_every_image(report, tmp_path):
 
 @pytest.mark.parametrize("width", [1400, 800])  # the sidebar, and the bar above the page on a narrow window
 def test_the_contents_stay_in_view_when_the_page_scrolls(report, tmp_path, width):
-    """A copy of the report with a probe script: scrolled far down, the contents are still at the top edge."""
-    probe = ('<script>window.scrollTo(0, 20000); const box = document.querySelector("nav.contents")'
+    """A copy of the report with a probe script: scrolled halfway down, the contents are still at the top edge."""
+    probe = ('<script>window.scrollTo(0, document.documentElement.scrollHeight / 2); '
+             'const box = document.querySelector("nav.contents")'
              '.getBoundingClientRect(); document.body.dataset.probe = `${window.scrollY} ${box.top} ${box.height}`;'
              '</script></body>')
     page = tmp_path / "probe.html"
@@ -159,7 +160,7 @@ def test_the_contents_stay_in_view_when_the_page_scrolls(report, tmp_path, width
     run = chromium(page.as_uri(), tmp_path / "profile", f"--window-size={width},1000", "--dump-dom")
     assert run.returncode == 0, run.stderr[-2000:]
     scrolled, top, height = (float(v) for v in re.search(r'data-probe="([^"]+)"', run.stdout).group(1).split())
-    assert scrolled > 5000 and top == 0.0 and height > 100
+    assert scrolled > 5000 and abs(top) < 1.0 and height > 100  # at the edge, to within a sub-pixel
 
 
 def test_the_console_check_sees_a_script_error(tmp_path):
