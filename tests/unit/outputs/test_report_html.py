@@ -161,11 +161,21 @@ def test_every_text_from_the_validation_is_escaped(rendered):
 
 def test_sections_in_order_and_no_external_resources(rendered):
     ids = re.findall(r'<section id="([^"]+)"', rendered)
-    assert ids == ["headline", "deviations", "displacement", "sensor-curves", "screw-field", "equilibrium", "trends", "dual-single",
-                   "heat-budget", "inferred-heat", "consistency", "sensitivity", "inconsistencies", "calibrated",
-                   "assumptions"]
+    # no heats inferred and no consistency check in this Validation: neither section
+    assert ids == ["headline", "deviations", "displacement", "sensor-curves", "screw-field", "equilibrium", "trends",
+                   "dual-single", "heat-budget", "sensitivity", "inconsistencies", "calibrated", "assumptions"]
     assert "generated 2024-05-01 00:00 UTC" in rendered
     assert not re.search(r"(src|href)\s*=\s*[\"']?(https?:|//)", rendered)
+
+
+def test_the_contents_list_the_sections_present_and_stay_in_view(rendered):
+    nav = re.search(r'<nav class="contents"[^>]*>(.*?)</nav>', rendered, re.S).group(1)
+    linked = re.findall(r'<a href="#([^"]+)">([^<]+)</a>', nav)
+    sections = re.findall(r'<section id="([^"]+)"><h2>([^<]+)</h2>', rendered)
+    assert linked == sections
+    css = rendered[rendered.index("<style>"):rendered.index("</style>")]
+    assert re.search(r"nav\.contents \{[^}]*position: sticky; top: 0;", css)
+    assert rendered.index('<nav class="contents"') < rendered.index("<main>")  # beside the page, not in it
 
 
 def test_images_are_valid_pngs(rendered):
@@ -187,10 +197,54 @@ def test_summary_names_the_largest_deviations(rendered):
     assert "below the measured temperatures (10 of 10 points are below)" in text
 
 
-def test_equilibrium_not_reached_and_paper_statement(rendered):
+def test_equilibrium_not_reached_and_the_stated_times(rendered):
     assert "not reached in the run" in rendered
     assert "<td>120</td>" in rendered and "<td>100</td>" in rendered
-    assert "cannot change the equilibrium time" in rendered
+    # I and II differ in speed only: the speed paragraph, not the ambient one
+    assert "a faster condition need not reach equilibrium sooner" in rendered
+    assert "cannot change the equilibrium time" not in rendered
+
+
+def ambient_validation() -> Validation:
+    """I and II as above, and III: I's speeds in a room 10 K warmer, every simulated final 1 K warmer per
+    kelvin except D, which falls by 0.4 µm/K; measured D rises by 3 µm/K."""
+    base = synthetic_validation()
+    runs = dict(base.solutions, III=make_solution(equilibrium_time=5100.0))
+    points = dict(base.operating_points, III=OperatingPointRow(396.0, 360.0, 30.0))
+    extra = [replace(c, condition="III", simulated=c.simulated + (-4.0 if c.unit == "um" else 10.0),
+                     measured=c.measured + (30.0 if c.unit == "um" else 9.0))
+             for c in base.comparisons if c.condition == "I"]
+    return replace(base, solutions=runs, operating_points=points, comparisons=base.comparisons + extra,
+                   measured_equilibrium_min={"I": 120.0, "II": 100.0, "III": 70.0})
+
+
+def test_an_ambient_series_states_its_own_figures():
+    from feedtherm.outputs.report.transients import equilibrium_section
+
+    html = equilibrium_section(ambient_validation())
+    assert "cannot change the equilibrium time" in html
+    # the radiation coefficient over 20–30 °C: (303.15 / 293.15)³ − 1 = 10.6 %
+    assert "over the 10 K of the ambient series" in html and "(∝ T³) by 11 %" in html
+    # the runs' own times (75 and 85 min) and the stated ones (120, 70 min)
+    assert "The model&#x27;s equilibrium times of I, III: 75, 85 min (10 min apart); the stated ones: 120, 70 min " \
+           "(50 min apart)." in html
+
+
+def test_the_trend_prose_is_the_series_slopes():
+    from feedtherm.outputs.report.operating import ambient_trends, trend_text, trends_section
+
+    validation = ambient_validation()
+    trends = ambient_trends(validation)
+    assert trends.conditions == ["I", "III"]
+    assert trends.elongation == pytest.approx(-0.4) and trends.measured_elongation == pytest.approx(3.0)
+    assert trends.temperatures == {q: pytest.approx(1.0) for q in ("T1", "T2", "T3", "T4", "T5")}
+    assert trends.measured_temperatures == {q: pytest.approx(0.9) for q in ("T1", "T2", "T3", "T4", "T5")}
+    text = trend_text(trends)
+    assert ("Over the ambient series (I, III), the model's temperatures change by +1.00 K per kelvin of ambient "
+            "and the model's D falls by 0.40 µm per kelvin; the measured temperatures change by +0.90 K per kelvin "
+            "of ambient and the measured D rises by 3.00 µm per kelvin.") == text
+    assert esc(text) in trends_section(validation)
+    assert "α·L" not in trends_section(validation)
 
 
 def test_sensitivities_sorted_by_largest_temperature_effect(rendered):
@@ -210,12 +264,17 @@ def test_no_calibration_is_said_and_a_calibration_is_tabled(rendered):
     html = render_report(synthetic_validation(calibrated=[
         {"path": "sources.screw_nut.mu", "value": 0.1234567, "conditions": ["I", "III"]}]))
     assert '<th scope="row">sources.screw_nut.mu</th><td>0.1235</td><td>I, III</td>' in html
+    # a calibrated description validated: its runs, and every table of them, are the calibrated model's
+    assert "runs of the calibrated model" in html and "uncalibrated" not in html
+    assert 'data-model="calibrated model"' in html
 
 
-def test_without_single_drive_sensitivities_or_budget():
+def test_without_single_drive_sensitivities_or_budget_those_sections_are_left_out():
     html = render_report(synthetic_validation(single_drive={}, sensitivities=[], heat_budget={}))
-    assert "No single-drive runs were made." in html
-    assert "No sensitivities were computed." in html and "No heat budget was computed." in html
+    for anchor, title in (("dual-single", "Dual drive against single drive"), ("sensitivity", "Sensitivity ranking"),
+                          ("heat-budget", "Heat budget per source")):
+        assert f'id="{anchor}"' not in html and f'href="#{anchor}"' not in html and title not in html
+    assert "No single-drive runs were made." not in html
     assert len(DATA_URI.findall(html)) == 5
 
 
@@ -290,7 +349,7 @@ def test_headline_puts_physics_held_out_leave_one_out_and_the_paper_side_by_side
     validation = synthetic_validation(consistency=ConsistencyReport([flag], law, []), calibration=calibration)
     html = headline_section(validation)
     # the held-out row leaves the flagged elongation out of its maximum: none is left
-    assert "calibrated on I, predicting II (held out)" in html
+    assert "calibrated model, fitted to I, predicting II (held out)" in html
     assert "1.3 (II T3)" in html and "30.0 (II t_eq)" in html and "30.0 (II D)" not in html
     assert "2.4 (I T1)" in html and "5.5 (I D)" in html and "12.0 (II t_eq)" in html
     # the reference model's in-sample figures, from the measurements' reference values: 1.0 K, no D
@@ -344,3 +403,25 @@ def test_an_uncertainty_study_becomes_the_section_after_compensation():
     assert "15 of 30 measured values lie inside the prior 5–95 % band" in section
     assert section.count("data:image/png;base64") == 1
     assert 'id="uncertainty"' not in render_report(synthetic_validation())
+
+
+def test_figures_are_palette_pngs_a_third_of_the_rgba_file(monkeypatch):
+    """The heat budget figure as matplotlib writes it (RGBA) and as the report embeds it: same pixels in
+    size, 256 colours at most, and every pixel within a few levels of the RGBA's (no banding)."""
+    import numpy as np
+    from PIL import Image
+
+    from feedtherm.outputs.report import figures
+
+    rgba = []
+    original = figures.compact_png
+    monkeypatch.setattr(figures, "compact_png", lambda png: rgba.append(png) or original(png))
+    budget = {"I": {"front_bearing": 5.0, "screw_nut": 6.0, "motor": 9.0}, "II": {"front_bearing": 18.6,
+                                                                                  "screw_nut": 6.0, "motor": 12.0}}
+    embedded = figures.heat_budget(budget)
+    with Image.open(io.BytesIO(rgba[0])) as before, Image.open(io.BytesIO(embedded)) as after:
+        assert before.mode == "RGBA" and after.mode == "P" and after.size == before.size
+        assert len(after.getcolors(maxcolors=256)) <= figures.PNG_COLOURS
+        difference = np.abs(np.asarray(before.convert("RGB"), dtype=int) - np.asarray(after.convert("RGB"), dtype=int))
+    assert len(embedded) < len(rgba[0]) / 2
+    assert np.percentile(difference, 99) <= 8 and difference.mean() < 1.0

@@ -3,18 +3,18 @@
 ``write_report(validation, path)`` renders a :class:`~feedtherm.analysis.validation_types.Validation`
 into one page with its images embedded as base64 PNG and its CSS inline: no external URL,
 no JavaScript.  It reads only the Validation, which carries what the report says of the bench
-(its operating points, where its sensors are, its report notes).  Sections, in order (docs/report.md):
+(its operating points, where its sensors are, its report notes).  A section appears only where
+the Validation holds its content (a builder returns "" otherwise), and the table of contents,
+which stays in view while the page scrolls, lists the sections present.  In order
+(docs/report.md):
 
-1. title and summary · 2. headline: predictive accuracy (physics mode, held out, leave-one-out,
-the reference model's in-sample) · 3. deviation tables · 4. the thermal error as a displacement (the
-measuring loop, the gain, the error along the stroke) · 5. sensor curves, and measured
-time series against the runs where the measurements have them, and the ISO 230-3 drift at
-target positions where a test measured them · 6. screw
-field · 7. equilibrium time · 8. final values against speed and ambient · 9. dual
-against single drive · 10. heat budget · 11. inferred heat per source · 12. measurement
-consistency · 13. sensitivity ranking · 14. inconsistencies in the data · 15. calibrated values ·
-16. assumptions and provenance · 17. thermal-error compensation (with ``validate --compensation``) ·
-18. prediction bands and Sobol indices (with ``validate --uncertainty``).
+title and summary · headline: predictive accuracy · deviation tables · the thermal error as a
+displacement · sensor curves · measured time series · ISO 230-3 drift tests · screw field ·
+equilibrium time · final values against speed and ambient · dual against single drive · heat
+budget · inferred heat per source · measurement consistency · sensitivity ranking ·
+inconsistencies in the data · calibrated values · assumptions and provenance · thermal-error
+compensation (with ``validate --compensation``) · prediction bands and Sobol indices (with
+``validate --uncertainty``).
 
 Modules: ``html`` (escaping builders and the page), ``figures`` (the PNGs), ``data`` (shared
 numbers), and one module per group of sections (``comparison``, ``fidelity``, ``transients``,
@@ -36,6 +36,7 @@ from .compensation import compensation_section
 from .context import assumptions_section, calibrated_section, inconsistencies_section, sensitivity_section
 from .displacement import displacement_section
 from .fidelity import consistency_section, headline_section, inferred_heat_section
+from .figures import compact_png
 from .html import page
 from .drift_tests import drift_tests_section
 from .measured_series import measured_series_section
@@ -50,8 +51,8 @@ _SECTIONS = (
     deviations_section,
     displacement_section,
     sensor_curves_section,
-    measured_series_section,  # only with measured time series
-    drift_tests_section,  # only with tests measured at targets
+    measured_series_section,
+    drift_tests_section,
     screw_field_section,
     equilibrium_section,
     trends_section,
@@ -68,12 +69,22 @@ _SECTIONS = (
 
 def render_report(validation: Validation, *, generated: datetime | None = None) -> str:
     """The report as one HTML document (a string)."""
-    body = title_section(validation, generated) + "".join(build(validation) for build in _SECTIONS)
+    sections = [build(validation) for build in _SECTIONS]
     if validation.compensation is not None:  # a `feedtherm compensate` folder given to `validate --compensation`
-        body += compensation_section(validation.compensation["summary"], validation.compensation["figures"])
+        sections.append(compensation_section(validation.compensation["summary"],
+                                             _compact(validation.compensation["figures"])))
     if validation.uncertainty is not None:  # a `feedtherm uncertainty` folder given to `validate --uncertainty`
-        body += uncertainty_section(validation.uncertainty["summary"], validation.uncertainty["figures"])
-    return page(f"feedtherm validation — {validation.system_name}", body)
+        sections.append(uncertainty_section(validation.uncertainty["summary"],
+                                            _compact(validation.uncertainty["figures"])))
+    present = [s for s in sections if s]
+    contents = [(s.anchor, s.title) for s in present]
+    body = title_section(validation, generated) + "".join(present)
+    return page(f"feedtherm validation — {validation.system_name}", body, contents)
+
+
+def _compact(figures: dict[str, bytes]) -> dict[str, bytes]:
+    """A study folder's PNGs as the report's own figures are embedded (palette PNG)."""
+    return {name: compact_png(png) for name, png in figures.items()}
 
 
 def write_report(validation: Validation, path: Path) -> Path:

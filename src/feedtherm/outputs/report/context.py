@@ -1,11 +1,11 @@
-"""Sections 9–12: sensitivity ranking, inconsistencies in the data, calibrated values, provenance."""
+"""Sensitivity ranking, inconsistencies in the data, calibrated values, provenance."""
 
 from __future__ import annotations
 
 import math
 
 from ...analysis.validation_types import ELONGATION_QUANTITY, Sensitivity, Validation
-from . import figures
+from . import data, figures
 from .html import (Cell, Raw, bullets, code, definition_table, esc, heading, number, paragraph, png_image, section,
                    table)
 
@@ -16,28 +16,32 @@ def sensitivity_section(validation: Validation) -> str:
     title = "Sensitivity ranking"
     rows = ranked(validation.sensitivities)
     if not rows:
-        return section("sensitivity", title, paragraph("No sensitivities were computed."))
+        return ""
     intro = paragraph(
-        f"Each declared assumption perturbed alone: its value multiplied by the factor shown, everything else "
+        f"Each declared assumption of the {data.runs_model(validation)} perturbed alone: its value multiplied by the "
+        f"factor shown, everything else "
         f"unchanged, and the change of the steady state (cycle-averaged) of condition "
         f"{validation.sensitivity_condition}. One parameter at a time: the effects do not add up when several "
         f"values change together. Sorted by the largest temperature change over the sensors.")
     top = rows[:TOP_SENSITIVITIES]
     png = figures.sensitivity_bars(top, validation.sensitivity_condition)
     caption = f"Top {len(top)} of {len(rows)}" if len(rows) > len(top) else ""
-    body = intro + png_image(png, "Sensitivity ranking", caption=caption) + sensitivity_table(rows[:TABLE_ROWS])
+    model = data.runs_model(validation)
+    body = intro + png_image(png, "Sensitivity ranking", caption=caption) + sensitivity_table(rows[:TABLE_ROWS],
+                                                                                              model=model)
     rest = rows[TABLE_ROWS:]
     if rest:  # complete but folded: <details> opens without JavaScript
         body += (f"<details><summary>The other {len(rest)} parameters</summary>"
-                 f"{sensitivity_table(rest, first_rank=TABLE_ROWS + 1)}</details>")
+                 f"{sensitivity_table(rest, first_rank=TABLE_ROWS + 1, model=model)}</details>")
     return section("sensitivity", title, body)
 
 
-def sensitivity_table(rows: list[Sensitivity], first_rank: int = 1) -> str:
+def sensitivity_table(rows: list[Sensitivity], first_rank: int = 1, model: str = data.UNCALIBRATED) -> str:
     body = [[str(rank), Cell(_parameter_cell(row), "text"), f"×{row.factor:g}", number(row.max_temperature_effect, 2),
              _largest_sensor(row), number(_abs_d(row), 2), Cell(row.assumption, "text small")]
             for rank, row in enumerate(rows, start=first_rank)]
-    return table(["rank", "parameter", "factor", "max |ΔT| [K]", "at", "|ΔD| [µm]", "assumption source"], body)
+    return table(["rank", "parameter", "factor", "max |ΔT| [K]", "at", "|ΔD| [µm]", "assumption source"], body,
+                 model=model)
 
 
 def _parameter_cell(row: Sensitivity) -> Raw:
@@ -76,6 +80,15 @@ def calibrated_section(validation: Validation) -> str:
     title = "Calibrated values"
     entries = validation.calibrated
     if not entries:
+        given = validation.calibration
+        if given:
+            fitted = ", ".join(given.get("parameters", {}))
+            return section("calibrated", title, paragraph(
+                f"The runs of this report are the {data.UNCALIBRATED}: every value of the description is from the "
+                f"source or a declared assumption, nothing fitted. The calibration given with --calibration fitted "
+                f"{fitted} to {', '.join(given.get('fit_conditions', []))}: the rows marked {data.CALIBRATED} show "
+                "it (its fitted values in the headline's note; its calibrated.toml validates as the calibrated "
+                "model)."))
         return section("calibrated", title, paragraph(
             "None: every value is from the source or a declared assumption; nothing was fitted to the "
             "measurements, so every comparison above is a prediction."))

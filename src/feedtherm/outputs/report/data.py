@@ -139,3 +139,46 @@ def deviation_band(deviation: float, limits: tuple[float, float, float]) -> int:
 
 
 DEVIATION_BANDS = {"C": (1.0, 2.0, 5.0), "um": (3.0, 6.0, 15.0)}
+
+
+# --------------------------------------------------------------------------- which model a value is of
+
+UNCALIBRATED = "uncalibrated model"
+CALIBRATED = "calibrated model"
+BOTH = "uncalibrated and calibrated model"
+
+
+def runs_model(validation: Validation) -> str:
+    """The model the report's runs are of: calibrated where the description carries values that
+    `feedtherm calibrate` fitted (a calibrated.toml validated), else uncalibrated."""
+    return CALIBRATED if validation.calibrated else UNCALIBRATED
+
+
+@dataclass(frozen=True)
+class CalibratedValue:
+    """The calibrated model's final value of one measured quantity (calibration.json), °C or µm."""
+
+    simulated: float
+    held_out: bool  # a condition the calibration was not fitted to
+
+
+def calibrated_values(validation: Validation) -> dict[tuple[str, str], CalibratedValue]:
+    """``(condition, quantity) ->`` the value of the calibration given with ``--calibration``.
+
+    Its fit conditions' values (flagged ones too) and its held-out predictions; empty without a
+    calibration, and where the runs are the calibrated model already (the two would repeat).
+    """
+    calibration = validation.calibration
+    if not calibration or validation.calibrated:
+        return {}
+    out = {}
+    for key, value, held in (("residuals", "simulated", False), ("excluded", "simulated", False),
+                             ("held_out", "predicted", True)):
+        for row in calibration.get(key) or []:
+            if row.get("unit") in ("C", "um") and row.get(value) is not None:
+                out[(row["condition"], row["quantity"])] = CalibratedValue(float(row[value]), held)
+    return out
+
+
+def fit_conditions(validation: Validation) -> list[str]:
+    return list((validation.calibration or {}).get("fit_conditions", []))

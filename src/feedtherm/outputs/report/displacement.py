@@ -60,7 +60,8 @@ def _gain_table(validation: Validation) -> str:
     if not rows:
         return ""
     sensors = validation.temperature_quantities
-    return table(["series", "conditions", "the model's gain [µm/K]", "the bench's gain [µm/K]"], rows) + paragraph(
+    return table(["series", "conditions", "the model's gain [µm/K]", "the bench's gain [µm/K]"], rows,
+                 model=data.runs_model(validation)) + paragraph(
         f"The gain is the slope of D against the mean measured temperature of {', '.join(sensors)} (both models' "
         "D against the same "
         "measured temperatures). A gain above the bench's says the loop expands too much per kelvin of what the "
@@ -76,9 +77,10 @@ def _loop_text(validation: Validation) -> str:
         return "The description's measuring loop is not recorded in these runs."
     laser = loop["elongation"]
     direction = ", ".join(f"{c:g}" for c in laser["direction"])
+    described = f" ({laser['description']})" if laser.get("description") else ""
     return (f"D is what the declared displacement sensor reads: the displacement of its target, {laser['target']}, "
             f"relative to its mount, {laser['mount']}, along ({direction}), zero with every part at the reference "
-            f"temperature ({laser['description'] or 'no description'}). The positioning error E(x, t) is the "
+            f"temperature{described}. The positioning error E(x, t) is the "
             f"screw's axial displacement under the nut at each table position x, relative to "
             f"{loop['positioning_reference']}. Both come from the temperatures through the model's mechanics "
             "(3-D thermoelasticity in the FE model, axial bars along the load path in the fast model).")
@@ -107,35 +109,38 @@ def _calibration_text(validation: Validation) -> str:
 
 def displacement_section(validation: Validation) -> str:
     title = "The thermal error as a displacement"
+    if not validation.solutions:
+        return ""
     body = [paragraph(_loop_text(validation))]
     rows = data.comparisons_by_key(validation)
     flagged = validation.consistency.excluded() if validation.consistency else set()
+    elongations = [rows[(c, ELONGATION_QUANTITY)] for c in data.conditions(validation)
+                   if (c, ELONGATION_QUANTITY) in rows]
+    with_reference = any(d.paper_simulated is not None for d in elongations)
     table_rows = []
-    for c in data.conditions(validation):
-        d = rows.get((c, ELONGATION_QUANTITY))
+    for d in elongations:
+        c = d.condition
         temps = [rows[(c, q)].measured for q in validation.temperature_quantities if (c, q) in rows]
-        if d is None:
-            continue
         mark = " (flagged)" if (c, ELONGATION_QUANTITY) in flagged else ""
         table_rows.append([c, number(float(np.mean(temps)) if temps else None, 2), number(d.simulated),
-                           Cell(f"{d.measured:.1f}{mark}", "num"), number(d.deviation, signed=True),
-                           number(d.paper_simulated)])
+                           Cell(f"{number(d.measured)}{mark}", "num"), number(d.deviation, signed=True)]
+                          + ([number(d.paper_simulated)] if with_reference else []))
     if table_rows:
         reference = validation.notes.reference_model or "the reference model"
         sensors = ", ".join(validation.temperature_quantities)
         body.append(table(["condition", f"mean measured {sensors} [°C]", "simulated D [µm]", "measured D [µm]",
-                           "deviation [µm]", f"{reference}'s simulated D [µm]"], table_rows))
+                           "deviation [µm]"] + ([f"{reference}'s simulated D [µm]"] if with_reference else []),
+                          table_rows, model=data.runs_model(validation)))
     body.append(_gain_table(validation))
     text = _calibration_text(validation)
     if text:
         body.append(paragraph(text))
-    if validation.solutions:
-        from .figures import positioning_error
+    from .figures import positioning_error
 
-        body.append(png_image(positioning_error(validation.solutions), "Positioning error along the stroke",
-                              caption="The positioning error E along the stroke at the end of each run (solid) "
-                                      "and the screw's axial displacement relative to the positioning reference "
-                                      "(dotted), per condition."))
+    body.append(png_image(positioning_error(validation.solutions), "Positioning error along the stroke",
+                          caption=f"The {data.runs_model(validation)}: the positioning error E along the stroke "
+                                  "at the end of each run (solid) and the screw's axial displacement relative to "
+                                  "the positioning reference (dotted), per condition."))
     return section("displacement", title, "".join(body))
 
 

@@ -14,6 +14,7 @@ from ...analysis.validation_types import Validation
 from ...solution import Solution
 from ..drift_test_files import figure_rows
 from .figures import _figure, _png
+from .data import runs_model
 from .html import number, paragraph, png_image, section, table
 
 INTRO = (
@@ -39,7 +40,7 @@ def drift_tests_section(validation: Validation) -> str:
             for test in tests for r in figure_rows(test)]
     body = [paragraph(INTRO),
             table(["test", "figure", "quantity", "measured [µm]", "at [min]", "simulated [µm]", "at [min]",
-                   "RMS sim − meas [µm]", "max |sim − meas| [µm]"], rows)]
+                   "RMS sim − meas [µm]", "max |sim − meas| [µm]"], rows, model=runs_model(validation))]
     for test in tests:
         if test.measured:
             png = drift_figure(validation.solutions[test.run], test)

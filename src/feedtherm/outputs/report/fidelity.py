@@ -8,6 +8,7 @@ consistency check flags is reported apart, with its reason, never dropped.
 
 from __future__ import annotations
 
+from ...analysis.consistency import COVERAGE
 from ...analysis.validation_types import Comparison, Validation
 from ..calibration_files import UNIT_SYMBOLS
 from . import data
@@ -35,7 +36,11 @@ def _cell(value: float | None, where: str) -> Cell | str:
 
 
 def _physics_row(validation: Validation, flagged: set) -> list:
-    cells = [f"this model, {validation.mode} mode, nothing fitted"]
+    if validation.calibrated:  # a calibrated description validated: its fit conditions are in sample
+        cells = [f"{data.CALIBRATED}, {validation.mode} mode: the description's fitted values, the conditions it "
+                 "was fitted to included"]
+    else:
+        cells = [f"{data.UNCALIBRATED}, {validation.mode} mode, nothing fitted"]
     for unit in ("C", "um"):
         row = _worst_comparison(validation.comparisons, unit, flagged)
         cells.append(_cell(None if row is None else row.deviation,
@@ -67,12 +72,13 @@ def _calibration_rows(calibration: dict) -> list[list]:
     held = calibration.get("held_out", [])
     if held:
         predicted = ", ".join(dict.fromkeys(r["condition"] for r in held))
-        rows.append([f"calibrated on {fit}, predicting {predicted} (held out)"]
+        rows.append([f"{data.CALIBRATED}, fitted to {fit}, predicting {predicted} (held out)"]
                     + [_entry_cell(_worst_entry(held, unit)) for unit in ("C", "um", "min")])
     series = (calibration.get("series") or {}).get("held_out") or []
     if series:  # a held-out test's whole transient, its drifts at the targets among it: the RMS of each series
         predicted = ", ".join(dict.fromkeys(r["condition"] for r in series))
-        cells = [f"calibrated on {fit}, predicting {predicted} over the whole transient (RMS of each series)"]
+        cells = [f"{data.CALIBRATED}, fitted to {fit}, predicting {predicted} over the whole transient "
+                 "(RMS of each series)"]
         for unit in ("C", "um"):
             own = [r for r in series if r["unit"] == unit]
             worst = max(own, key=lambda r: r["rms_deviation"]) if own else None
@@ -81,7 +87,7 @@ def _calibration_rows(calibration: dict) -> list[list]:
         rows.append(cells + ["—"])
     cross = calibration.get("cross_validation")
     if cross:
-        cells = ["calibrated, leave-one-condition-out (each condition predicted by a fit to the others)"]
+        cells = [f"{data.CALIBRATED}, leave-one-condition-out (each condition predicted by a fit to the others)"]
         for key in ("largest_temperature_deviation_C", "largest_elongation_deviation_um",
                     "largest_equilibrium_deviation_min"):
             entry = cross.get(key)
@@ -100,9 +106,11 @@ def _entry_cell(entry: dict | None) -> Cell | str:
 def headline_section(validation: Validation) -> str:
     title = "Headline: predictive accuracy"
     flagged = _flagged(validation)
+    if not validation.comparisons and not validation.calibration:
+        return ""
     rows = [_physics_row(validation, flagged)]
-    if validation.calibration:
-        rows += _calibration_rows(validation.calibration)
+    calibration_rows = _calibration_rows(validation.calibration) if validation.calibration else []
+    rows += calibration_rows
     worst = {unit: data.reference_worst(validation, unit) for unit in ("C", "um")}
     if any(value is not None for value in worst.values()):
         reference = validation.notes.reference_model or "the reference model"
@@ -114,7 +122,8 @@ def headline_section(validation: Validation) -> str:
         "calibration on conditions it was not fitted to: the only figures that say how the model will do on "
         "a new operating point. Measured values the consistency check flags are left out of these maxima and "
         "listed below with their deviation.")
-    body += table(["", "temperature [K]", "elongation [µm]", "equilibrium time [min]"], rows)
+    body += table(["", "temperature [K]", "elongation [µm]", "equilibrium time [min]"], rows,
+                  model=data.BOTH if calibration_rows else data.runs_model(validation))
     if validation.calibration:
         parameters = validation.calibration.get("parameters", {})
         listed = ", ".join(f"{name} = {p['fitted']:.4g} ± {p['standard_error']:.2g}" + (" (at a bound)" if p.get("at_bound") else "")
@@ -136,7 +145,8 @@ def _flag_lines(validation: Validation) -> str:
     items = []
     for flag in validation.consistency.flags:
         row = by_key.get((flag.condition, flag.quantity))
-        deviation = f"; this model deviates by {row.deviation:+.1f} {UNIT_SYMBOLS[row.unit]}" if row else ""
+        deviation = (f"; the {data.runs_model(validation)} deviates by {row.deviation:+.1f} {UNIT_SYMBOLS[row.unit]}"
+                     if row else "")
         items.append(f"{flag.condition} {flag.quantity} (flagged): {flag.reason}{deviation}.")
     return heading("Flagged measurements") + bullets(items)
 
@@ -145,13 +155,13 @@ def consistency_section(validation: Validation) -> str:
     title = "Measurement consistency"
     report = validation.consistency
     if report is None:
-        return section("consistency", title, paragraph("The measurements were not checked."))
+        return ""
     body = paragraph(
         "From the measurements alone, no model: (1) across conditions the elongation must follow the measured "
         "temperatures along one affine law D = a + s·T̄ (linear thermoelasticity, a fixed reference "
         "temperature, one screw); a condition off the line through the others is flagged; (2) a faster drive at "
         "the same ambient is not cooler; (3) an ambient shift at the same speeds moves the rises above ambient "
-        "only a little. Tolerances: 3 standard uncertainties of the declared measurement uncertainties.")
+        f"only a little. Tolerances: {COVERAGE:g} standard uncertainties of the declared measurement uncertainties.")
     if report.law is not None:
         law = report.law
         body += paragraph(
@@ -171,7 +181,7 @@ def consistency_section(validation: Validation) -> str:
 def inferred_heat_section(validation: Validation) -> str:
     title = "Inferred heat per source"
     if not validation.inferred:
-        return section("inferred-heat", title, paragraph("No heats were inferred."))
+        return ""
     body = paragraph(
         "Which heats explain each condition's measured temperatures and elongation: non-negative least squares "
         "with the model's own steady transfer matrix and the loss models' heats as a prior (docs/inverse.md; "
@@ -184,7 +194,8 @@ def inferred_heat_section(validation: Validation) -> str:
                  f"{e.low:.1f} – {e.high:.1f}", f"{100 * e.resolution:.0f} %"] for e in inference.estimates]
         blocks.append(heading(f"Condition {inference.condition}: χ² {inference.chi2:.1f} over "
                               f"{len(inference.observations)} measurements", 4)
-                      + table(["source", "loss models [W]", "inferred [W]", "95 % interval [W]", "from data"], rows))
+                      + table(["source", "loss models [W]", "inferred [W]", "95 % interval [W]", "from data"], rows,
+                              model=data.runs_model(validation)))
         if inference.not_told_apart:
             pairs = "; ".join(f"{a} and {b} ({r:+.2f})" for a, b, r in inference.not_told_apart)
             blocks.append(paragraph(f"Not told apart by these sensors: {pairs}.", css_class="note"))

@@ -3,7 +3,9 @@
 Same conventions as :mod:`feedtherm.outputs.plots`: matplotlib is imported inside the
 functions, figures are ``matplotlib.figure.Figure`` objects (no pyplot state, no backend
 change).  Figures are 9 in wide at 120 dpi (1080 px) so that their text stays readable when
-the page shows them 900 px wide.
+the page shows them 900 px wide.  They are embedded as palette PNGs (:func:`compact_png`):
+a plot's flat colours and anti-aliased edges fit in 256 colours, at a third of the bytes of
+the RGBA file matplotlib writes, which keeps a report of many figures light to mail.
 """
 
 from __future__ import annotations
@@ -127,34 +129,36 @@ def positioning_error(solutions: dict[str, Solution]) -> bytes:
     return _png(figure)
 
 
-def trends(speed: Sequence[tuple[str, float | None]], ambient: Sequence[tuple[str, float | None]],
-           rows: dict[tuple[str, str], Comparison], temperatures: Sequence[str],
-           shared: tuple[str, str] = ("", "")) -> bytes:
-    """Final ``temperatures`` [°C] and D [µm] against screw speed and against ambient, simulated and
-    measured; ``shared``: what each series holds fixed (its panels' titles).
+#: Each kind of trend panel: its x-axis label and what its title says the series varies in.
+TREND_AXES = {"speed": "screw speed n_s [rpm]", "ambient": "ambient temperature [°C]"}
 
-    ``speed`` and ``ambient`` are ``(condition, x)``; a series with an unknown x is drawn at
-    evenly spaced positions labelled by condition.
+
+def trends(panels: Sequence[tuple[str, Sequence[tuple[str, float | None]], str]],
+           rows: dict[tuple[str, str], Comparison], temperatures: Sequence[str]) -> bytes:
+    """Final ``temperatures`` [°C] and D [µm] against screw speed and/or against ambient, simulated
+    and measured: one column per panel ``(kind, points, shared)``, ``kind`` "speed" or "ambient",
+    ``points`` ``(condition, x)``, ``shared`` what the series holds fixed (the column's titles).
+
+    A series with an unknown x is drawn at evenly spaced positions labelled by condition.
     """
     from matplotlib.lines import Line2D
 
     figure = _figure(7.4)
-    axes = figure.subplots(2, 2, sharex="col")
+    axes = figure.subplots(2, len(panels), sharex="col", squeeze=False)
     colours = _colours(temperatures)
-    panels = ((speed, "screw speed n_s [rpm]", f"against speed ({shared[0]})"),
-              (ambient, "ambient temperature [°C]", f"against ambient ({shared[1]})"))
-    for column, (points, xlabel, title) in enumerate(panels):
+    for column, (kind, points, shared) in enumerate(panels):
         temps, elong = axes[0, column], axes[1, column]
         xs, ticks = _positions(points)
         names = [name for name, _ in points]
         for quantity in temperatures:
             _trend_lines(temps, xs, names, quantity, rows, colours[quantity])
         _trend_lines(elong, xs, names, ELONGATION_QUANTITY, rows, _D_COLOUR)
+        title = f"against {kind}" + (f"\n({shared})" if shared else "")  # two lines: two columns fit 9 in
         temps.set_title(f"Final temperatures {title}", fontsize=10.5)
         elong.set_title(f"Elongation D {title}", fontsize=10.5)
         temps.set_ylabel("temperature [°C]")
         elong.set_ylabel("elongation D [µm]")
-        elong.set_xlabel(xlabel)
+        elong.set_xlabel(TREND_AXES[kind])
         elong.set_xticks(xs, ticks)
         for ax in (temps, elong):
             ax.grid(True, alpha=0.3)
@@ -290,7 +294,27 @@ def _figure(height: float):
     return Figure(figsize=(_WIDTH, height), layout="constrained")
 
 
+#: Colours of the report's palette PNGs: a figure's lines, bars and colour map fit in 256 without banding.
+PNG_COLOURS = 256
+
+
 def _png(figure) -> bytes:
     buffer = io.BytesIO()
     figure.savefig(buffer, dpi=_DPI, format="png")
+    return compact_png(buffer.getvalue())
+
+
+def compact_png(png: bytes, colours: int = PNG_COLOURS) -> bytes:
+    """``png`` as an optimised palette PNG of at most ``colours`` colours, same size in pixels.
+
+    The figures are drawn on an opaque white face, so the alpha channel is dropped; the median-cut
+    palette without dithering keeps lines and text crisp.  Pillow comes with matplotlib.
+    """
+    from PIL import Image
+
+    with Image.open(io.BytesIO(png)) as image:
+        palette = image.convert("RGB").quantize(colors=colours, method=Image.Quantize.MEDIANCUT,
+                                                dither=Image.Dither.NONE)
+    buffer = io.BytesIO()
+    palette.save(buffer, format="PNG", optimize=True)
     return buffer.getvalue()

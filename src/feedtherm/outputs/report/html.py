@@ -3,7 +3,9 @@
 Builders return strings of HTML.  Text arguments are plain text and are escaped; arguments
 named ``*_html`` (or values wrapped in :class:`Raw`) are HTML already built by these
 functions and are inserted as they are.  The page needs no JavaScript and loads nothing:
-the CSS is inline and the images are ``data:image/png;base64`` URIs.
+the CSS is inline and the images are ``data:image/png;base64`` URIs.  A section is a
+:class:`Section` (an HTML string that knows its anchor and title), so that the page's table
+of contents lists exactly the sections a report holds.
 """
 
 from __future__ import annotations
@@ -73,16 +75,30 @@ def heading(text: str, level: int = 3) -> str:
     return f"<h{level}>{esc(text)}</h{level}>"
 
 
-def section(anchor: str, title: str, body_html: str) -> str:
+class Section(str):
+    """A ``<section>``'s HTML that also carries its ``anchor`` and ``title`` (for the contents)."""
+
+    anchor: str
+    title: str
+
+    def __new__(cls, anchor: str, title: str, html_text: str) -> "Section":
+        made = super().__new__(cls, html_text)
+        made.anchor, made.title = anchor, title
+        return made
+
+
+def section(anchor: str, title: str, body_html: str) -> Section:
     """``<section id=anchor>`` with an ``<h2>`` title."""
-    return f'<section id="{esc(anchor)}"><h2>{esc(title)}</h2>{body_html}</section>'
+    return Section(anchor, title, f'<section id="{esc(anchor)}"><h2>{esc(title)}</h2>{body_html}</section>')
 
 
 def table(headers: Sequence[str | Raw], rows: Iterable[Sequence], *, caption: str = "",
-          css_class: str = "data", first_column_header: bool = True) -> str:
+          css_class: str = "data", first_column_header: bool = True, model: str = "") -> str:
     """A table; cells are text, numbers already formatted, :class:`Cell` or :class:`Raw`.
 
     The first cell of each row is a row header (``<th scope="row">``) unless told otherwise.
+    ``model`` names the model whose values the table holds ("uncalibrated model", "calibrated
+    model", or both): shown as a tag in the caption and kept in ``data-model``.
     """
     head = "".join(f'<th scope="col">{_content(h)}</th>' for h in headers)
     body = []
@@ -95,8 +111,10 @@ def table(headers: Sequence[str | Raw], rows: Iterable[Sequence], *, caption: st
             content = cell.text if isinstance(cell, Cell) else cell
             cells.append(f"<{tag}{scope}{_class(css)}>{_content(content)}</{tag}>")
         body.append(f"<tr>{''.join(cells)}</tr>")
-    cap = f"<caption>{esc(caption)}</caption>" if caption else ""
-    return (f'<table{_class(css_class)}>{cap}<thead><tr>{head}</tr></thead>'
+    tag = f'<span class="model">{esc(model)}</span>' if model else ""
+    cap = f"<caption>{esc(caption)}{' ' if caption and tag else ''}{tag}</caption>" if caption or tag else ""
+    data_model = f' data-model="{esc(model)}"' if model else ""
+    return (f'<table{_class(css_class)}{data_model}>{cap}<thead><tr>{head}</tr></thead>'
             f'<tbody>{"".join(body)}</tbody></table>')
 
 
@@ -124,9 +142,18 @@ def code(text: str) -> Raw:
     return Raw(f"<code>{esc(text)}</code>")
 
 
-def page(title: str, body_html: str) -> str:
-    """The complete document: doctype, inline CSS, ``body_html`` in a ``<main>``."""
-    return _PAGE.substitute(title=esc(title), css=_CSS, body=body_html)
+def page(title: str, body_html: str, contents: Sequence[tuple[str, str]] = ()) -> str:
+    """The complete document: doctype, inline CSS, ``body_html`` in a ``<main>``.
+
+    ``contents`` (anchor, title) become a table of contents that stays in view while the page
+    scrolls: a sidebar on a wide window, a bar above the page on a narrow one.
+    """
+    nav = ""
+    if contents:
+        items = "".join(f'<li><a href="#{esc(anchor)}">{esc(name)}</a></li>' for anchor, name in contents)
+        nav = f'<nav class="contents" aria-label="Contents"><strong>Contents</strong><ol>{items}</ol></nav>'
+    return _PAGE.substitute(title=esc(title), css=_CSS, body=body_html, nav=nav,
+                            layout=' class="with-contents"' if nav else "")
 
 
 # --------------------------------------------------------------------------- helpers
@@ -148,7 +175,8 @@ _PAGE = Template("""<!DOCTYPE html>
 <title>$title</title>
 <style>$css</style>
 </head>
-<body>
+<body$layout>
+$nav
 <main>
 $body
 </main>
@@ -162,6 +190,22 @@ _CSS = """
 body { margin: 0; color: var(--ink); background: #fff;
        font: 15px/1.5 "DejaVu Sans", "Segoe UI", Helvetica, Arial, sans-serif; }
 main { max-width: 1100px; margin: 0 auto; padding: 24px 28px 60px; }
+body.with-contents { display: flex; align-items: flex-start; }
+body.with-contents main { flex: 1 1 auto; min-width: 0; margin: 0; }
+nav.contents { position: sticky; top: 0; flex: 0 0 230px; height: 100vh; overflow-y: auto;
+               padding: 24px 12px 24px 18px; border-right: 1px solid var(--rule); background: var(--band);
+               font-size: 13.5px; }
+nav.contents ol { margin: 6px 0 0; padding-left: 20px; }
+nav.contents li { margin: 3px 0; }
+nav.contents a { color: #2a5d8f; text-decoration: none; }
+nav.contents a:hover { text-decoration: underline; }
+section { scroll-margin-top: 8px; }
+@media (max-width: 900px) {
+  body.with-contents { display: block; }
+  nav.contents { z-index: 1; height: auto; max-height: 40vh; border-right: 0; border-bottom: 1px solid var(--rule);
+                 padding: 8px 14px; }
+  nav.contents ol { columns: 2; }
+}
 h1 { font-size: 26px; margin: 0 0 4px; }
 h2 { font-size: 20px; margin: 36px 0 10px; padding-top: 10px; border-top: 2px solid var(--rule); }
 h3 { font-size: 16px; margin: 18px 0 6px; }
@@ -169,10 +213,10 @@ p, ul { max-width: 960px; }
 .meta { color: var(--muted); margin: 0 0 12px; }
 .summary { background: var(--band); border-left: 4px solid #3b6ea5; padding: 10px 14px; }
 .note { color: var(--muted); font-size: 13.5px; }
-nav ol { columns: 2; margin: 6px 0 0; padding-left: 22px; font-size: 14px; }
-nav a { color: #2a5d8f; text-decoration: none; }
 table { border-collapse: collapse; margin: 6px 0 14px; font-size: 13.5px; }
 caption { text-align: left; font-weight: bold; padding: 4px 0; }
+caption span.model { font-weight: normal; font-size: 12px; color: #2a5d8f; border: 1px solid #9fb8d3;
+                     border-radius: 3px; padding: 0 5px; white-space: nowrap; }
 th, td { border: 1px solid var(--rule); padding: 3px 7px; vertical-align: top; }
 thead th { background: var(--band); text-align: center; }
 table.data td { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }

@@ -1,4 +1,8 @@
-"""Sections 3–5: sensor curves, the screw field, the equilibrium time."""
+"""Sensor curves, the screw field, the equilibrium time.
+
+The equilibrium section's physics paragraphs appear where the runs hold what they speak of (an
+ambient series, a speed series, a coupled description) and state the run's own figures.
+"""
 
 from __future__ import annotations
 
@@ -7,33 +11,33 @@ import numpy as np
 from ...analysis.validation_types import ELONGATION_QUANTITY, Validation
 from ...constants import KELVIN_OFFSET
 from ...solution import Solution
+from ...solution.equilibrium import FLUCTUATION_K, RISE_FRACTION, WINDOW_S
 from . import data, figures
 from .html import heading, number, paragraph, png_image, section, table
 
 NOT_REACHED = "not reached in the run"
-EQUILIBRIUM_PHYSICS = (
+CRITERION = (f"every sensor within {100 * RISE_FRACTION:.0f} % of its steady rise and changing by less than "
+             f"{FLUCTUATION_K:g} K over {WINDOW_S:.0f} s")
+LINEAR_PHYSICS = (
     "Why the ambient temperature cannot change the equilibrium time when the coefficients are frozen. With the "
     "convection and radiation coefficients frozen for a run, the model is linear: C·dT/dt = "
     "−G·(T − T_amb) + q. Written for the rise θ = T − T_amb it reads C·dθ/dt = −G·θ + q with θ = 0 at the "
     "start, and the ambient temperature has disappeared: it shifts every temperature by the same amount and "
     "leaves every rise, and so the equilibrium time, unchanged: conditions at the same speeds that differ only "
-    "in ambient must reach equilibrium at the same time. The only ambient effect left "
-    "in physics mode comes through the temperature at which the coefficients are frozen: the air's properties "
-    "change the convection coefficients by a few per cent over 10 K, and the linearised radiation coefficient "
-    "(∝ T³) by about 10 %, far too little to move the equilibrium time by 40 min. A warmer room does not make "
-    "heat \"more difficult to dissipate\": the heat lost depends on T − T_amb, not on T_amb."
+    "in ambient must reach equilibrium at the same time. A warmer room does not make heat \"more difficult to "
+    "dissipate\": the heat lost depends on T − T_amb, not on T_amb."
 )
 COUPLED_PHYSICS = (
     "This description couples them (temperatures.coupling = \"nonlinear\"): the convection and radiation "
     "coefficients, the lubricants' viscosities and the windings' resistances follow the simulated "
     "temperatures, so the equation above is linear only within a step. The ambient then also acts through the "
     "air's and the oils' properties (a cooler room: thicker oil, more bearing heat; warmer windings: more "
-    "copper loss), by a few per cent per 10 K; the model's times of the ambient series above show how much."
+    "copper loss)."
 )
 TIME_CONSTANT_PHYSICS = (
     "The time constants are the eigenvalues of C⁻¹G: they follow from the heat capacities and the "
     "conductances (contacts, conduction, convection), not from the heat generated. Doubling every heat "
-    "doubles every rise and leaves the time to reach 95 % of it unchanged."
+    f"doubles every rise and leaves the time to reach {100 * RISE_FRACTION:.0f} % of it unchanged."
 )
 SPEED_PHYSICS = (
     "What changes with speed: the heats grow (bearing and motor losses with the shaft speeds, the screw–nut "
@@ -42,26 +46,36 @@ SPEED_PHYSICS = (
     "(h grows with the rotational Reynolds number; an overlay's printed CHTCs are scaled the same way). "
     "It also moves the heat between fast parts (screw, nut) and slow ones "
     "(housings, table, base), which changes which time constants dominate the sensors. The absolute part of "
-    "the equilibrium criterion (less than 0.5 K change over 600 s) is met later by a larger rise, so a "
-    "faster condition need not reach equilibrium sooner."
+    f"the equilibrium criterion (less than {FLUCTUATION_K:g} K change over {WINDOW_S:.0f} s) is met later by a "
+    "larger rise, so a faster condition need not reach equilibrium sooner."
 )
 
 
 def sensor_curves_section(validation: Validation) -> str:
+    if not validation.solutions:
+        return ""
     rows = data.comparisons_by_key(validation)
     ambients = sorted({s.ambient_sensor for s in validation.solutions.values()})
+    series = (" Where the measurements are time series, the final value is the series' last sample; the next "
+              "section draws the series." if validation.transients else "")
     body = [paragraph(
-        f"Simulated sensor temperatures and the elongation D over time. The measured values at thermal "
-        f"equilibrium are drawn as dashed lines in the colour of their sensor: the level a run should "
-        f"approach. {', '.join(ambients) or 'The ambient'} (dotted grey) is the ambient.")]
+        f"The {data.runs_model(validation)}'s sensor temperatures and the elongation D over time. The measured "
+        f"final values are drawn as dashed lines in the colour of their sensor: the level a run should "
+        f"approach.{series} {_ambient_words(ambients)}")]
     for condition, solution in validation.solutions.items():
         measured = {q: rows[(condition, q)].measured for q in validation.quantities if (condition, q) in rows}
         png = figures.sensor_curves(solution, condition, measured, validation.measured_equilibrium_min.get(condition))
         body.append(png_image(png, f"Sensor temperatures and elongation, condition {condition}",
                               caption=run_caption(validation, condition, solution)))
-    if not validation.solutions:
-        body.append(paragraph("No runs to show."))
     return section("sensor-curves", "Sensor curves per condition", "".join(body))
+
+
+def _ambient_words(sensors: list[str]) -> str:
+    """The ambient sensors named ("<name> (dotted grey) is the ambient."), unless their name says it already."""
+    named = [s for s in sensors if s.lower() != "ambient"]
+    if not named:
+        return "The ambient sensor is drawn dotted grey."
+    return f"{', '.join(named)} (dotted grey) is the ambient."
 
 
 def run_caption(validation: Validation, condition: str, solution: Solution) -> str:
@@ -81,11 +95,12 @@ def screw_field_section(validation: Validation) -> str:
     title = "Screw temperature over time and position"
     condition = data.reference_condition(validation)
     if condition is None:
-        return section("screw-field", title, paragraph("No runs to show."))
+        return ""
     solution = validation.solutions[condition]
     png = figures.screw_field(solution, condition)
-    intro = paragraph(f"Cross-section mean temperature of the screw in condition {condition}, over time and "
-                      "axial position (x from the description's origin), and axial profiles at a few times.")
+    intro = paragraph(f"The {data.runs_model(validation)}'s cross-section mean temperature of the screw in condition "
+                      f"{condition}, over time and axial position (x from the description's origin), and axial "
+                      "profiles at a few times.")
     return section("screw-field", title, intro + png_image(png, f"Screw temperature field, condition {condition}",
                                                            caption=profile_facts(solution)))
 
@@ -101,22 +116,23 @@ def profile_facts(solution: Solution) -> str:
 
 
 def equilibrium_section(validation: Validation) -> str:
+    if not validation.solutions:
+        return ""
+    stated = bool(validation.measured_equilibrium_min)
     body = [paragraph(
-        "When each run reached thermal equilibrium (every sensor within 95 % of its steady rise and changing by "
-        "less than 0.5 K over 600 s; docs/fast-model.md), beside the times the source states, where it does.")]
+        f"When each run of the {data.runs_model(validation)} reached thermal equilibrium ({CRITERION}; "
+        "docs/fast-model.md)" + (", beside the times the source states, where it does." if stated else "."))]
     shown: list[str] = []
-    for series, what in ((data.speed_series(validation), "Against speed"),
-                         (data.ambient_series(validation), "Against ambient")):
+    by_speed, by_ambient = data.speed_series(validation), data.ambient_series(validation)
+    for series, what in ((by_speed, "Against speed"), (by_ambient, "Against ambient")):
         if series is not None:
             body.append(heading(f"{what} ({series.title})"))
             body.append(equilibrium_table(validation, series.conditions))
             shown += series.conditions
     others = [c for c in validation.solutions if c not in shown]
     if others:
-        body.append(heading("Other conditions"))
+        body.append(heading("Other conditions" if shown else "Per condition"))
         body.append(equilibrium_table(validation, others))
-    if not validation.solutions:
-        body.append(paragraph("No runs to show."))
     if validation.start_variants:
         body.append(heading("Under another start"))
         body.append(paragraph(
@@ -124,14 +140,44 @@ def equilibrium_section(validation: Validation) -> str:
             "own start and against the same measurements: where the machine was before a test moves its "
             "equilibrium time and its whole transient, not its steady state."))
         body.append(start_variants_table(validation))
-    body.append(paragraph(EQUILIBRIUM_PHYSICS))
-    if any(run.info.get("coupling") == "nonlinear" for run in validation.solutions.values()):
-        body.append(paragraph(COUPLED_PHYSICS))
-    body += [paragraph(TIME_CONSTANT_PHYSICS), paragraph(SPEED_PHYSICS)]
+    if by_ambient is not None:
+        body.append(paragraph(LINEAR_PHYSICS + " " + ambient_effect_text(validation, by_ambient)))
+        if any(run.info.get("coupling") == "nonlinear" for run in validation.solutions.values()):
+            body.append(paragraph(COUPLED_PHYSICS))
+    body.append(paragraph(TIME_CONSTANT_PHYSICS))
+    if by_speed is not None:
+        body.append(paragraph(SPEED_PHYSICS))
     return section("equilibrium", "Equilibrium time", "".join(body))
 
 
+def ambient_effect_text(validation: Validation, series: data.Series) -> str:
+    """What the ambient series' own figures say: the radiation coefficient's change over its span, and
+    how far apart the model's and the stated equilibrium times of its conditions are."""
+    ambients = [validation.operating_points[c].ambient_c for c in series.conditions]  # what the series varies
+    parts = []
+    if max(ambients) > min(ambients):
+        low, high = min(ambients) + KELVIN_OFFSET, max(ambients) + KELVIN_OFFSET
+        parts.append(f"The only ambient effect left comes through the temperature the coefficients are taken "
+                     f"at: over the {high - low:.0f} K of the ambient series the air's properties change the "
+                     f"convection coefficients by a few per cent, and the linearised radiation coefficient (∝ T³) "
+                     f"by {100 * ((high / low) ** 3 - 1):.0f} %.")
+    names = ", ".join(series.conditions)
+    model = [data.equilibrium_minutes(validation.solutions[c]) for c in series.conditions]
+    times = ", ".join(NOT_REACHED if m is None else f"{m:.0f}" for m in model)
+    sentence = f"The model's equilibrium times of {names}: {times} min"
+    if all(m is not None for m in model):
+        sentence += f" ({max(model) - min(model):.0f} min apart)"
+    given = [validation.measured_equilibrium_min.get(c) for c in series.conditions]
+    known = [g for g in given if g is not None]
+    if len(known) >= 2:
+        sentence += (f"; the stated ones: {', '.join('—' if g is None else f'{g:.0f}' for g in given)} min "
+                     f"({max(known) - min(known):.0f} min apart)")
+    parts.append(sentence + ".")
+    return " ".join(parts)
+
+
 def equilibrium_table(validation: Validation, conditions: list[str]) -> str:
+    stated = bool(validation.measured_equilibrium_min)
     rows = []
     for condition in conditions:
         solution = validation.solutions[condition]
@@ -141,10 +187,10 @@ def equilibrium_table(validation: Validation, conditions: list[str]) -> str:
             number(data.ambient_c(solution), 1),
             number(data.run_minutes(solution), 0),
             number(data.equilibrium_minutes(solution), 0, missing=NOT_REACHED),
-            number(validation.measured_equilibrium_min.get(condition), 0),
-        ])
+        ] + ([number(validation.measured_equilibrium_min.get(condition), 0)] if stated else []))
     return table(["condition", "screw speed [rpm]", "ambient [°C]", "run length [min]",
-                  "model equilibrium [min]", "stated [min]"], rows)
+                  "model equilibrium [min]"] + (["stated [min]"] if stated else []), rows,
+                 model=data.runs_model(validation))
 
 
 def start_variants_table(validation: Validation) -> str:
@@ -167,7 +213,7 @@ def start_variants_table(validation: Validation) -> str:
                          number(max(temperature) if temperature else None, 1),
                          number(None if d is None else final[ELONGATION_QUANTITY] - d, 1, signed=True)])
     return table(["condition", "run", "start: sensors at 0 s [°C]", "model equilibrium [min]", "stated [min]",
-                  "largest |ΔT| final [K]", "ΔD final [µm]"], rows)
+                  "largest |ΔT| final [K]", "ΔD final [µm]"], rows, model=data.runs_model(validation))
 
 
 def equilibrium_text(solution: Solution) -> str:
