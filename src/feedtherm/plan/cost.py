@@ -12,8 +12,8 @@ A run of ``feedtherm run`` spends its time in a few places, each with its own dr
 - ``factorisations``: one step matrix per (operating point, time step, grid position the run
   visits).  A coupled run refactorises only where a node's link to the air has moved by a fifth
   and faster than a hundredth of its capacity a second (models/coupling.py): the paper bench's
-  condition I over 10,800 s, coupled, took 23 factorisations for its 21 positions visited, on
-  the fast model and on the coarse FE mesh alike (2026-11-29), so none are counted for it.
+  first condition over 10,800 s, coupled, took 23 factorisations for its 21 positions visited,
+  on the fast model and on the coarse FE mesh alike (2026-11-29), so none are counted for it.
 - ``steps``: the integrator's time steps (its own rule, :func:`integrator_steps`), one solve each.
 - ``outputs``: the plots, and the FE model's fields (images, a VTU per snapshot).
 
@@ -47,8 +47,8 @@ if TYPE_CHECKING:
 
 # ----------------------------------------------------------------------------- every run
 #: [s] The process's start: Python, feedtherm's imports, the description's load and checks, the
-#: plan, the tables and summary.  `feedtherm run paper --condition I --duration 1800` and
-#: `run ballscrew_example --condition v10 --duration 600`, fast model: the whole process's CPU time
+#: plan, the tables and summary.  `feedtherm run` of the paper bench's first condition over 1,800 s
+#: and of ballscrew_example's v10 over 600 s, fast model: the whole process's CPU time
 #: less the model's build, integration, packing and written files, 2.09 and 2.08 s.
 START_S = 2.1
 #: [s] The run's PNG plots (matplotlib's import and four figures): 2.39-2.71 s in every run measured.
@@ -71,17 +71,12 @@ FAST_STEP_S_PER_NODE = 1.75e-7
 #: elements (each face's area over its element size squared: curved faces' size is limited by
 #: the density's elements around a circle, as gmsh's MeshSizeFromCurvature does) and ``n`` its
 #: boxes, cylinders and holes.  Fitted (least squares, weights 1/√nodes) to every part of both
-#: benches' meshes at the three densities (``mesh_system``, 2026-11-29): the totals within 1.1 %.
+#: benches' meshes at the three densities (``mesh_system(load_system(bench).system, density)`` in
+#: an empty cache, 2026-11-29): paper 13,069, 44,443, 171,510 nodes (coarse, medium, fine),
+#: ballscrew_example 15,605, 53,346, 219,250; the totals within 1.1 %.
 FEM_NODES_PER_VOLUME = 0.691
 FEM_NODES_PER_FACE_ELEMENT = 0.770
 FEM_NODES_PER_PRIMITIVE = 75.8
-#: The benches' meshes these were fitted on (``mesh_system(load_system(bench).system, density)``
-#: with an empty cache, 2026-11-29): bench → density → nodes.  The unit tests hold the
-#: prediction to them.
-MEASURED_NODES = {
-    "paper": {"coarse": 13_069, "medium": 44_443, "fine": 171_510},
-    "ballscrew_example": {"coarse": 15_605, "medium": 53_346, "fine": 219_250},
-}
 #: [s] Meshing with gmsh, ``a N^b``: the six meshes above, CPU time 2.44, 7.87, 43.6 s (paper)
 #: and 2.81, 11.5, 63.8 s (ballscrew_example), each within 16 %.
 FEM_MESH = (3.93e-5, 1.156)
@@ -142,11 +137,11 @@ class ModelSize:
 
     def describe(self) -> str:
         """``fast 1,474 nodes``, ``fem medium ~44,000 nodes`` (predicted; ``, not meshed yet`` where its
-        mesh is not cached), ``reduced: the coarse mesh projected``."""
+        mesh is not cached), ``reduced (the coarse mesh projected)``."""
         if self.model == "fast":
             return f"fast {self.unknowns:,} nodes"
         if self.model == "reduced":
-            return f"reduced: the {self.mesh} mesh projected"
+            return f"reduced (the {self.mesh} mesh projected)"
         cached = "" if self.mesh_cached else ", not meshed yet"
         return f"{self.model} {self.mesh} ~{_round(self.unknowns):,} nodes{cached}"
 
@@ -345,11 +340,11 @@ def wall_time_parts(size: ModelSize, work: RunWork) -> dict[str, float]:
     start = START_S + PLOTS_S
     if size.model == "fast":
         return {"start": start, "set-up": FAST_SETUP_S, "factorisations": 0.0,
-                "steps": work.steps * FAST_STEP_S_PER_NODE * n, "outputs": 0.0}
+                "steps": work.steps * seconds_per_step(size), "outputs": 0.0}
     fields = FIELDS_S + FIELDS_S_PER_NODE * n + FIELDS_S_PER_NODE_SNAPSHOT * n * work.snapshots
     if size.model == "reduced":
         return {"start": start, "set-up": REDUCED_READ_S_PER_NODE * n,
-                "factorisations": work.factorisations * REDUCED_FACTOR_S, "steps": work.steps * REDUCED_STEP_S,
+                "factorisations": work.factorisations * REDUCED_FACTOR_S, "steps": work.steps * seconds_per_step(size),
                 "outputs": fields}
     meshing = 0.0 if size.mesh_cached else _power(FEM_MESH, n)
     setup = (meshing + _power(FEM_BUILD, n) + _power(FEM_READOUT, n)
@@ -357,7 +352,16 @@ def wall_time_parts(size: ModelSize, work: RunWork) -> dict[str, float]:
     factor = _power(FEM_FACTOR, n)
     return {"start": start, "set-up": setup,
             "factorisations": (work.factorisations + STEADY_FACTORS[work.coupled]) * factor,
-            "steps": work.steps * (_power(FEM_SOLVE, n) + FEM_STEP_S_PER_NODE * n), "outputs": fields}
+            "steps": work.steps * seconds_per_step(size), "outputs": fields}
+
+
+def seconds_per_step(size: ModelSize) -> float:
+    """[s] A time step of a model of ``size``, its solve and bookkeeping (no set-up, no outputs)."""
+    if size.model == "fast":
+        return FAST_STEP_S_PER_NODE * size.unknowns
+    if size.model == "reduced":
+        return REDUCED_STEP_S
+    return _power(FEM_SOLVE, size.unknowns) + FEM_STEP_S_PER_NODE * size.unknowns
 
 
 def projection_time(size: ModelSize) -> float:
