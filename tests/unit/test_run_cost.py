@@ -78,8 +78,9 @@ def test_steps_and_times_of_the_paper_benchs_condition_I(paper):
 
 
 def test_the_estimates_hold_against_runs_measured_alone():
-    """Whole `feedtherm run` processes, CPU time of one thread (python benchmarks/study_check_estimates.py
-    --calibrate's runs, the FE meshes cached, 2026-11-29): the estimate within a third."""
+    """Whole `feedtherm run` processes, CPU time with OpenBLAS and MKL on one thread, the FE meshes cached
+    (the runs feedtherm.plan.cost's constants were checked on, 2026-11-29, benchmarks/README.md, *check's
+    time estimates*): the estimate within a third."""
     measured = [
         ("paper", dict(condition="I"), ("fast", None), "resolved", 7.5),
         ("paper", dict(condition="I"), ("fem", "coarse"), "resolved", 67.5),

@@ -14,7 +14,7 @@ A run of ``feedtherm run`` spends its time in a few places, each with its own dr
   and faster than a hundredth of its capacity a second (models/coupling.py): the paper bench's
   first condition over 10,800 s, coupled, took 23 factorisations for its 21 positions visited,
   on the fast model and on the coarse FE mesh alike (2026-11-29), so none are counted for it.
-- ``steps``: the integrator's time steps (its own rule, :func:`integrator_steps`), one solve each.
+- ``steps``: the integrator's time steps (its own rule, :func:`run_work`), one solve each.
 - ``outputs``: the plots, and the FE model's fields (images, a VTU per snapshot).
 
 ``N`` is the model's unknowns, predicted from the description: the fast model's node count is its
@@ -36,7 +36,6 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from ..models.fem.geometry import DENSITIES, mesh_cache_path, mesh_size
-from ..models.fem.facets import rule
 from ..models.integrator import Segment
 from ..models.options import ModelOptions
 from ..system.geometry import part_volume, surface_area
@@ -205,6 +204,8 @@ def contact_work(system: FeedSystem, density: str) -> float:
     more points where the other side is finer still (models/fem/bench.py); a surface whose part
     slides past a joined part has its points tested against that part's facets.
     """
+    from ..models.fem.facets import rule  # here: its KD-trees' scipy.spatial would slow every command's start
+
     per_circle = DENSITIES[density].per_circle
     sizes = {name: mesh_size(system, name, density) for name in system.parts}
     points = 0.0
@@ -321,11 +322,6 @@ def _position(u: float, K: int) -> int:
     period = 2 * K
     tri = math.fmod(u, period)
     return int(round(tri if tri <= K else period - tri))
-
-
-def integrator_steps(plan: "RunPlan", motion: str, positions: int) -> int:
-    """The time steps the integrator takes for ``plan`` with ``motion`` (its soak run's included)."""
-    return run_work(plan, motion, positions).steps
 
 
 def wall_time(size: ModelSize, work: RunWork) -> float:
