@@ -71,7 +71,7 @@ def test_check_states_what_its_run_costs_scale_with(tmp_path):
                             capture_output=True, text=True, timeout=120, env={**os.environ, **env_cache})
     assert result.returncode == 0, result.stderr
     out = result.stdout
-    assert "fast 1,474 nodes, fem coarse ~13,000 nodes, not meshed yet, fem medium ~44,000 nodes, not meshed yet" in out
+    assert "fast 1,474 nodes; fem coarse ~13,000 nodes (not meshed yet); fem medium ~44,000 nodes (not meshed yet)" in out
     assert "41 grid positions of the moving group" in out
     assert "run cost of conditions.I (10.0 min simulated):" in out
     assert "--motion resolved: 360 steps; about fast" in out  # 600 s in steps of 1.667 s

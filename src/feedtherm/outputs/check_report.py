@@ -43,7 +43,7 @@ def size_lines(cost: RunCost) -> list[str]:
     sizes = cost.sizes
     fast = sizes.get(("fast", None))
     parts = [size.describe() for size in sizes.values() if size.model != "reduced"]
-    line = "  " + ", ".join(parts)
+    line = "  " + "; ".join(parts)
     if fast is not None and fast.positions > 1:
         line += f"; {fast.positions} grid positions of the moving group"
     lines = ["run costs below: `feedtherm run`'s wall time, estimated from each model's size and the run's steps:", line]

@@ -135,13 +135,13 @@ class ModelSize:
     mesh_cached: bool = True  # FE: the mesh file exists, no meshing
 
     def describe(self) -> str:
-        """``fast 1,474 nodes``, ``fem medium ~44,000 nodes`` (predicted; ``, not meshed yet`` where its
-        mesh is not cached), ``reduced (the coarse mesh projected)``."""
+        """``fast 1,474 nodes``, ``fem medium ~44,000 nodes`` (predicted, to two digits; followed by
+        ``(not meshed yet)`` where its mesh is not cached), ``reduced (the coarse mesh projected)``."""
         if self.model == "fast":
             return f"fast {self.unknowns:,} nodes"
         if self.model == "reduced":
             return f"reduced (the {self.mesh} mesh projected)"
-        cached = "" if self.mesh_cached else ", not meshed yet"
+        cached = "" if self.mesh_cached else " (not meshed yet)"
         return f"{self.model} {self.mesh} ~{_round(self.unknowns):,} nodes{cached}"
 
 
