@@ -158,6 +158,8 @@ def _fit(points: list[tuple[float, float]]) -> tuple[float, float]:
 
 
 def calibrate(args) -> None:
+    # one thread before numpy, scipy and MKL load: their thread pools read these once
+    os.environ.update(OPENBLAS_NUM_THREADS="1", MKL_NUM_THREADS="1")
     import numpy as np
     from threadpoolctl import threadpool_limits
 
