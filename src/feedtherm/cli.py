@@ -97,8 +97,8 @@ def cmd_modes(args: argparse.Namespace) -> int:
 
 
 def cmd_check(args: argparse.Namespace) -> int:
-    from .outputs.check_report import BASIS, area_lines, cost_lines
-    from .plan import plan_run, run_cost
+    from .outputs.check_report import BASIS, area_lines, cost_lines, size_lines
+    from .plan import model_sizes, plan_run, run_cost
     from .system.checks import check_system
     from .system.load import parse_toml, read_text, validate_data
 
@@ -118,15 +118,17 @@ def cmd_check(args: argparse.Namespace) -> int:
     overlay = None if overlay_file is None else read_overlay(overlay_file, system)
     # What `heat` and `run` would meet: every condition's and duty cycle's heats and
     # coefficients evaluated, and its step count planned (a model is not built).
-    costs = []
+    costs, sizes, first = [], model_sizes(system), None
     for kind, names in (("condition", system.conditions), ("cycle", system.duty_cycles), ("test", system.tests)):
         section = {"condition": "conditions", "cycle": "duty_cycles", "test": "tests"}[kind]
         for name in names:
             try:
-                plan = plan_run(loaded, **{kind: name})
+                plan = plan_run(loaded, **{kind: name}, duration=args.duration)
             except FeedthermError as exc:
                 raise FeedthermError(f"{loaded.origin}: {section}.{name}: {cli_message(exc)}") from None
-            costs.extend(cost_lines(f"{section}.{name}", plan.end - plan.segments[0].t0, run_cost(plan)))
+            cost = run_cost(plan, sizes)
+            first = first or cost
+            costs.extend(cost_lines(f"{section}.{name}", plan.end - plan.segments[0].t0, cost))
     print(f"{loaded.origin}: valid description '{system.meta.name}' — {len(system.parts)} parts, "
           f"{len(system.joints)} joints, {len(system.sources)} heat sources, {len(system.surfaces)} surfaces, "
           f"{len(system.sensors)} sensors, {len(system.conditions)} conditions"
@@ -138,7 +140,7 @@ def cmd_check(args: argparse.Namespace) -> int:
         print("no inconsistencies found")
     for finding in findings:
         print(f"warning: {finding}")
-    for line in area_lines(loaded) + costs + ([BASIS] if costs else []):
+    for line in area_lines(loaded) + (size_lines(first) if first else []) + costs + ([BASIS] if costs else []):
         print(line)
     return 0
 
@@ -774,6 +776,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     check = sub.add_parser("check", help="validate a description and list its inconsistencies")
     _system_argument(check)
+    check.add_argument("--duration", type=_positive_seconds, metavar="S",
+                       help="estimate the runs' cost over S seconds each (default: each condition's, cycle's or "
+                            "test's own length), as `run --duration S` would run them")
     check.set_defaults(func=cmd_check)
 
     run = sub.add_parser("run", help="simulate a condition or a duty cycle and write CSV, JSON and PNG files")

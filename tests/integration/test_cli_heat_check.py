@@ -1,6 +1,7 @@
 """`feedtherm heat` and `feedtherm check` as a user runs them (a subprocess each)."""
 
 import json
+import os
 import subprocess
 import sys
 
@@ -61,6 +62,25 @@ def test_check_flags_condition_I_only():
     warnings = [line for line in result.stdout.splitlines() if line.startswith("warning:")]
     assert len(warnings) == 1
     assert "conditions.I.feed_speed" in warnings[0] and "0.36 m/min" in warnings[0]
+
+
+def test_check_states_what_its_run_costs_scale_with(tmp_path):
+    """The models' sizes once, then each run's steps and times; --duration sets the runs' length."""
+    env_cache = {"FEEDTHERM_CACHE": str(tmp_path)}  # an empty cache: no mesh made yet
+    result = subprocess.run([sys.executable, "-m", "feedtherm", "check", "paper", "--duration", "600"],
+                            capture_output=True, text=True, timeout=120, env={**os.environ, **env_cache})
+    assert result.returncode == 0, result.stderr
+    out = result.stdout
+    assert "fast 1,474 nodes; fem coarse ~13,000 nodes (not meshed yet); fem medium ~44,000 nodes (not meshed yet)" in out
+    assert "41 grid positions of the moving group" in out
+    assert "run cost of conditions.I (10.0 min simulated):" in out
+    # 600 s in steps of 1.667 s; the FE and reduced models' windows in steps of 8.333 s
+    assert "--motion resolved: 360 steps (72 in the FE and reduced models, window by window); about fast" in out
+    assert "estimated times:" in out and "power law in the model's nodes" in out
+
+
+def test_check_refuses_a_duration_shorter_than_a_step():
+    assert_one_line_error(run("check", "paper", "--duration", "0.5"), "--duration", "shorter than one time step")
 
 
 def test_check_accepts_a_file(tmp_path):

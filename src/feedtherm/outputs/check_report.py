@@ -37,14 +37,33 @@ def _duration(seconds: float) -> str:
     return f"{seconds / 3600.0:.1f} h"
 
 
+def size_lines(cost: RunCost) -> list[str]:
+    """What the times below scale with: each model's nodes (the FE meshes' predicted), the moving
+    group's grid positions, and what a reduced model's first run on a mesh adds."""
+    sizes = cost.sizes
+    fast = sizes.get(("fast", None))
+    parts = [size.describe() for size in sizes.values() if size.model != "reduced"]
+    line = "  " + "; ".join(parts)
+    if fast is not None and fast.positions > 1:
+        line += f"; {fast.positions} grid positions of the moving group"
+    lines = ["run costs below: `feedtherm run`'s wall time, estimated from each model's size and the run's steps:", line]
+    for (model, mesh), seconds in cost.first_build.items():
+        size = sizes[(model, mesh)]
+        lines.append(f"  {size.describe()}: its first run on a mesh also builds its projection, about "
+                     f"{_duration(seconds)} more (kept on disk for the runs after)")
+    return lines
+
+
 def cost_lines(what: str, duration: float, cost: RunCost) -> list[str]:
-    """Planned steps and estimated wall time per model of one condition or duty cycle, and when
-    the cycle-averaged motion is advised."""
+    """Time steps and estimated wall time per model of one condition or duty cycle, and when the
+    cycle-averaged motion is advised."""
     lines = [f"run cost of {what} ({_duration(duration)} simulated):"]
     for motion, steps in cost.steps.items():
         times = ", ".join(f"{model}{'' if mesh is None else ' ' + mesh} {_duration(by_motion[motion])}"
                           for (model, mesh), by_motion in cost.seconds.items())
-        lines.append(f"  --motion {motion}: {steps:,} steps; about {times}")
+        windows = (f" ({cost.window_steps:,} in the FE and reduced models, window by window)"
+                   if motion == "resolved" and cost.window_steps is not None else "")
+        lines.append(f"  --motion {motion}: {steps:,} steps{windows}; about {times}")
     if cost.suggest_averaged:
         ratio = cost.steps["resolved"] / max(cost.steps["averaged"], 1)
         lines.append(f"  the reciprocation cycle ({cost.cycle_s:.3g} s) is under {AVERAGED_MOTION_MAX_CYCLE_S:g} s: "
@@ -53,6 +72,7 @@ def cost_lines(what: str, duration: float, cost: RunCost) -> list[str]:
 
 
 #: How the times above are estimated, printed once under them.
-BASIS = ("estimated times: the planned steps × each model's measured wall time per step on a 2-core x86-64 "
-         "machine, for a bench the size of the bundled ones (feedtherm.plan.SECONDS_PER_STEP); FE and reduced "
-         "runs add their set-up (mesh, contacts; the reduced model's basis once per mesh)")
+BASIS = ("estimated times: start-up and plots (about 5 s), the model's set-up (an FE mesh where it is not cached, "
+         "its assembly and elastic readout, its contacts at every grid position), a factorisation per operating point "
+         "and position visited, and a solve per step, each a power law in the model's nodes measured on both bundled "
+         "benches (feedtherm.plan.cost); on a 2-core x86-64 machine with nothing else running, longer on a busy one")

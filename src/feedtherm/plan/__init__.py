@@ -9,7 +9,7 @@ once; :func:`feedtherm.simulate.execute` integrates a plan and packs its Solutio
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 from ..boundary import PHYSICS, BoundaryConditions, EvaluationMemo, LocalTemperatures, boundary_conditions_at
 from ..boundary.heat import motor_overloads
@@ -26,6 +26,7 @@ from ..system.measurements import MeasurementSet
 from ..system.overlay import Overlay, available_overlay, mode_of, with_overlay
 from ..system.schema import DutySegment, FeedSystem
 from ..system.thermal_tests import Soak, ThermalTest
+from .cost import ModelSize, fast_size, fem_size, projection_time, run_work, wall_time
 from .profiles import FromReadings, Initial, Soaked, Uniform, cycle_profile, soak_target, test_profile
 
 MESHES = ("coarse", "medium", "fine")
@@ -205,22 +206,6 @@ def _check_duration(loaded: LoadedSystem, segments: list[Segment], end: float, o
         raise FeedthermError(f"the run's duration: {detail}")
 
 
-#: Wall time per time step [s] of each model (and FE mesh), measured on the project's machine
-#: (x86-64, 2 cores); a step's cost grows with the model's unknowns, so these hold for benches
-#: the size of the bundled ones (1,300-1,500 fast-model nodes, the paper bench's meshes).
-SECONDS_PER_STEP = {
-    # ballscrew_example, v10, 1800 s resolved: 21,750 steps in 4.6 s (summary.json's wall_time_s,
-    # 2026-11-26); the paper bench at 396 rpm, 6,480 steps in 0.73-0.87 s (docs/fast-model.md).
-    ("fast", None): 2.1e-4,
-    # the paper bench at 1500 rpm, resolved: 67,000 steps in 4 min 44 s (issue 33).
-    ("fem", "coarse"): 4.2e-3,
-    # the paper bench at 396 rpm, 6,480 steps: 54 s (PARDISO) and 281-287 s (docs/fem-model.md).
-    ("fem", "medium"): 8.3e-3,
-    ("fem", "fine"): 4.4e-2,
-    # the paper bench at 396 rpm on the fine mesh, basis cached: execute 2.24 s for 6,480 steps
-    # (benchmarks/README.md); the basis itself, once per mesh, takes 13-400 s.
-    ("reduced", None): 3.5e-4,
-}
 #: Longest reciprocation cycle 2 stroke / |v| [s] for which `check` suggests --motion averaged.
 #: The cycle-averaged motion's deviation from the resolved one grows with the cycle (the FE
 #: verification's sliding contact: order 0.8-0.9 in the period, docs/fem-model.md).  Measured
@@ -235,27 +220,65 @@ AVERAGED_MOTION_MAX_CYCLE_S = 30.0
 
 @dataclass(frozen=True)
 class RunCost:
-    """What a run of one condition or duty cycle will cost, planned, before any model is built."""
+    """What a run of one condition or duty cycle will cost, planned, before any model is built
+    (:mod:`feedtherm.plan.cost`)."""
 
-    steps: dict[str, int]  # motion ("resolved", "averaged") -> planned time steps
+    steps: dict[str, int]  # motion ("resolved", "averaged") -> the integrator's time steps
     seconds: dict[tuple[str, str | None], dict[str, float]]  # (model, mesh) -> motion -> estimated wall time [s]
     cycle_s: float | None  # the longest reciprocation cycle 2 stroke / |v| of a moving segment [s]; None at standstill
+    sizes: dict[tuple[str, str | None], ModelSize] = field(default_factory=dict)  # what the times scale with
+    #: (model, mesh) -> what its first run on a mesh adds [s] where it may be cached already (the
+    #: reduced model's projection); the times above hold with it cached
+    first_build: dict[tuple[str, str | None], float] = field(default_factory=dict)
+    #: the resolved motion's steps in the models that step it window by window (FE, reduced;
+    #: models/windows.py), where they differ from ``steps["resolved"]``
+    window_steps: int | None = None
 
     @property
     def suggest_averaged(self) -> bool:
         return self.cycle_s is not None and self.cycle_s <= AVERAGED_MOTION_MAX_CYCLE_S
 
 
-def run_cost(plan: RunPlan) -> RunCost:
-    """The planned steps of ``plan``'s segments by each motion, and the wall time each model would take."""
+#: The built-in models whose resolved motion steps window by window (``ThermalModel.windowed_motion``).
+WINDOWED_MODELS = ("fem", "reduced")
+#: The models and FE meshes `check` estimates a run of (the reduced model on the coarse mesh).
+COSTED_MODELS = (("fast", None), ("fem", "coarse"), ("fem", "medium"), ("fem", "fine"), ("reduced", None))
+
+
+def model_sizes(system: FeedSystem, options: ModelOptions | None = None) -> dict[tuple[str, str | None], ModelSize]:
+    """What each of :data:`COSTED_MODELS` would have for ``system``: nodes (the FE meshes' predicted),
+    grid positions, and whether each mesh is cached."""
+    opts = options or ModelOptions()
+    sizes = {("fast", None): fast_size(system, opts)}
+    for density in MESHES:
+        sizes[("fem", density)] = fem_size(system, density, opts)
+    sizes[("reduced", None)] = replace(sizes[("fem", opts.mesh)], model="reduced")
+    return sizes
+
+
+def run_cost(plan: RunPlan, sizes: dict[tuple[str, str | None], ModelSize] | None = None) -> RunCost:
+    """The integrator's time steps of ``plan`` by each motion, and the wall time each model would take
+    (``sizes``: :func:`model_sizes` of the plan's description, computed here when not given)."""
     system = plan.loaded.system
+    sizes = sizes or model_sizes(system, plan.options)
     stroke = _stroke(system)
-    steps = {motion: estimated_steps(stroke, plan.segments, replace(plan.options, motion=motion))
-             for motion in ("resolved", "averaged")}
-    seconds = {key: {motion: n * per_step for motion, n in steps.items()} for key, per_step in SECONDS_PER_STEP.items()}
+    positions = sizes[("fast", None)].positions
+    works = {motion: run_work(plan, motion, positions) for motion in MOTIONS}
+    windowed = run_work(plan, "resolved", positions, windowed=True)
+    seconds, first = {}, {}
+    for key, size in sizes.items():
+        own = {**works, "resolved": windowed} if size.model in WINDOWED_MODELS else works
+        seconds[key] = {motion: wall_time(size, work) for motion, work in own.items()}
+        if size.model == "reduced":
+            once = projection_time(size)
+            if size.mesh_cached:  # its projection may be on disk already
+                first[key] = once
+            else:  # no mesh, no projection: the run builds both
+                seconds[key] = {motion: s + once for motion, s in seconds[key].items()}
     moving = [seg.speed for seg in plan.segments if seg.speed > 0.0]
     cycle = 2.0 * stroke / min(moving) if moving else None  # the slowest cycle decides
-    return RunCost(steps, seconds, cycle)
+    return RunCost({motion: work.steps for motion, work in works.items()}, seconds, cycle, sizes, first,
+                   windowed.steps if windowed.steps != works["resolved"].steps else None)
 
 
 def _stroke(system) -> float:

@@ -294,7 +294,8 @@ def _record(solution, cycle: DutyCycle, variant, label: str, names: list[str]) -
 
 #: A study's run probes every candidate at every sample: its step costs this many times a plain run's
 #: (ballscrew_example, 103 candidates, 8 cycles a set: 52.9 s of runs for 92,160 steps serial, where
-#: the plain fast model steps at 2.8e-4 s on the same machine; 2026-11-29, benchmarks/README.md).
+#: the plain fast model steps at 2.8e-4 s on the same machine; 2026-11-29, benchmarks/README.md;
+#: feedtherm.plan.cost gives its 1,752 nodes 3.1e-4 s).
 STUDY_STEP_FACTOR = 2.0
 #: The selection, fits, filters and judgements per run of the study, on the same machine [s] (12.5 s for 32 runs).
 FIT_SECONDS_PER_RUN = 0.4
@@ -320,9 +321,10 @@ class StudyCost:
 
 def study_cost(loaded: LoadedSystem, settings: StudySettings) -> StudyCost:
     """The runs a study will make and their time steps (the integrator's rule on each cycle,
-    :func:`feedtherm.plan.estimated_steps`), with the wall time the model takes per step on the
-    project's machine (:data:`feedtherm.plan.SECONDS_PER_STEP`)."""
-    from ...plan import SECONDS_PER_STEP, estimated_steps
+    :func:`feedtherm.plan.estimated_steps`), with the wall time a step of the model takes at its
+    size on the project's machine (:func:`feedtherm.plan.cost.seconds_per_step`)."""
+    from ...plan import model_sizes, estimated_steps
+    from ...plan.cost import seconds_per_step
     from ...models.integrator import Segment
 
     options = ModelOptions(motion=settings.motion)
@@ -335,8 +337,9 @@ def study_cost(loaded: LoadedSystem, settings: StudySettings) -> StudyCost:
             ends = [s.start for s in cycle.segments[1:]] + [cycle.duration]
             segments = [Segment(s.start, end, _Moving(s, loaded.system)) for s, end in zip(cycle.segments, ends)]
             steps += estimated_steps(stroke, segments, options)
-    key = (settings.model, settings.mesh if settings.model != "fast" else None)
-    per_step = SECONDS_PER_STEP.get(key, SECONDS_PER_STEP.get((settings.model, None), SECONDS_PER_STEP[("fast", None)]))
+    sizes = model_sizes(loaded.system, ModelOptions(mesh=settings.mesh or "coarse"))
+    key = {"fast": ("fast", None), "reduced": ("reduced", None)}.get(settings.model, ("fem", settings.mesh or "coarse"))
+    per_step = seconds_per_step(sizes.get(key, sizes[("fast", None)]))
     return StudyCost(runs, steps, steps * per_step * STUDY_STEP_FACTOR)
 
 
