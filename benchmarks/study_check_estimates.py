@@ -72,8 +72,11 @@ def check_estimate(bench: str, selector: list[str], duration: float | None, mode
     section = {"--condition": "conditions", "--test": "tests", "--cycle": "duty_cycles"}[selector[0]]
     lines = memo[key].splitlines()
     head = next(i for i, line in enumerate(lines) if line.startswith(f"run cost of {section}.{selector[1]} ("))
-    line = next(line for line in lines[head + 1:head + 3] if line.strip().startswith(f"--motion {motion}:"))
+    line = next(line for line in lines[head + 1:head + 4] if line.strip().startswith(f"--motion {motion}:"))
     steps = int(re.search(r": ([\d,]+) steps", line).group(1).replace(",", ""))
+    windows = re.search(r"\(([\d,]+) in the FE and reduced models", line)
+    if windows and model in ("fem", "reduced"):  # their resolved motion steps window by window
+        steps = int(windows.group(1).replace(",", ""))
     name = model if mesh is None else f"{model} {mesh}"
     found = re.search(rf"(?:about |, ){re.escape(name)} ([\d.]+) (s|min|h)\b", line)
     return float(found.group(1)) * UNITS[found.group(2)], steps
