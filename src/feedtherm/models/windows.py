@@ -2,7 +2,7 @@
 
 The exact resolved motion steps the group from grid position to grid position, a few cells a
 step, and factorises one step matrix per position it stops at: an FE run of the paper's bench
-on its fine mesh holds 21 factors of 370 MB (docs/fem-model.md, *Memory*).  The windowed motion
+on its fine mesh holds 21 factors of 370 MB (docs/fem-model.md, *Memory of the exact motion*).  The windowed motion
 cuts the stroke into ``K / W`` windows of ``W`` cells; a step sweeps one window, with the
 operators averaged over the positions it sweeps (:class:`~.interface.PositionWindow`: the
 contacts, the exposed surfaces and the heat under the nut spread over the stretch, weighted
