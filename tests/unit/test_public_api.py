@@ -169,7 +169,7 @@ def test_the_unit_named_fields_are_the_si_fields_in_their_unit(run):
     ({"condition": "I", "duration": -1.0}, "duration: must be positive, got -1.0 s"),
     ({"condition": "I", "duration": 1e-9}, "duration: 1e-09 s is shorter than one time step"),
     ({"condition": "I", "sample_interval": 0.0}, "sample_interval: must be positive, got 0.0 s"),
-    ({"condition": "I", "motion": "fast"}, "motion: must be resolved or averaged, got 'fast'"),
+    ({"condition": "I", "motion": "fast"}, "motion: must be resolved, exact or averaged, got 'fast'"),
     ({"condition": "I", "model": "fsat"}, "model: no model 'fsat'; models: fast"),
 ])
 def test_simulate_errors_name_the_argument_and_the_cli_names_the_option(paper, kwargs, message):
