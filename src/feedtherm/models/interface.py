@@ -349,9 +349,10 @@ class ThermalModel(ABC):
     def boundary_basis(self, k: int | None) -> "BoundaryBasis":
         """Where each surface exchanges heat and each source's heat enters, at position k.
 
-        ``k = None`` gives the cycle average, a :class:`PositionWindow` its positions' weighted sum.  These depend on the geometry alone, so they are
-        built once per position; boundary conditions then weigh them by their coefficients
-        and heats, which keeps re-evaluating coefficients (the nonlinear coupling) cheap.
+        ``k = None`` gives the cycle average, a :class:`PositionWindow` its positions' weighted
+        sum.  These depend on the geometry alone, so they are built once per position; boundary
+        conditions then weigh them by their coefficients and heats, which keeps re-evaluating
+        coefficients (the nonlinear coupling) cheap.
         """
         cache = self.__dict__.setdefault("_boundary_bases", {})
         if k not in cache:
