@@ -186,8 +186,7 @@ class ProjectedModel(ThermalModel):
         if k is None:
             return matrix
         moving = self.projection.moving_surfaces
-        change = self._at("exposure_change", k) if isinstance(k, PositionWindow) else self.projection.exposure_change[k]
-        return matrix + np.tensordot(h[moving], change, axes=1)
+        return matrix + np.tensordot(h[moving], self._at("exposure_change", k), axes=1)
 
     def heat_vector(self, bc: BoundaryConditions, k: int | None) -> np.ndarray:
         return source_powers(bc, self._sources) @ self._at("entries", k)
